@@ -1,0 +1,20 @@
+# Thin wrappers; the work is in scripts/. Each target installs what it needs first.
+.PHONY: demo test bench build bootstrap clean
+
+bootstrap:
+	bash scripts/bootstrap
+
+build: bootstrap
+	bash scripts/build
+
+demo: build
+	bash scripts/demo
+
+test: build
+	bash scripts/run_tests
+
+bench: build
+	bash scripts/bench
+
+clean:
+	rm -rf build_ws

@@ -1,0 +1,45 @@
+#pragma once
+/// \file error.h
+/// The one exception type of reach_trajopt. Every bad input (missing file, malformed URDF,
+/// unknown frame, non-finite numbers, wrong sizes, invalid configuration) throws it with a
+/// message naming the problem and where it was found. Nodes catch it at their boundary,
+/// answer the request with the message and keep serving.
+
+#include <sstream>
+#include <stdexcept>
+#include <cmath>
+#include <string>
+
+#include <Eigen/Core>
+
+namespace reach_trajopt {
+
+class ReachError : public std::runtime_error {
+ public:
+  explicit ReachError(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// Throws ReachError("<what>: expected size <expected>, got <actual>") when sizes differ.
+inline void requireSize(const char* what, Eigen::Index actual, Eigen::Index expected) {
+  if (actual != expected) {
+    std::ostringstream os;
+    os << what << ": expected size " << expected << ", got " << actual;
+    throw ReachError(os.str());
+  }
+}
+
+/// Throws ReachError naming the first non-finite entry of `v` (NaN or +-inf).
+template <typename Derived>
+void requireFinite(const char* what, const Eigen::DenseBase<Derived>& v) {
+  if (!v.allFinite()) {
+    for (Eigen::Index r = 0; r < v.rows(); ++r)
+      for (Eigen::Index c = 0; c < v.cols(); ++c)
+        if (!std::isfinite(v(r, c))) {
+          std::ostringstream os;
+          os << what << ": non-finite value " << v(r, c) << " at (" << r << ", " << c << ")";
+          throw ReachError(os.str());
+        }
+  }
+}
+
+}  // namespace reach_trajopt

@@ -1,0 +1,28 @@
+#pragma once
+/// \file contact_config.h
+/// Contact parameters of the biped: friction coefficient and sole size of the contact wrench
+/// cone (eq. 7-8) and the names of the sole frames whose constraints are eq. (5).
+
+#include <string>
+
+namespace reach_trajopt {
+
+class YamlSection;
+
+/// Rectangular-sole contact parameters. Defaults: a Valkyrie-like sole (DESIGN.md Sec. 2).
+struct ContactConfig {
+  double mu = 0.7;                        ///< friction coefficient, > 0
+  double half_length = 0.135;             ///< X: sole half-length along the sole's x axis [m]
+  double half_width = 0.08;               ///< Y: sole half-width along the sole's y axis [m]
+  std::string left_sole_frame = "l_sole";   ///< frame at the left sole centre, z out of the sole
+  std::string right_sole_frame = "r_sole";  ///< frame at the right sole centre
+
+  /// Throws ReachError with the offending value when mu <= 0, a size <= 0, non-finite values
+  /// or empty frame names.
+  void validate() const;
+  /// Reads the keys mu, half_length, half_width, left_sole_frame, right_sole_frame of a YAML
+  /// section (missing keys keep the defaults, unknown keys throw), then validates.
+  static ContactConfig fromYaml(const YamlSection& section);
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,37 @@
+#pragma once
+/// \file sim_config.h
+/// Parameters of the Bullet multibody world that stands in for the robot (paper Sec. IV uses
+/// DART; we use Bullet's btMultiBody, double precision). Read from the `sim:` section of
+/// config/sim.yaml.
+
+#include <string>
+
+#include <Eigen/Core>
+
+namespace reach_trajopt {
+
+class YamlSection;
+
+/// Simulation parameters. Speed versus accuracy: `solver_iterations` (contact and joint-limit
+/// impulses: more iterations, stiffer and more accurate contacts, slower steps).
+struct SimConfig {
+  double time_step = 1e-3;  ///< fixed step [s] (1 kHz)
+  double mu = 0.7;          ///< Coulomb friction sole/link-ground (same default as ContactConfig)
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< world frame [m/s^2]
+  bool contacts = true;        ///< false: no ground (free fall, for checks against the model)
+  bool joint_limits = true;    ///< unilateral joint-limit constraints from the URDF limits
+  bool clamp_torques = true;   ///< saturate u at the URDF effort limits, as actuators do
+  std::string left_sole_frame = "l_sole";   ///< sole-centre frames where wrenches are reported
+  std::string right_sole_frame = "r_sole";
+  int solver_iterations = 50;         ///< Bullet constraint-solver iterations per step
+  double collision_margin = 1e-3;     ///< Bullet convex margin [m] (rounds box corners)
+  double max_coordinate_velocity = 1e3;  ///< Bullet's velocity clamp [m/s, rad/s], kept out of reach
+
+  /// Throws ReachError naming the offending value (non-positive step, mu, iterations,
+  /// negative margin, non-finite gravity, empty or equal sole frames).
+  void validate() const;
+  /// Reads the keys above (missing keys keep the defaults, unknown keys throw), validates.
+  static SimConfig fromYaml(const YamlSection& section);
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,198 @@
+/// model_info: inspect any robot as reach_trajopt sees it (no ROS master needed).
+///
+///   model_info <urdf> [--fixed-base] [--state FILE] [--frames a,b,...]
+///
+/// Without --state: a summary (mass, CoM at the neutral configuration, dofs, joint order and
+/// limits, frames). With --state FILE ({"q": [...], "qd": [...]} or {"states": [{...}, ...]},
+/// our coordinates: floating base [x y z yaw pitch roll] then the joints): JSON with M, b, the
+/// CoM and its Jacobian, and for each frame of --frames its pose, Jacobian and Jdot*qd
+/// (6 x n_q at the frame origin, world orientation, rows [linear; angular]).
+/// Exit status: 0 ok, 2 bad input (the message on stderr names the problem).
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "reach_trajopt/model/robot_model.h"
+
+using reach_trajopt::ReachError;
+using reach_trajopt::RobotModel;
+using Json = nlohmann::json;
+
+namespace {
+
+void usage() {
+  std::cerr << "usage: model_info <urdf> [--fixed-base] [--state FILE] [--frames a,b,...]\n";
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, sep))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+Json matrixToJson(const Eigen::MatrixXd& A) {
+  Json rows = Json::array();
+  for (int r = 0; r < A.rows(); ++r) {
+    Json row = Json::array();
+    for (int c = 0; c < A.cols(); ++c) row.push_back(A(r, c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+Json vectorToJson(const Eigen::VectorXd& v) {
+  return Json(std::vector<double>(v.data(), v.data() + v.size()));
+}
+
+Eigen::VectorXd vectorFromJson(const Json& j, const std::string& what) {
+  if (!j.is_array()) throw ReachError("state file: '" + what + "' must be a list of numbers");
+  Eigen::VectorXd v(j.size());
+  for (size_t i = 0; i < j.size(); ++i) {
+    if (j[i].is_number())
+      v[i] = j[i].get<double>();
+    else if (j[i].is_string() && (j[i] == "nan" || j[i] == "NaN"))
+      v[i] = std::numeric_limits<double>::quiet_NaN();
+    else
+      throw ReachError("state file: '" + what + "' entry " + std::to_string(i) + " is not a number");
+  }
+  return v;
+}
+
+void printSummary(const RobotModel& model) {
+  reach_trajopt::Workspace ws(model);
+  const Eigen::VectorXd q = model.neutralConfiguration();
+  model.update(ws, q, Eigen::VectorXd::Zero(model.nq()));
+  const Eigen::Vector3d com = model.centerOfMass(ws);
+  std::printf("robot        %s (%s)\n", model.name().c_str(), model.source().c_str());
+  std::printf("base         %s\n", model.floatingBase() ? "floating (6 virtual joints)" : "fixed");
+  std::printf("dofs         n_q = %d, n_u = %d\n", model.nq(), model.nu());
+  std::printf("total mass   %.3f kg\n", model.totalMass());
+  std::printf("CoM          [%.4f, %.4f, %.4f] m at the neutral configuration (base at origin)\n",
+              com.x(), com.y(), com.z());
+  std::printf("joints (index, name, type, q range [m|rad], |qd| max, |effort| max):\n");
+  for (int i = 0; i < model.nq(); ++i) {
+    const auto& j = model.joints()[i];
+    std::printf("  %2d %-18s %-10s [%8.3f, %8.3f] %8.3g %8.3g\n", i, j.name.c_str(),
+                j.is_virtual ? "virtual" : (j.is_prismatic ? "prismatic" : "revolute"), j.q_min,
+                j.q_max, j.qd_max, j.effort_max);
+  }
+  std::printf("frames:\n");
+  for (const auto& name : model.frameNames()) {
+    const Eigen::Vector3d p = model.framePose(ws, model.frameId(name)).translation();
+    std::printf("  %-22s at [%.4f, %.4f, %.4f] m\n", name.c_str(), p.x(), p.y(), p.z());
+  }
+}
+
+Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws, const Json& state,
+              const std::vector<std::string>& frames) {
+  if (!state.is_object() || !state.contains("q") || !state.contains("qd"))
+    throw ReachError("state file: each state needs 'q' and 'qd'");
+  const Eigen::VectorXd q = vectorFromJson(state["q"], "q");
+  const Eigen::VectorXd qd = vectorFromJson(state["qd"], "qd");
+  model.update(ws, q, qd);
+  const int n = model.nq();
+  Eigen::MatrixXd M(n, n);
+  Eigen::VectorXd b(n);
+  model.massMatrix(ws, M);
+  model.bias(ws, b);
+  Eigen::Matrix3Xd Jc(3, n);
+  model.centerOfMassJacobian(ws, Jc);
+  Json out;
+  out["M"] = matrixToJson(M);
+  out["b"] = vectorToJson(b);
+  out["com"] = vectorToJson(model.centerOfMass(ws));
+  out["com_jacobian"] = matrixToJson(Jc);
+  Json jf = Json::object();
+  reach_trajopt::Matrix6Xd J(6, n);
+  for (const auto& name : frames) {
+    const reach_trajopt::FrameId id = model.frameId(name);
+    const Eigen::Isometry3d T = model.framePose(ws, id);
+    model.frameJacobian(ws, id, J);
+    Json f;
+    f["position"] = vectorToJson(T.translation());
+    f["rotation"] = matrixToJson(T.linear());
+    f["jacobian"] = matrixToJson(J);
+    f["jdot_qd"] = vectorToJson(model.frameJdotQd(ws, id));
+    jf[name] = f;
+  }
+  out["frames"] = jf;
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string urdf, state_file, frames_arg;
+  reach_trajopt::ModelOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--fixed-base") {
+      options.base = reach_trajopt::ModelOptions::Base::kFixed;
+    } else if (a == "--state" && i + 1 < argc) {
+      state_file = argv[++i];
+    } else if (a == "--frames" && i + 1 < argc) {
+      frames_arg = argv[++i];
+    } else if (a == "-h" || a == "--help") {
+      usage();
+      return 0;
+    } else if (!a.empty() && a[0] != '-' && urdf.empty()) {
+      urdf = a;
+    } else {
+      std::cerr << "model_info: unexpected argument '" << a << "'\n";
+      usage();
+      return 2;
+    }
+  }
+  if (urdf.empty()) {
+    usage();
+    return 2;
+  }
+  try {
+    const auto model = RobotModel::fromUrdfFile(urdf, options);
+    if (state_file.empty()) {
+      printSummary(*model);
+      return 0;
+    }
+    std::ifstream in(state_file);
+    if (!in) throw ReachError("cannot open state file '" + state_file + "'");
+    Json input;
+    try {
+      input = Json::parse(in);
+    } catch (const Json::exception& e) {
+      throw ReachError("state file '" + state_file + "' is not valid JSON: " + e.what());
+    }
+    const std::vector<std::string> frames = split(frames_arg, ',');
+    for (const auto& f : frames) model->frameId(f);  // unknown frames fail before any output
+    Json out;
+    out["nq"] = model->nq();
+    out["nu"] = model->nu();
+    out["mass"] = model->totalMass();
+    Json names = Json::array();
+    for (const auto& j : model->joints()) names.push_back(j.name);
+    out["joint_names"] = names;
+    out["q_min"] = vectorToJson(model->positionLowerLimits());
+    out["q_max"] = vectorToJson(model->positionUpperLimits());
+    reach_trajopt::Workspace ws(*model);
+    Json results = Json::array();
+    if (input.is_object() && input.contains("states")) {
+      for (const auto& s : input["states"]) results.push_back(evaluate(*model, ws, s, frames));
+    } else {
+      results.push_back(evaluate(*model, ws, input, frames));
+    }
+    out["results"] = results;
+    std::cout << out.dump() << "\n";
+  } catch (const ReachError& e) {
+    std::cerr << "model_info: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Dynamics benchmark: our RobotModel vs Pinocchio C++ on urdf/biped.urdf (bench/dynamics/).
+# Needs the package built (scripts/build, same REACH_WS) and the venv (scripts/bootstrap).
+# Configures and builds bench/dynamics in $WS/bench_dynamics (one TU including Pinocchio: about
+# 80 s the first time), saves Pinocchio's model of the URDF (parsed by Pinocchio in Python, root
+# joint PX PY PZ RZ RY RX = our floating base) and runs the benchmark, which prints
+#   BENCH dynamics.{full,mass_matrix,bias} ours_us=... ref=pinocchio ref_us=... ratio=...
+# Extra arguments go to bench_dynamics (--rounds N --batch K).
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+
+core="$WS/devel/lib/libreach_trajopt_core.so"
+if [ ! -f "$core" ]; then
+  echo "[bench_dynamics] $core not found: build first (REACH_WS=$WS bash scripts/build)" >&2
+  exit 1
+fi
+if [ ! -x "$VENV/bin/python" ]; then
+  echo "[bench_dynamics] venv $VENV missing: run scripts/bootstrap" >&2
+  exit 1
+fi
+prefix="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/cmeel.prefix"
+build="$WS/bench_dynamics"
+urdf="$REPO/urdf/biped.urdf"
+model="$build/biped_pinocchio.txt"
+mkdir -p "$build"
+
+# catkin's setup.bash exports CMAKE_PREFIX_PATH and LD_LIBRARY_PATH: keep Pinocchio's
+# dependencies (Eigen, Boost, coal) from the wheels only, and let the rpaths pick libraries.
+env -u CMAKE_PREFIX_PATH cmake -S "$REPO/bench/dynamics" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_CMAKE_SYSTEM_PATH=OFF \
+  -DREACH_INCLUDE_DIR="$REPO/include" -DREACH_CORE_LIBRARY="$core" >"$build/configure.log" 2>&1 || {
+  cat "$build/configure.log" >&2; echo "[bench_dynamics] cmake configure failed" >&2; exit 1; }
+echo "[bench_dynamics] building (one Pinocchio translation unit, about 80 s when it changed)"
+cmake --build "$build" -j1 >"$build/build.log" 2>&1 || {
+  tail -n 40 "$build/build.log" >&2; echo "[bench_dynamics] build failed" >&2; exit 1; }
+
+"$VENV/bin/python" - "$urdf" "$model" <<'PY'
+import sys
+import pinocchio as pin
+root = pin.JointModelComposite()
+for j in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(),
+          pin.JointModelRZ(), pin.JointModelRY(), pin.JointModelRX()):
+    root.addJoint(j)
+pin.buildModelFromUrdf(sys.argv[1], root).saveToText(sys.argv[2])
+PY
+
+env -u LD_LIBRARY_PATH "$build/bench_dynamics" "$urdf" "$model" --frames l_sole,r_sole "$@"

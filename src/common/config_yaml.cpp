@@ -1,0 +1,182 @@
+#include "reach_trajopt/common/config_yaml.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+namespace reach_trajopt {
+
+struct YamlSection::Impl {
+  YAML::Node node;
+  std::string source;  // file name or "<string>"
+  std::string path;    // "a.b" inside the file, "" at the top
+};
+
+namespace {
+
+std::string describe(const YAML::Node& n) {
+  if (n.IsScalar()) return "'" + n.Scalar() + "'";
+  if (n.IsSequence()) return "a sequence";
+  if (n.IsMap()) return "a mapping";
+  return "null";
+}
+
+}  // namespace
+
+YamlSection::YamlSection(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+
+YamlSection YamlSection::loadFile(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ReachError("cannot open YAML file '" + path + "'");
+  } catch (const YAML::Exception& e) {
+    throw ReachError("malformed YAML in '" + path + "': " + e.what());
+  }
+  if (!root.IsMap()) throw ReachError("YAML file '" + path + "': top level is not a mapping");
+  auto impl = std::make_shared<Impl>();
+  impl->node = root;
+  impl->source = path;
+  return YamlSection(impl);
+}
+
+YamlSection YamlSection::loadString(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ReachError("malformed YAML in " + source + ": " + e.what());
+  }
+  if (!root.IsMap()) throw ReachError("YAML " + source + ": top level is not a mapping");
+  auto impl = std::make_shared<Impl>();
+  impl->node = root;
+  impl->source = source;
+  return YamlSection(impl);
+}
+
+std::string YamlSection::where() const {
+  return impl_->source + (impl_->path.empty() ? std::string() : ": " + impl_->path);
+}
+
+std::string YamlSection::where(const std::string& key) const {
+  return impl_->source + ": " + (impl_->path.empty() ? key : impl_->path + "." + key);
+}
+
+bool YamlSection::has(const std::string& key) const {
+  return static_cast<bool>(impl_->node[key]);
+}
+
+YamlSection YamlSection::section(const std::string& key) const {
+  const YAML::Node n = impl_->node[key];
+  if (!n) throw ReachError(where(key) + ": missing section");
+  if (!n.IsMap()) throw ReachError(where(key) + ": expected a mapping, got " + describe(n));
+  auto impl = std::make_shared<Impl>();
+  impl->node = n;
+  impl->source = impl_->source;
+  impl->path = impl_->path.empty() ? key : impl_->path + "." + key;
+  return YamlSection(impl);
+}
+
+std::vector<std::string> YamlSection::keys() const {
+  std::vector<std::string> out;
+  for (const auto& kv : impl_->node) out.push_back(kv.first.as<std::string>());
+  return out;
+}
+
+void YamlSection::requireOnlyKeys(const std::vector<std::string>& allowed) const {
+  for (const std::string& k : keys()) {
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
+      std::ostringstream os;
+      os << where(k) << ": unknown key (known:";
+      for (const auto& a : allowed) os << " " << a;
+      os << ")";
+      throw ReachError(os.str());
+    }
+  }
+}
+
+bool YamlSection::read(const std::string& key, double& value) const {
+  const YAML::Node n = impl_->node[key];
+  if (!n) return false;
+  double v = 0.0;
+  try {
+    if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ReachError(where(key) + ": expected a number, got " + describe(n));
+  }
+  if (std::isnan(v)) throw ReachError(where(key) + ": NaN is not allowed");
+  value = v;
+  return true;
+}
+
+bool YamlSection::read(const std::string& key, int& value) const {
+  const YAML::Node n = impl_->node[key];
+  if (!n) return false;
+  try {
+    if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
+    value = n.as<int>();
+  } catch (const YAML::Exception&) {
+    throw ReachError(where(key) + ": expected an integer, got " + describe(n));
+  }
+  return true;
+}
+
+bool YamlSection::read(const std::string& key, bool& value) const {
+  const YAML::Node n = impl_->node[key];
+  if (!n) return false;
+  try {
+    if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
+    value = n.as<bool>();
+  } catch (const YAML::Exception&) {
+    throw ReachError(where(key) + ": expected true or false, got " + describe(n));
+  }
+  return true;
+}
+
+bool YamlSection::read(const std::string& key, std::string& value) const {
+  const YAML::Node n = impl_->node[key];
+  if (!n) return false;
+  if (!n.IsScalar()) throw ReachError(where(key) + ": expected a string, got " + describe(n));
+  value = n.Scalar();
+  return true;
+}
+
+bool YamlSection::read(const std::string& key, std::vector<double>& value) const {
+  const YAML::Node n = impl_->node[key];
+  if (!n) return false;
+  if (!n.IsSequence()) {
+    throw ReachError(where(key) + ": expected a sequence of numbers, got " + describe(n));
+  }
+  std::vector<double> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    try {
+      out.push_back(n[i].as<double>());
+    } catch (const YAML::Exception&) {
+      throw ReachError(where(key) + "[" + std::to_string(i) + "]: expected a number, got " +
+                       describe(n[i]));
+    }
+    if (std::isnan(out.back())) {
+      throw ReachError(where(key) + "[" + std::to_string(i) + "]: NaN is not allowed");
+    }
+  }
+  value = out;
+  return true;
+}
+
+bool YamlSection::read(const std::string& key, Eigen::Ref<Eigen::VectorXd> value) const {
+  std::vector<double> v;
+  if (!read(key, v)) return false;
+  if (static_cast<Eigen::Index>(v.size()) != value.size()) {
+    std::ostringstream os;
+    os << where(key) << ": expected " << value.size() << " numbers, got " << v.size();
+    throw ReachError(os.str());
+  }
+  for (std::size_t i = 0; i < v.size(); ++i) value[static_cast<Eigen::Index>(i)] = v[i];
+  return true;
+}
+
+}  // namespace reach_trajopt

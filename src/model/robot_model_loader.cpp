@@ -1,0 +1,262 @@
+/// \file robot_model_loader.cpp
+/// URDF -> urdfdom -> KDL tree (kdl_parser) -> the flattened ModelTree of RobotModel.
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include <kdl/tree.hpp>
+#include <kdl_parser/kdl_parser.hpp>
+#include <urdf_parser/urdf_parser.h>
+
+#include "reach_trajopt/model/model_tree.h"
+#include "reach_trajopt/model/robot_model.h"
+
+namespace reach_trajopt {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Eigen::Isometry3d toEigen(const KDL::Frame& f) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) T.linear()(r, c) = f.M(r, c);
+    T.translation()(r) = f.p(r);
+  }
+  return T;
+}
+
+Eigen::Isometry3d toEigen(const urdf::Pose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  T.translation() << p.position.x, p.position.y, p.position.z;
+  return T;
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+/// Adds a rigid inertia (mass m, com c and inertia about the origin I0, all in a frame F)
+/// placed at `F_in_body` to a body's inertia.
+void addInertia(Body& body, const Eigen::Isometry3d& F_in_body, double m, const Eigen::Vector3d& c,
+                const Eigen::Matrix3d& I0) {
+  if (m <= 0.0) return;
+  const Eigen::Matrix3d R = F_in_body.linear();
+  const Eigen::Vector3d c_body = F_in_body * c;
+  const Eigen::Vector3d Rc = R * c;
+  // Inertia about the frame origin rotated into the body, then shifted to the body origin.
+  const Eigen::Matrix3d I_com = R * I0 * R.transpose() + m * skew(Rc) * skew(Rc);
+  const Eigen::Matrix3d I_body = I_com - m * skew(c_body) * skew(c_body);
+  const double total = body.mass + m;
+  body.com = (body.mass * body.com + m * c_body) / total;
+  body.inertia_origin += I_body;
+  body.mass = total;
+}
+
+/// Inertia of a URDF link in its own frame: mass, com and rotational inertia about the origin.
+void linkInertia(const urdf::InertialSharedPtr& inertial, double& m, Eigen::Vector3d& c,
+                 Eigen::Matrix3d& I0) {
+  m = 0.0;
+  c.setZero();
+  I0.setZero();
+  if (!inertial) return;
+  const urdf::Inertial& in = *inertial;
+  m = in.mass;
+  const Eigen::Isometry3d T = toEigen(in.origin);
+  Eigen::Matrix3d Ic;
+  Ic << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  c = T.translation();
+  I0 = T.linear() * Ic * T.linear().transpose() - m * skew(c) * skew(c);
+}
+
+void validateInertias(const urdf::ModelInterface& urdf, const std::string& source) {
+  for (const auto& kv : urdf.links_) {
+    const auto& link = kv.second;
+    if (!link->inertial) continue;
+    const urdf::Inertial& in = *link->inertial;
+    const double vals[] = {in.mass, in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
+    for (double v : vals)
+      if (!std::isfinite(v))
+        throw ReachError("non-finite inertial value in link '" + link->name + "' of " + source);
+    if (in.mass < 0.0)
+      throw ReachError("negative mass in link '" + link->name + "' of " + source);
+  }
+}
+
+}  // namespace
+
+/// Builds a RobotModel; friend of RobotModel so it can fill the private members.
+struct ModelBuilder {
+  static std::shared_ptr<const RobotModel> build(urdf::ModelInterface& urdf,
+                                                 const ModelOptions& options,
+                                                 const std::string& source);
+};
+
+std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf,
+                                                      const ModelOptions& options,
+                                                      const std::string& source) {
+  if (!options.gravity.allFinite()) throw ReachError("non-finite gravity for " + source);
+  validateInertias(urdf, source);
+  if (!urdf.root_link_) throw ReachError("URDF has no root link: " + source);
+  // kdl_parser drops (and warns about) the root link's inertia; we keep it ourselves.
+  const urdf::InertialSharedPtr root_inertial = urdf.root_link_->inertial;
+  urdf.root_link_->inertial.reset();
+  KDL::Tree kdl_tree;
+  if (!kdl_parser::treeFromUrdfModel(urdf, kdl_tree))
+    throw ReachError("kdl_parser could not build a KDL tree from " + source);
+
+  std::shared_ptr<RobotModel> model(new RobotModel());
+  model->name_ = urdf.getName();
+  model->source_ = source;
+  model->gravity_ = options.gravity;
+  model->tree_ = std::make_unique<ModelTree>();
+  ModelTree& tree = *model->tree_;
+
+  const urdf::LinkConstSharedPtr root = urdf.getRoot();
+  if (!root) throw ReachError("URDF has no root link: " + source);
+  bool floating = root->name != "world";
+  if (options.base == ModelOptions::Base::kFloating) floating = true;
+  if (options.base == ModelOptions::Base::kFixed) floating = false;
+  model->floating_base_ = floating;
+
+  auto newBody = [&](int parent, const Eigen::Isometry3d& placement, const Eigen::Vector3d& axis,
+                     bool prismatic) {
+    Body b;
+    b.parent = parent;
+    b.placement = placement;
+    b.axis = axis.normalized();
+    b.prismatic = prismatic;
+    b.com.setZero();
+    b.inertia_origin.setZero();
+    tree.bodies.push_back(b);
+    return static_cast<int>(tree.bodies.size()) - 1;
+  };
+
+  // Floating base: x, y, z along the world axes, then yaw (z), pitch (y), roll (x).
+  int root_body = -1;
+  if (floating) {
+    const char* names[6] = {"base_x", "base_y", "base_z", "base_yaw", "base_pitch", "base_roll"};
+    const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                     Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ(),
+                                     Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
+    for (int i = 0; i < 6; ++i) {
+      root_body = newBody(root_body, Eigen::Isometry3d::Identity(), axes[i], i < 3);
+      JointInfo j;
+      j.name = names[i];
+      j.is_virtual = true;
+      j.is_prismatic = i < 3;
+      j.q_min = -kInf;
+      j.q_max = kInf;
+      j.qd_max = kInf;
+      j.effort_max = 0.0;
+      model->joints_.push_back(j);
+    }
+    // kdl_parser ignores the root link's inertia: take it from the URDF.
+    double m;
+    Eigen::Vector3d c;
+    Eigen::Matrix3d I0;
+    linkInertia(root_inertial, m, c, I0);
+    addInertia(tree.bodies[root_body], Eigen::Isometry3d::Identity(), m, c, I0);
+  }  // A fixed-base root link never moves: its mass does not enter M or b.
+  tree.frames.push_back({root->name, root_body, Eigen::Isometry3d::Identity()});
+  model->link_names_.push_back(root->name);
+  model->link_parents_.push_back("");
+
+  // Depth-first over the KDL tree, in kdl_parser's order (the URDF's child order).
+  std::function<void(const KDL::SegmentMap::const_iterator&, int, const Eigen::Isometry3d&)> visit;
+  visit = [&](const KDL::SegmentMap::const_iterator& element, int body,
+              const Eigen::Isometry3d& in_body) {
+    for (const auto& child : GetTreeElementChildren(element->second)) {
+      const KDL::Segment& seg = GetTreeElementSegment(child->second);
+      const KDL::Joint& kj = seg.getJoint();
+      const Eigen::Isometry3d T0 = in_body * toEigen(seg.pose(0.0));
+      const std::string& link_name = seg.getName();
+      const urdf::LinkConstSharedPtr link = urdf.getLink(link_name);
+      const urdf::JointConstSharedPtr uj = link ? link->parent_joint : nullptr;
+      if (!uj) throw ReachError("link '" + link_name + "' has no parent joint in " + source);
+      int child_body = body;
+      Eigen::Isometry3d child_in_body = T0;
+      if (kj.getType() == KDL::Joint::None) {
+        if (uj->type != urdf::Joint::FIXED)
+          throw ReachError("unsupported joint type of '" + uj->name + "' in " + source +
+                           " (only revolute, continuous, prismatic and fixed)");
+      } else {
+        const KDL::Vector a = kj.JointAxis();
+        const Eigen::Vector3d axis_parent(a.x(), a.y(), a.z());
+        const Eigen::Vector3d axis_child = T0.linear().transpose() * axis_parent;
+        const bool prismatic = uj->type == urdf::Joint::PRISMATIC;
+        child_body = newBody(body, T0, axis_child, prismatic);
+        child_in_body = Eigen::Isometry3d::Identity();
+        JointInfo j;
+        j.name = uj->name;
+        j.is_prismatic = prismatic;
+        j.q_min = -kInf;
+        j.q_max = kInf;
+        j.qd_max = kInf;
+        j.effort_max = kInf;
+        if (uj->limits) {
+          if (uj->type != urdf::Joint::CONTINUOUS) {
+            j.q_min = uj->limits->lower;
+            j.q_max = uj->limits->upper;
+          }
+          if (uj->limits->velocity > 0.0) j.qd_max = uj->limits->velocity;
+          if (uj->limits->effort > 0.0) j.effort_max = uj->limits->effort;
+        }
+        if (j.q_min > j.q_max)
+          throw ReachError("joint '" + j.name + "' has lower limit above upper limit in " + source);
+        model->joints_.push_back(j);
+      }
+      const KDL::RigidBodyInertia& in = seg.getInertia();
+      const KDL::RotationalInertia I = in.getRotationalInertia();
+      Eigen::Matrix3d I0;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) I0(r, c) = I.data[3 * r + c];
+      const KDL::Vector cog = in.getCOG();
+      if (child_body >= 0)
+        addInertia(tree.bodies[child_body], child_in_body, in.getMass(),
+                   Eigen::Vector3d(cog.x(), cog.y(), cog.z()), I0);
+      tree.frames.push_back({link_name, child_body, child_in_body});
+      model->link_names_.push_back(link_name);
+      model->link_parents_.push_back(uj->parent_link_name);
+      visit(child, child_body, child_in_body);
+    }
+  };
+  visit(kdl_tree.getRootSegment(), root_body, Eigen::Isometry3d::Identity());
+
+  if (tree.bodies.empty()) throw ReachError("the robot in " + source + " has no degree of freedom");
+  for (int i = 0; i < static_cast<int>(tree.bodies.size()); ++i) {
+    for (int j = i; j >= 0; j = tree.bodies[j].parent) tree.bodies[i].support.push_back(j);
+    model->total_mass_ += tree.bodies[i].mass;
+  }
+  for (const Frame& f : tree.frames) model->frame_names_.push_back(f.name);
+  return model;
+}
+
+std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& xml,
+                                                             const ModelOptions& options,
+                                                             const std::string& source) {
+  if (xml.find("<robot") == std::string::npos)
+    throw ReachError("malformed URDF in " + source + ": no <robot> element");
+  const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(xml);
+  if (!urdf) throw ReachError("malformed URDF in " + source + " (urdfdom could not parse it)");
+  return ModelBuilder::build(*urdf, options, source);
+}
+
+std::shared_ptr<const RobotModel> RobotModel::fromUrdfFile(const std::string& path,
+                                                           const ModelOptions& options) {
+  std::ifstream in(path);
+  if (!in) throw ReachError("cannot open URDF file '" + path + "'");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return fromUrdfString(ss.str(), options, path);
+}
+
+}  // namespace reach_trajopt

@@ -1,0 +1,186 @@
+#include "reach_trajopt/planner/tvr_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/error.h"
+
+namespace reach_trajopt {
+
+namespace {
+
+void requireFiniteValue(const char* name, double v) {
+  if (!std::isfinite(v)) {
+    std::ostringstream os;
+    os << "TvrConfig: " << name << " must be finite, got " << v;
+    throw ReachError(os.str());
+  }
+}
+
+void requirePositiveValue(const char* name, double v) {
+  requireFiniteValue(name, v);
+  if (v <= 0.0) {
+    std::ostringstream os;
+    os << "TvrConfig: " << name << " must be positive, got " << v;
+    throw ReachError(os.str());
+  }
+}
+
+void requireInterval(const char* name, double lo, double hi) {
+  requireFiniteValue(name, lo);
+  requireFiniteValue(name, hi);
+  if (lo > hi) {
+    std::ostringstream os;
+    os << "TvrConfig: " << name << " interval is empty: [" << lo << ", " << hi << "]";
+    throw ReachError(os.str());
+  }
+}
+
+}  // namespace
+
+void TvrConfig::validate() const {
+  requirePositiveValue("com_height", com_height);
+  requirePositiveValue("gravity", gravity);
+  requirePositiveValue("t_s", t_s);
+  requirePositiveValue("step_duration", step_duration);
+  requireFiniteValue("kappa_x", kappa_x);
+  requireFiniteValue("kappa_y", kappa_y);
+  requireInterval("foot_offset_x", foot_offset_x_min, foot_offset_x_max);
+  requireInterval("foot_offset_y", foot_offset_y_min, foot_offset_y_max);
+  requireInterval("com_speed", com_speed_min, com_speed_max);
+  if (foot_offset_y_min < 0.0) {
+    throw ReachError("TvrConfig: foot_offset_y_min is a distance towards the swing side, "
+                     "must be >= 0, got " + std::to_string(foot_offset_y_min));
+  }
+  if (com_speed_min < 0.0) {
+    throw ReachError("TvrConfig: com_speed_min must be >= 0, got " +
+                     std::to_string(com_speed_min));
+  }
+}
+
+TvrConfig TvrConfig::fromYaml(const YamlSection& s) {
+  s.requireOnlyKeys({"com_height", "gravity", "t_s", "step_duration", "kappa_x", "kappa_y",
+                     "heuristic_bounds", "foot_offset_x_min", "foot_offset_x_max",
+                     "foot_offset_y_min", "foot_offset_y_max", "com_speed_min",
+                     "com_speed_max"});
+  TvrConfig c;
+  s.read("com_height", c.com_height);
+  s.read("gravity", c.gravity);
+  s.read("t_s", c.t_s);
+  s.read("step_duration", c.step_duration);
+  s.read("kappa_x", c.kappa_x);
+  s.read("kappa_y", c.kappa_y);
+  s.read("heuristic_bounds", c.heuristic_bounds);
+  s.read("foot_offset_x_min", c.foot_offset_x_min);
+  s.read("foot_offset_x_max", c.foot_offset_x_max);
+  s.read("foot_offset_y_min", c.foot_offset_y_min);
+  s.read("foot_offset_y_max", c.foot_offset_y_max);
+  s.read("com_speed_min", c.com_speed_min);
+  s.read("com_speed_max", c.com_speed_max);
+  try {
+    c.validate();
+  } catch (const ReachError& e) {
+    throw ReachError(s.where() + ": " + e.what());
+  }
+  return c;
+}
+
+TvrPlanner::TvrPlanner(const TvrConfig& config)
+    : config_((config.validate(), config)), lipm_(config.com_height, config.gravity) {}
+
+Eigen::Matrix<double, 2, 4> TvrPlanner::gain() const {
+  const double w = lipm_.omega();
+  const double coth = 1.0 / std::tanh(w * config_.t_s);
+  Eigen::Matrix<double, 2, 4> K = Eigen::Matrix<double, 2, 4>::Zero();
+  K(0, 0) = 1.0 - config_.kappa_x;
+  K(1, 1) = 1.0 - config_.kappa_y;
+  K(0, 2) = K(1, 3) = coth / w;
+  return K;
+}
+
+TvrStep TvrPlanner::plan(const TvrInput& in) const {
+  requireFinite("TvrPlanner::plan CoM position", in.com.p);
+  requireFinite("TvrPlanner::plan CoM velocity", in.com.pd);
+  requireFinite("TvrPlanner::plan p_des", in.p_des);
+  requireFinite("TvrPlanner::plan stance sole position", in.stance);
+  if (!std::isfinite(in.stance_yaw)) throw ReachError("TvrPlanner::plan: non-finite stance yaw");
+
+  const Eigen::Vector2d kappa(config_.kappa_x, config_.kappa_y);
+  const double w = lipm_.omega();
+  const double coth = 1.0 / std::tanh(w * config_.t_s);
+  const auto contact = [&](const Eigen::Vector2d& pd) -> Eigen::Vector2d {
+    return in.com.p + pd * (coth / w) + kappa.cwiseProduct(in.p_des - in.com.p);
+  };
+
+  TvrStep out;
+  out.alpha_tvr = contact(in.com.pd);
+  out.com_velocity_used = in.com.pd;
+  if (config_.heuristic_bounds) {
+    const double speed = in.com.pd.norm();
+    const double bounded = std::clamp(speed, config_.com_speed_min, config_.com_speed_max);
+    if (bounded != speed && speed > 0.0) {
+      out.com_velocity_used = in.com.pd * (bounded / speed);
+      out.speed_clipped = true;
+    }
+  }
+  out.alpha = contact(out.com_velocity_used);
+
+  const Eigen::Rotation2Dd heading(in.stance_yaw);
+  out.offset = heading.inverse() * (out.alpha - in.stance);
+  if (config_.heuristic_bounds) {
+    const double sign = in.swing == Side::kLeft ? 1.0 : -1.0;
+    Eigen::Vector2d o = out.offset;
+    o.x() = std::clamp(o.x(), config_.foot_offset_x_min, config_.foot_offset_x_max);
+    o.y() = sign * std::clamp(sign * o.y(), config_.foot_offset_y_min, config_.foot_offset_y_max);
+    if (o != out.offset) {
+      out.offset_clipped = true;
+      out.offset = o;
+      out.alpha = in.stance + heading * o;
+    }
+  }
+  return out;
+}
+
+Eigen::Matrix4d TvrPlanner::closedLoopMatrix(double T) const {
+  if (!std::isfinite(T) || T <= 0.0) {
+    throw ReachError("TvrPlanner: step duration must be positive and finite, got " +
+                     std::to_string(T));
+  }
+  return lipm_.A(T) + lipm_.B(T) * gain();
+}
+
+TvrStabilityReport TvrPlanner::stability(double T) const {
+  TvrStabilityReport r;
+  r.closed_loop = closedLoopMatrix(T);
+  // The map is decoupled per axis: states (px, pdx) = indices (0, 2) and (py, pdy) = (1, 3).
+  for (int axis = 0; axis < 2; ++axis) {
+    const double a = r.closed_loop(axis, axis), b = r.closed_loop(axis, axis + 2);
+    const double c = r.closed_loop(axis + 2, axis), d = r.closed_loop(axis + 2, axis + 2);
+    const double half_trace = 0.5 * (a + d), det = a * d - b * c;
+    const std::complex<double> root =
+        std::sqrt(std::complex<double>(half_trace * half_trace - det));
+    r.eigenvalues[2 * axis] = half_trace + root;
+    r.eigenvalues[2 * axis + 1] = half_trace - root;
+  }
+  r.spectral_radius = r.eigenvalues.cwiseAbs().maxCoeff();
+  r.stable = r.spectral_radius < 1.0;
+  return r;
+}
+
+std::string TvrStabilityReport::summary() const {
+  std::ostringstream os;
+  os << "TVR step map (12): eigenvalues";
+  for (int i = 0; i < 4; ++i) {
+    os << " " << eigenvalues[i].real();
+    if (eigenvalues[i].imag() != 0.0) os << (eigenvalues[i].imag() > 0 ? "+" : "") <<
+                                          eigenvalues[i].imag() << "i";
+  }
+  os << ", spectral radius " << spectral_radius << " -> " << (stable ? "stable" : "UNSTABLE");
+  return os.str();
+}
+
+}  // namespace reach_trajopt

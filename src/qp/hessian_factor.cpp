@@ -1,0 +1,76 @@
+#include "reach_trajopt/qp/hessian_factor.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <Eigen/Cholesky>
+
+#include "reach_trajopt/common/error.h"
+
+namespace reach_trajopt {
+namespace qp {
+
+namespace {
+int checkedSize(int n) {
+  if (n <= 0) throw ReachError("HessianFactor: number of variables must be > 0, got " +
+                               std::to_string(n));
+  return n;
+}
+}  // namespace
+
+HessianFactor::HessianFactor(int n)
+    : n_(checkedSize(n)), L_(Eigen::MatrixXd::Zero(n, n)), J0_(Eigen::MatrixXd::Zero(n, n)),
+      J0t_(Eigen::MatrixXd::Zero(n, n)),
+      Lt_(Eigen::MatrixXd::Zero(n, n)) {
+  message_.reserve(256);
+}
+
+bool HessianFactor::compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double regularization) {
+  valid_ = false;
+  message_.clear();
+  char buf[256];
+  if (G.rows() != n_ || G.cols() != n_) {
+    std::snprintf(buf, sizeof(buf), "G must be %d x %d, got %d x %d", n_, n_,
+                  static_cast<int>(G.rows()), static_cast<int>(G.cols()));
+    message_.assign(buf);
+    return false;
+  }
+  if (!std::isfinite(regularization) || regularization < 0.0) {
+    message_.assign("regularization must be finite and >= 0");
+    return false;
+  }
+  // Only the lower triangle is read (and checked), as documented.
+  for (int j = 0; j < n_; ++j)
+    for (int i = j; i < n_; ++i)
+      if (!std::isfinite(G(i, j))) {
+        std::snprintf(buf, sizeof(buf), "G: non-finite value at (%d, %d)", i, j);
+        message_.assign(buf);
+        return false;
+      }
+  L_.triangularView<Eigen::Lower>() = G;
+  L_.triangularView<Eigen::StrictlyUpper>().setZero();
+  L_.diagonal().array() += regularization;
+  const double max_diag = L_.diagonal().cwiseAbs().maxCoeff();
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(L_);  // in place, no allocation
+  double min_pivot_sq = L_.diagonal().array().square().minCoeff();
+  if (llt.info() != Eigen::Success || !(max_diag > 0.0) ||
+      !(min_pivot_sq > kMinPivotRatio * max_diag) || !L_.diagonal().allFinite()) {
+    std::snprintf(buf, sizeof(buf),
+                  "G%s is not positive definite (Cholesky pivot ratio below %.0e); it may be only "
+                  "semi-definite: set QpSolverConfig::regularization > 0 to solve G + rho I",
+                  regularization > 0.0 ? " + rho I" : "", kMinPivotRatio);
+    message_.assign(buf);
+    return false;
+  }
+  // L^T J0 = I, so J0 = L^{-T} is upper triangular.
+  J0_.setIdentity();
+  L_.triangularView<Eigen::Lower>().transpose().solveInPlace(J0_);
+  J0t_ = J0_.transpose();
+  Lt_ = L_.transpose();
+  regularization_ = regularization;
+  valid_ = true;
+  return true;
+}
+
+}  // namespace qp
+}  // namespace reach_trajopt
