@@ -21,7 +21,8 @@ fi
 prefix="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/cmeel.prefix"
 build="$WS/bench_dynamics"
 urdf="$REPO/urdf/biped.urdf"
-model="$build/biped_pinocchio.txt"
+model="$build/biped_pinocchio.txt"            # composite root PX PY PZ RZ RY RX (= ours)
+model_ff="$build/biped_pinocchio_freeflyer.txt"  # Pinocchio's usual FreeFlyer root (info only)
 mkdir -p "$build"
 
 # catkin's setup.bash exports CMAKE_PREFIX_PATH and LD_LIBRARY_PATH: keep Pinocchio's
@@ -34,7 +35,7 @@ echo "[bench_dynamics] building (one Pinocchio translation unit, about 80 s when
 cmake --build "$build" -j1 >"$build/build.log" 2>&1 || {
   tail -n 40 "$build/build.log" >&2; echo "[bench_dynamics] build failed" >&2; exit 1; }
 
-"$VENV/bin/python" - "$urdf" "$model" <<'PY'
+"$VENV/bin/python" - "$urdf" "$model" "$model_ff" <<'PY'
 import sys
 import pinocchio as pin
 root = pin.JointModelComposite()
@@ -42,6 +43,8 @@ for j in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(),
           pin.JointModelRZ(), pin.JointModelRY(), pin.JointModelRX()):
     root.addJoint(j)
 pin.buildModelFromUrdf(sys.argv[1], root).saveToText(sys.argv[2])
+pin.buildModelFromUrdf(sys.argv[1], pin.JointModelFreeFlyer()).saveToText(sys.argv[3])
 PY
 
-env -u LD_LIBRARY_PATH "$build/bench_dynamics" "$urdf" "$model" --frames l_sole,r_sole "$@"
+env -u LD_LIBRARY_PATH "$build/bench_dynamics" "$urdf" "$model" --freeflyer-model "$model_ff" \
+  --frames l_sole,r_sole "$@"

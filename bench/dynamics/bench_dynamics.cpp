@@ -1,6 +1,7 @@
 /// bench_dynamics: time of one rigid-body dynamics evaluation of eq. (1), ours against Pinocchio.
 ///
-///   bench_dynamics <urdf> <pinocchio_model.txt> [--rounds N] [--batch K] [--frames a,b]
+///   bench_dynamics <urdf> <pinocchio_model.txt> [--freeflyer-model FILE] [--rounds N]
+///                  [--batch K] [--frames a,b]
 ///
 /// <pinocchio_model.txt> is the same URDF loaded by Pinocchio's own parser (Python, the `pin`
 /// wheel) with the composite root joint PX PY PZ RZ RY RX (= our floating base) and saved with
@@ -8,7 +9,8 @@
 /// which already holds Debian's (same symbol names, different versions).
 ///
 /// Timed, per call, median over rounds; ours and Pinocchio interleaved in every round (which
-/// goes first alternates), each round a batch of K calls cycling over 64 random states:
+/// goes first alternates), each round a batch of K calls (default 20) cycling over 64 random
+/// states:
 ///   dynamics.full         ours: update + massMatrix + bias + 2 x (frameJacobian, frameJdotQd)
 ///                         ref:  crba (+ mirror to the lower triangle) + nonLinearEffects
 ///                               + computeJointJacobians + 2 getFrameJacobian
@@ -19,6 +21,11 @@
 /// nonLinearEffects do their own forward pass.) Before timing, both are evaluated at one state
 /// and the largest relative differences are printed, so the benchmark cannot time wrong work.
 /// Output lines: BENCH <name> ours_us=... ref=pinocchio ref_us=... ratio=ours/ref
+///
+/// --freeflyer-model: the same URDF with Pinocchio's usual FreeFlyer root (quaternion, n_q + 1
+/// positions), timed in the same rounds and printed as `info:` lines only. Pinocchio's composite
+/// root evaluates six 1-dof joints where the FreeFlyer is one 6-dof joint, so this says how much
+/// of the ratio comes from the coordinate choice rather than from the algorithms.
 
 #include <algorithm>
 #include <chrono>
@@ -26,6 +33,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -52,8 +60,11 @@ constexpr int kStates = 64;
 struct Options {
   std::string urdf;
   std::string pin_model;
-  int rounds = 201;
-  int batch = 200;
+  std::string ff_model;  // optional
+  // Short batches (about 0.1 ms): on a shared, loaded machine a long batch is often cut by
+  // preemption, which inflates the median of the slower side; many short rounds do not.
+  int rounds = 2001;
+  int batch = 20;
   std::vector<std::string> frames{"l_sole", "r_sole"};
 };
 
@@ -70,8 +81,8 @@ Options parse(int argc, char** argv) {
   Options o;
   if (argc < 3) {
     std::fprintf(stderr,
-                 "usage: bench_dynamics <urdf> <pinocchio_model.txt> [--rounds N] [--batch K] "
-                 "[--frames a,b]\n");
+                 "usage: bench_dynamics <urdf> <pinocchio_model.txt> [--freeflyer-model FILE] "
+                 "[--rounds N] [--batch K] [--frames a,b]\n");
     std::exit(2);
   }
   o.urdf = argv[1];
@@ -82,6 +93,8 @@ Options parse(int argc, char** argv) {
       o.rounds = std::max(1, std::atoi(argv[i + 1]));
     } else if (key == "--batch") {
       o.batch = std::max(1, std::atoi(argv[i + 1]));
+    } else if (key == "--freeflyer-model") {
+      o.ff_model = argv[i + 1];
     } else if (key == "--frames") {
       o.frames = split(argv[i + 1]);
     } else {
@@ -125,6 +138,63 @@ std::vector<int> coordinateMap(const rt::RobotModel& ours, const pin::Model& ref
   return perm;
 }
 
+/// Pinocchio's side of the benchmark on one model (composite or FreeFlyer root).
+struct Reference {
+  Reference(const std::string& file, const std::vector<std::string>& frames)
+      : model(load(file)), data(model) {
+    for (const auto& f : frames)
+      if (!model.existFrame(f)) throw rt::ReachError("Pinocchio has no frame " + f + " in " + file);
+    p0 = model.getFrameId(frames[0]);
+    p1 = model.getFrameId(frames[1]);
+    J0 = pin::Data::Matrix6x::Zero(6, model.nv);
+    J1 = J0;
+    zero = Eigen::VectorXd::Zero(model.nv);
+  }
+  double mass(const Eigen::VectorXd& q) {
+    pin::crba(model, data, q);
+    data.M.triangularView<Eigen::StrictlyLower>() =
+        data.M.transpose().triangularView<Eigen::StrictlyLower>();
+    return data.M(model.nv - 1, 0);
+  }
+  double bias(const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+    pin::nonLinearEffects(model, data, q, v);
+    return data.nle[0];
+  }
+  double full(const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+    double sum = mass(q) + bias(q, v);
+    pin::computeJointJacobians(model, data, q);
+    J0.setZero();
+    J1.setZero();
+    pin::getFrameJacobian(model, data, p0, pin::LOCAL_WORLD_ALIGNED, J0);
+    pin::getFrameJacobian(model, data, p1, pin::LOCAL_WORLD_ALIGNED, J1);
+    pin::forwardKinematics(model, data, q, v, zero);
+    a0 = pin::getFrameClassicalAcceleration(model, data, p0, pin::LOCAL_WORLD_ALIGNED);
+    a1 = pin::getFrameClassicalAcceleration(model, data, p1, pin::LOCAL_WORLD_ALIGNED);
+    return sum + J0(2, model.nv - 1) + J1(2, model.nv - 1) + a0.linear()[2] + a1.linear()[2];
+  }
+  /// Jdot*qd of frame 0 or 1 after full(): [classical linear; angular], world orientation.
+  Eigen::Matrix<double, 6, 1> jdotQd(int which) {
+    const pin::FrameIndex f = which == 0 ? p0 : p1;
+    Eigen::Matrix<double, 6, 1> out;
+    out << (which == 0 ? a0 : a1).linear(),
+        pin::getFrameAcceleration(model, data, f, pin::LOCAL_WORLD_ALIGNED).angular();
+    return out;
+  }
+
+  static pin::Model load(const std::string& file) {
+    pin::Model m;
+    m.loadFromText(file);
+    return m;
+  }
+
+  pin::Model model;  // before data: data is built from it
+  pin::Data data;
+  pin::FrameIndex p0 = 0, p1 = 0;
+  pin::Data::Matrix6x J0, J1;
+  pin::Motion a0, a1;
+  Eigen::VectorXd zero;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -133,9 +203,8 @@ int main(int argc, char** argv) try {
   // ---- the two models --------------------------------------------------------------------
   const auto ours = rt::RobotModel::fromUrdfFile(opt.urdf);
   rt::Workspace ws(*ours);
-  pin::Model ref;
-  ref.loadFromText(opt.pin_model);
-  pin::Data data(ref);
+  Reference pr(opt.pin_model, opt.frames);
+  const pin::Model& ref = pr.model;
   const int n = ours->nq();
   if (ref.nv != n || ref.nq != n) {
     std::fprintf(stderr, "bench_dynamics: ours n_q %d, Pinocchio nq %d nv %d\n", n,
@@ -145,10 +214,6 @@ int main(int argc, char** argv) try {
   const std::vector<int> perm = coordinateMap(*ours, ref);
   const rt::FrameId f0 = ours->frameId(opt.frames[0]);
   const rt::FrameId f1 = ours->frameId(opt.frames[1]);
-  for (const auto& f : opt.frames)
-    if (!ref.existFrame(f)) throw rt::ReachError("Pinocchio has no frame " + f);
-  const pin::FrameIndex p0 = ref.getFrameId(opt.frames[0]);
-  const pin::FrameIndex p1 = ref.getFrameId(opt.frames[1]);
 
   // ---- random states within the joint limits (ours and the same in Pinocchio's order) -----
   std::mt19937 rng(20200701);
@@ -169,14 +234,39 @@ int main(int argc, char** argv) try {
     qs.push_back(q), qds.push_back(qd), pqs.push_back(pq), pvs.push_back(pv);
   }
 
+  // The same states for a FreeFlyer root: base pose as a quaternion, joints mapped by name,
+  // base velocity [linear; angular] taken from our base rates (same magnitudes; the timing does
+  // not depend on the exact conversion).
+  std::unique_ptr<Reference> ff;
+  std::vector<Eigen::VectorXd> fqs, fvs;
+  if (!opt.ff_model.empty()) {
+    ff = std::make_unique<Reference>(opt.ff_model, opt.frames);
+    const pin::Model& fm = ff->model;
+    if (!ours->floatingBase() || fm.nq != n + 1 || fm.nv != n)
+      throw rt::ReachError("FreeFlyer model does not match (nq " + std::to_string(fm.nq) + ")");
+    for (int s = 0; s < kStates; ++s) {
+      Eigen::VectorXd fq(n + 1), fv(n);
+      const Eigen::VectorXd& q = qs[s];
+      const Eigen::Quaterniond quat = Eigen::AngleAxisd(q[3], Eigen::Vector3d::UnitZ()) *
+                                      Eigen::AngleAxisd(q[4], Eigen::Vector3d::UnitY()) *
+                                      Eigen::AngleAxisd(q[5], Eigen::Vector3d::UnitX());
+      fq.head<3>() = q.head<3>();
+      fq.segment<4>(3) = quat.coeffs();  // x, y, z, w
+      fv.head<6>() = qds[s].head<6>();
+      for (int i = 6; i < n; ++i) {
+        const auto& jm = fm.joints[fm.getJointId(ours->joints()[i].name)];
+        fq[jm.idx_q()] = q[i];
+        fv[jm.idx_v()] = qds[s][i];
+      }
+      fqs.push_back(fq), fvs.push_back(fv);
+    }
+  }
+
   // ---- the evaluations timed ---------------------------------------------------------------
   Eigen::MatrixXd M(n, n);
   Eigen::VectorXd b(n);
   rt::Matrix6Xd J0(6, n), J1(6, n);
   rt::Vector6d a0, a1;
-  pin::Data::Matrix6x PJ0(6, n), PJ1(6, n);
-  pin::Motion pa0, pa1;
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   double sink = 0.0;  // keeps the results alive
 
   auto oursFull = [&](int s) {
@@ -189,42 +279,22 @@ int main(int argc, char** argv) try {
     a1 = ours->frameJdotQd(ws, f1);
     sink += M(n - 1, 0) + b[0] + J0(2, n - 1) + J1(2, n - 1) + a0[2] + a1[2];
   };
-  auto refFull = [&](int s) {
-    pin::crba(ref, data, pqs[s]);
-    data.M.triangularView<Eigen::StrictlyLower>() =
-        data.M.transpose().triangularView<Eigen::StrictlyLower>();
-    pin::nonLinearEffects(ref, data, pqs[s], pvs[s]);
-    pin::computeJointJacobians(ref, data, pqs[s]);
-    PJ0.setZero();
-    PJ1.setZero();
-    pin::getFrameJacobian(ref, data, p0, pin::LOCAL_WORLD_ALIGNED, PJ0);
-    pin::getFrameJacobian(ref, data, p1, pin::LOCAL_WORLD_ALIGNED, PJ1);
-    pin::forwardKinematics(ref, data, pqs[s], pvs[s], zero);
-    pa0 = pin::getFrameClassicalAcceleration(ref, data, p0, pin::LOCAL_WORLD_ALIGNED);
-    pa1 = pin::getFrameClassicalAcceleration(ref, data, p1, pin::LOCAL_WORLD_ALIGNED);
-    sink += data.M(n - 1, 0) + data.nle[0] + PJ0(2, n - 1) + PJ1(2, n - 1) +
-            pa0.linear()[2] + pa1.linear()[2];
-  };
+  auto refFull = [&](int s) { sink += pr.full(pqs[s], pvs[s]); };
   auto oursMass = [&](int s) {
     ours->update(ws, qs[s], qds[s]);
     ours->massMatrix(ws, M);
     sink += M(n - 1, 0);
   };
-  auto refMass = [&](int s) {
-    pin::crba(ref, data, pqs[s]);
-    data.M.triangularView<Eigen::StrictlyLower>() =
-        data.M.transpose().triangularView<Eigen::StrictlyLower>();
-    sink += data.M(n - 1, 0);
-  };
+  auto refMass = [&](int s) { sink += pr.mass(pqs[s]); };
   auto oursBias = [&](int s) {
     ours->update(ws, qs[s], qds[s]);
     ours->bias(ws, b);
     sink += b[0];
   };
-  auto refBias = [&](int s) {
-    pin::nonLinearEffects(ref, data, pqs[s], pvs[s]);
-    sink += data.nle[0];
-  };
+  auto refBias = [&](int s) { sink += pr.bias(pqs[s], pvs[s]); };
+  auto ffFull = [&](int s) { sink += ff->full(fqs[s], fvs[s]); };
+  auto ffMass = [&](int s) { sink += ff->mass(fqs[s]); };
+  auto ffBias = [&](int s) { sink += ff->bias(fqs[s], fvs[s]); };
 
   // ---- the two agree (at one state), else the times mean nothing ---------------------------
   {
@@ -233,15 +303,10 @@ int main(int argc, char** argv) try {
     for (int i = 0; i < n; ++i) P(perm[i], i) = 1.0;
     oursFull(3);
     refFull(3);
-    Eigen::Matrix<double, 6, 1> pacc0, pacc1;
-    pacc0 << pa0.linear(), pin::getFrameAcceleration(ref, data, p0, pin::LOCAL_WORLD_ALIGNED)
-                               .angular();
-    pacc1 << pa1.linear(), pin::getFrameAcceleration(ref, data, p1, pin::LOCAL_WORLD_ALIGNED)
-                               .angular();
-    const double e_m = relErr(M, P.transpose() * data.M * P);
-    const double e_b = relErr(b, P.transpose() * data.nle);
-    const double e_j = std::max(relErr(J0, PJ0 * P), relErr(J1, PJ1 * P));
-    const double e_a = std::max(relErr(a0, pacc0), relErr(a1, pacc1));
+    const double e_m = relErr(M, P.transpose() * pr.data.M * P);
+    const double e_b = relErr(b, P.transpose() * pr.data.nle);
+    const double e_j = std::max(relErr(J0, pr.J0 * P), relErr(J1, pr.J1 * P));
+    const double e_a = std::max(relErr(a0, pr.jdotQd(0)), relErr(a1, pr.jdotQd(1)));
     std::printf("check: relative difference ours vs pinocchio at one state: M %.1e, b %.1e, "
                 "J %.1e, Jdot*qd %.1e%s\n",
                 e_m, e_b, e_j, e_a,
@@ -252,26 +317,30 @@ int main(int argc, char** argv) try {
   using Clock = std::chrono::steady_clock;
   struct Pair {
     const char* name;
-    std::function<void(int)> ours, ref;
-    std::vector<double> t_ours, t_ref;  // microseconds per call, one per round
+    std::function<void(int)> ours, ref, alt;  // alt: the FreeFlyer reference, if any
+    std::vector<double> t_ours, t_ref, t_alt;  // microseconds per call, one per round
   };
-  std::vector<Pair> pairs = {{"dynamics.full", oursFull, refFull, {}, {}},
-                             {"dynamics.mass_matrix", oursMass, refMass, {}, {}},
-                             {"dynamics.bias", oursBias, refBias, {}, {}}};
+  std::vector<Pair> pairs = {{"dynamics.full", oursFull, refFull, ffFull, {}, {}, {}},
+                             {"dynamics.mass_matrix", oursMass, refMass, ffMass, {}, {}, {}},
+                             {"dynamics.bias", oursBias, refBias, ffBias, {}, {}, {}}};
   auto timeBatch = [&](const std::function<void(int)>& f) {
     const auto t0 = Clock::now();
     for (int k = 0; k < opt.batch; ++k) f(k % kStates);
     const std::chrono::duration<double, std::micro> dt = Clock::now() - t0;
     return dt.count() / opt.batch;
   };
-  for (auto& p : pairs)  // warm-up: caches, page faults
+  for (auto& p : pairs) {  // warm-up: caches, page faults
     timeBatch(p.ours), timeBatch(p.ref);
+    if (ff) timeBatch(p.alt);
+  }
   for (int r = 0; r < opt.rounds; ++r) {
     for (auto& p : pairs) {
       if (r % 2 == 0) {
         p.t_ours.push_back(timeBatch(p.ours));
         p.t_ref.push_back(timeBatch(p.ref));
+        if (ff) p.t_alt.push_back(timeBatch(p.alt));
       } else {
+        if (ff) p.t_alt.push_back(timeBatch(p.alt));
         p.t_ref.push_back(timeBatch(p.ref));
         p.t_ours.push_back(timeBatch(p.ours));
       }
@@ -284,6 +353,12 @@ int main(int argc, char** argv) try {
     const double t_ours = median(p.t_ours), t_ref = median(p.t_ref);
     std::printf("BENCH %s ours_us=%.3f ref=pinocchio ref_us=%.3f ratio=%.2f\n", p.name, t_ours,
                 t_ref, t_ours / t_ref);
+  }
+  for (const auto& p : pairs) {
+    if (!ff) break;
+    const double t_ours = median(p.t_ours), t_alt = median(p.t_alt);
+    std::printf("info: %s vs Pinocchio with a FreeFlyer root: ours_us=%.3f freeflyer_us=%.3f "
+                "ratio=%.2f\n", p.name, t_ours, t_alt, t_ours / t_alt);
   }
   if (!std::isfinite(sink)) std::printf("(non-finite checksum)\n");
   return 0;

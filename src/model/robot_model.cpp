@@ -408,6 +408,21 @@ Eigen::Vector3d RobotModel::centerOfMass(const Workspace& ws) const {
   return mc / m;
 }
 
+Eigen::Vector3d RobotModel::centerOfMassJdotQd(const Workspace& ws) const {
+  const Workspace::Buffers& d = requireUpdated(ws);
+  if (total_mass_ <= 0.0)
+    throw ReachError("centerOfMassJdotQd: the robot in " + source_ + " has no mass");
+  Eigen::Vector3d ma = Eigen::Vector3d::Zero();
+  const auto& bodies = tree_->bodies;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].mass <= 0.0) continue;
+    const Eigen::Vector3d& r = bodies[i].com;
+    const Eigen::Vector3d v_r = d.v[i] + d.w[i].cross(r);
+    ma += bodies[i].mass * (d.R_world[i] * (d.dv[i] + d.dw[i].cross(r) + d.w[i].cross(v_r)));
+  }
+  return ma / total_mass_;
+}
+
 void RobotModel::centerOfMassJacobian(Workspace& ws, Eigen::Ref<Eigen::Matrix3Xd> Jc) const {
   requireUpdated(ws);
   requireSize("centerOfMassJacobian: columns", Jc.cols(), nq());

@@ -167,7 +167,8 @@ TvrStabilityReport TvrPlanner::stability(double T) const {
     r.eigenvalues[2 * axis + 1] = half_trace - root;
   }
   r.spectral_radius = r.eigenvalues.cwiseAbs().maxCoeff();
-  r.stable = r.spectral_radius < 1.0;
+  // A marginal eigenvalue (|lambda| = 1 up to rounding, e.g. at T = 2 t_s) is not stable.
+  r.stable = r.spectral_radius < 1.0 - 1e-9;
   return r;
 }
 
@@ -179,7 +180,14 @@ std::string TvrStabilityReport::summary() const {
     if (eigenvalues[i].imag() != 0.0) os << (eigenvalues[i].imag() > 0 ? "+" : "") <<
                                           eigenvalues[i].imag() << "i";
   }
-  os << ", spectral radius " << spectral_radius << " -> " << (stable ? "stable" : "UNSTABLE");
+  os << ", spectral radius " << spectral_radius << " -> ";
+  if (stable) {
+    os << "stable";
+  } else if (std::abs(spectral_radius - 1.0) <= 1e-9) {
+    os << "NOT STABLE (marginal: |lambda| = 1)";
+  } else {
+    os << "UNSTABLE";
+  }
   return os.str();
 }
 

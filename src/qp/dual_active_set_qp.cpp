@@ -100,6 +100,11 @@ DualActiveSetQp::DualActiveSetQp(int n, int m_eq_max, int m_in_max, const QpSolv
   work_ = Eigen::VectorXd::Zero(n);
   s_ = Eigen::VectorXd::Zero(m_in_max);
   row_norm_ = Eigen::VectorXd::Zero(m_in_max);
+  cache_A_eq_ = Eigen::MatrixXd::Zero(m_eq_max, n);
+  cache_J_ = Eigen::MatrixXd::Zero(n, n);
+  cache_R_ = Eigen::MatrixXd::Zero(n, n);
+  cache_active_.assign(n, -1);
+  cache_eq_redundant_.assign(m_eq_max, 0);
 }
 
 void DualActiveSetQp::setConfig(const QpSolverConfig& config) {
@@ -191,7 +196,7 @@ const QpResult& DualActiveSetQp::solve(const HessianFactor& factor, const Vector
   return result_;
 }
 
-bool DualActiveSetQp::householderAppend(const Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>& a) {
+bool DualActiveSetQp::householderAppend(const RowRef& a) {
   const int k = q_;
   d_.noalias() = factor_->J0t().triangularView<Eigen::Lower>() * a.transpose();
   const double dnorm = d_.norm();
@@ -209,12 +214,21 @@ bool DualActiveSetQp::householderAppend(const Eigen::Ref<const Eigen::RowVectorX
   return true;
 }
 
+bool DualActiveSetQp::appendWithJ(const RowRef& a, int index) {
+  if (q_ >= n_) return false;
+  d_.noalias() = J_.transpose() * a.transpose();
+  const double rest_sq = d_.tail(n_ - q_).squaredNorm();
+  const double tol = config_.dependence_tol;
+  if (!(rest_sq > tol * tol * d_.squaredNorm()) || !(rest_sq > 0.0)) return false;
+  addConstraint(index);
+  return true;
+}
+
 void DualActiveSetQp::formJ(const Eigen::MatrixXd& J0) {
   J_ = J0;
   for (int k = 0; k < q_; ++k)
     J_.rightCols(n_ - k).applyHouseholderOnTheRight(householder_.col(k).tail(n_ - k - 1), tau_[k],
                                                     work_.data());
-  j_formed_ = true;
 }
 
 void DualActiveSetQp::solveOnActiveSet(const MatrixRef& A_eq, const VectorRef& b_eq,
@@ -230,19 +244,7 @@ void DualActiveSetQp::solveOnActiveSet(const MatrixRef& A_eq, const VectorRef& b
   R.transpose().solveInPlace(w_.head(q_));  // y = R^{-T} w
   u_.head(q_) = w_.head(q_);
   R.solveInPlace(u_.head(q_));  // u = R^{-1} y
-  if (j_formed_) {
-    x_.noalias() += J_.leftCols(q_) * w_.head(q_);
-  } else {
-    // x - x0 = L^{-T} Q [y; 0], Q held as the Householder reflectors of the initial QR.
-    z_.head(q_) = w_.head(q_);
-    z_.tail(n_ - q_).setZero();
-    for (int k = q_ - 1; k >= 0; --k)
-      z_.tail(n_ - k).applyHouseholderOnTheLeft(householder_.col(k).tail(n_ - k - 1), tau_[k],
-                                                work_.data());
-    // The factor's J0 is upper triangular; d_ is free scratch here.
-    d_.noalias() = factor_->J0().triangularView<Eigen::Upper>() * z_;
-    x_ += d_;
-  }
+  x_.noalias() += J_.leftCols(q_) * w_.head(q_);
 }
 
 void DualActiveSetQp::addConstraint(int index) {
@@ -294,7 +296,6 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
   const int m_in = static_cast<int>(A_in.rows());
   m_eq_ = m_eq;
   q_ = 0;
-  j_formed_ = false;
   std::fill(is_active_.begin(), is_active_.begin() + m_in, 0);
   std::fill(eq_redundant_.begin(), eq_redundant_.begin() + m_eq, 0);
 
@@ -303,21 +304,43 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
   x0_.noalias() = J0.triangularView<Eigen::Upper>() * w_;
   x0_ = -x0_;
 
-  // Initial active set: equality rows first (dependent ones are redundant), then the warm start.
-  for (int i = 0; i < m_eq; ++i) {
-    if (householderAppend(A_eq.row(i)))
-      active_[q_++] = i;
-    else
-      eq_redundant_[i] = 1;
+  // Initial active set: equality rows first (dependent ones are redundant), with one Householder
+  // QR of L^{-1} A_eq^T, or from the cache when the factor and A_eq are those of the last solve.
+  const bool reuse = cache_valid_ && factor.id() == cache_factor_id_ && m_eq == cache_m_eq_ &&
+                     (m_eq == 0 || cache_A_eq_.topRows(m_eq) == A_eq);
+  if (reuse) {
+    q_ = cache_q_;
+    J_ = cache_J_;
+    R_.topLeftCorner(q_, q_) = cache_R_.topLeftCorner(q_, q_);
+    std::copy(cache_active_.begin(), cache_active_.begin() + q_, active_.begin());
+    std::copy(cache_eq_redundant_.begin(), cache_eq_redundant_.begin() + m_eq,
+              eq_redundant_.begin());
+  } else {
+    for (int i = 0; i < m_eq; ++i) {
+      if (householderAppend(A_eq.row(i)))
+        active_[q_++] = i;
+      else
+        eq_redundant_[i] = 1;
+    }
+    formJ(J0);
+    // Only a factor that outlives this call is worth caching for (not the solve(G) one).
+    cache_valid_ = &factor != &own_factor_;
+    if (cache_valid_) {
+      cache_factor_id_ = factor.id();
+      cache_m_eq_ = m_eq;
+      cache_q_ = q_;
+      if (m_eq > 0) cache_A_eq_.topRows(m_eq) = A_eq;
+      cache_J_ = J_;
+      cache_R_.topLeftCorner(q_, q_) = R_.topLeftCorner(q_, q_);
+      std::copy(active_.begin(), active_.begin() + q_, cache_active_.begin());
+      std::copy(eq_redundant_.begin(), eq_redundant_.begin() + m_eq, cache_eq_redundant_.begin());
+    }
   }
   if (warm_start != nullptr) {
     for (int idx : *warm_start) {
       const int j = idx - m_eq;
-      if (j < 0 || j >= m_in || is_active_[j] || q_ >= n_) continue;
-      if (householderAppend(A_in.row(j))) {
-        active_[q_++] = idx;
-        is_active_[j] = 1;
-      }
+      if (j < 0 || j >= m_in || is_active_[j]) continue;
+      if (appendWithJ(A_in.row(j), idx)) is_active_[j] = 1;
     }
   }
   solveOnActiveSet(A_eq, b_eq, A_in, b_in);
@@ -348,7 +371,6 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
         worst = k;
       }
     if (worst < 0) break;
-    if (!j_formed_) formJ(J0);
     dropConstraint(worst);
     ++result_.iterations;
     solveOnActiveSet(A_eq, b_eq, A_in, b_in);
@@ -381,7 +403,6 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
       result_.status = QpStatus::kOptimal;
       break;
     }
-    if (!j_formed_) formJ(J0);
 
     // Step 2: move towards satisfying row p, dropping blocking rows, until it can be added.
     double sp = s_(p);

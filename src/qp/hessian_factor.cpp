@@ -1,5 +1,6 @@
 #include "reach_trajopt/qp/hessian_factor.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 
@@ -11,6 +12,8 @@ namespace reach_trajopt {
 namespace qp {
 
 namespace {
+std::atomic<unsigned long long> g_next_factor_id{1};
+
 int checkedSize(int n) {
   if (n <= 0) throw ReachError("HessianFactor: number of variables must be > 0, got " +
                                std::to_string(n));
@@ -47,14 +50,41 @@ bool HessianFactor::compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double r
         message_.assign(buf);
         return false;
       }
-  L_.triangularView<Eigen::Lower>() = G;
-  L_.triangularView<Eigen::StrictlyUpper>().setZero();
-  L_.diagonal().array() += regularization;
-  const double max_diag = L_.diagonal().cwiseAbs().maxCoeff();
-  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(L_);  // in place, no allocation
-  double min_pivot_sq = L_.diagonal().array().square().minCoeff();
-  if (llt.info() != Eigen::Success || !(max_diag > 0.0) ||
-      !(min_pivot_sq > kMinPivotRatio * max_diag) || !L_.diagonal().allFinite()) {
+  // A diagonal G (the weights of the contact QP (15) and of (19)) needs no elimination.
+  bool diagonal = true;
+  for (int j = 0; j < n_ && diagonal; ++j)
+    for (int i = j + 1; i < n_; ++i)
+      if (G(i, j) != 0.0) {
+        diagonal = false;
+        break;
+      }
+  bool positive_definite = true;
+  if (diagonal) {
+    const auto d = G.diagonal().array() + regularization;
+    const double max_diag = d.abs().maxCoeff();
+    positive_definite = max_diag > 0.0 && d.minCoeff() > kMinPivotRatio * max_diag;
+    if (positive_definite) {
+      L_.setZero();
+      L_.diagonal() = d.sqrt().matrix();
+      J0_.setZero();
+      J0_.diagonal() = d.sqrt().inverse().matrix();
+    }
+  } else {
+    L_.triangularView<Eigen::Lower>() = G;
+    L_.triangularView<Eigen::StrictlyUpper>().setZero();
+    L_.diagonal().array() += regularization;
+    const double max_diag = L_.diagonal().cwiseAbs().maxCoeff();
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(L_);  // in place, no allocation
+    const double min_pivot_sq = L_.diagonal().array().square().minCoeff();
+    positive_definite = llt.info() == Eigen::Success && max_diag > 0.0 &&
+                        min_pivot_sq > kMinPivotRatio * max_diag && L_.diagonal().allFinite();
+    if (positive_definite) {
+      // L^T J0 = I, so J0 = L^{-T} is upper triangular.
+      J0_.setIdentity();
+      L_.triangularView<Eigen::Lower>().transpose().solveInPlace(J0_);
+    }
+  }
+  if (!positive_definite) {
     std::snprintf(buf, sizeof(buf),
                   "G%s is not positive definite (Cholesky pivot ratio below %.0e); it may be only "
                   "semi-definite: set QpSolverConfig::regularization > 0 to solve G + rho I",
@@ -62,12 +92,10 @@ bool HessianFactor::compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double r
     message_.assign(buf);
     return false;
   }
-  // L^T J0 = I, so J0 = L^{-T} is upper triangular.
-  J0_.setIdentity();
-  L_.triangularView<Eigen::Lower>().transpose().solveInPlace(J0_);
   J0t_ = J0_.transpose();
   Lt_ = L_.transpose();
   regularization_ = regularization;
+  id_ = g_next_factor_id.fetch_add(1, std::memory_order_relaxed);
   valid_ = true;
   return true;
 }

@@ -206,7 +206,8 @@ void BulletWorld::build() {
           child = std::make_unique<btSphereShape>(s.size[0]);
           break;
         case SimShape::Type::kCylinder:
-          child = std::make_unique<btCylinderShapeZ>(btVector3(s.size[0], s.size[0], 0.5 * s.size[1]));
+          child = std::make_unique<btCylinderShapeZ>(
+              btVector3(s.size[0], s.size[0], 0.5 * s.size[1]));
           child->setMargin(config_.collision_margin);
           break;
       }
@@ -274,6 +275,7 @@ void BulletWorld::reset(const Eigen::Ref<const Eigen::VectorXd>& q,
   requireFinite("BulletWorld::reset qd", qd);
   build();
   applyState(q, qd);
+  steps_ = 0;
   time_ = 0.0;
   q_ = q;
   qd_ = qd;
@@ -355,7 +357,8 @@ void BulletWorld::step(const Eigen::Ref<const Eigen::VectorXd>& u) {
   }
   // maxSubSteps = 0: exactly one step of config_.time_step (no interpolation, no accumulator).
   bt_->world->stepSimulation(config_.time_step, 0, config_.time_step);
-  time_ += config_.time_step;
+  ++steps_;
+  time_ = static_cast<double>(steps_) * config_.time_step;
   readState();
   if (!q_.allFinite() || !qd_.allFinite()) {
     std::ostringstream os;

@@ -33,7 +33,8 @@ struct MassAccumulator {
   void add(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& I_com) {
     mass += m;
     first_moment += m * c;
-    inertia_origin += I_com + m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    inertia_origin +=
+        I_com + m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   }
 };
 
@@ -160,7 +161,8 @@ class Builder {
     body.inertia = 0.5 * (body.inertia + body.inertia.transpose()).eval();
     body.principal = Eigen::Isometry3d::Identity();
     body.principal.translation() = c;
-    const Eigen::Matrix3d off = body.inertia - Eigen::Matrix3d(body.inertia.diagonal().asDiagonal());
+    const Eigen::Matrix3d off =
+        body.inertia - Eigen::Matrix3d(body.inertia.diagonal().asDiagonal());
     if (off.cwiseAbs().maxCoeff() <= 1e-14 * body.inertia.trace()) {
       // Already principal: keep the URDF axes (no round-off from an eigen-decomposition).
       body.principal_inertia = body.inertia.diagonal();

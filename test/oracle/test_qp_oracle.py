@@ -1,6 +1,9 @@
 """The bundled QP (DualActiveSetQp through the `qp_solve` tool) against quadprog and the KKT
 conditions, on seeded random problems.
 
+Matrix entries are rounded to a few decimals before the exact relations (right-hand sides,
+dependent rows, g of a chosen optimum) are computed from them, so the JSON stays small.
+
 Problem form (as in include/reach_trajopt/qp/dual_active_set_qp.h):
     min 1/2 x^T G x + g^T x  s.t.  Aeq x = beq,  Ain x >= bin,
     G x + g = Aeq^T l_eq + Ain^T l_in,  l_in >= 0,  l_in * (Ain x - bin) = 0.
@@ -9,11 +12,12 @@ Feasible problems are built from a known feasible point (or a known optimum with
 and weakly active rows). Degenerate copies (duplicated and scaled inequality rows, equality rows
 that are combinations of others, zero rows, inequalities implied by others) do not change the
 feasible set or the optimum, so the reference is quadprog on the non-degenerate base problem
-(quadprog itself refuses dependent equality rows). Infeasible problems carry a Farkas certificate
+(quadprog itself refuses dependent equality rows; daqp stands in where quadprog gives up). Infeasible problems carry a Farkas certificate
 by construction. All problems go to one `qp_solve` process (batch mode: a JSON list).
 """
 import json
 
+import daqp
 import numpy as np
 import pytest
 import quadprog
@@ -30,9 +34,9 @@ KKT_TOL = 1e-8
 def pick_n(rng):
     """Mostly the small sizes of the contact QPs, some up to 120 variables."""
     u = rng.random()
-    if u < 0.6:
+    if u < 0.75:
         return int(rng.integers(5, 31))
-    if u < 0.88:
+    if u < 0.95:
         return int(rng.integers(31, 61))
     return int(rng.integers(61, 121))
 
@@ -42,7 +46,12 @@ def random_spd(rng, n):
     q, _ = np.linalg.qr(rng.standard_normal((n, n)))
     e = np.exp(rng.uniform(np.log(0.1), np.log(10.0), n))
     G = (q * e) @ q.T
-    return 0.5 * (G + G.T)
+    return np.round(0.5 * (G + G.T), 6)  # short decimals keep the batch JSON small
+
+
+def rows(rng, m, n):
+    """Random constraint rows with 4 decimals (exact relations are built from these values)."""
+    return np.round(rng.standard_normal((m, n)), 4)
 
 
 def base_problem(rng, n):
@@ -53,9 +62,9 @@ def base_problem(rng, n):
     G = random_spd(rng, n)
     g = rng.standard_normal(n) * rng.choice([0.1, 1.0, 10.0])
     x_f = rng.standard_normal(n)
-    Aeq = rng.standard_normal((m_eq, n))
+    Aeq = rows(rng, m_eq, n)
     beq = Aeq @ x_f
-    Ain = rng.standard_normal((m_in, n))
+    Ain = rows(rng, m_in, n)
     slack = rng.exponential(1.0, m_in) * (rng.random(m_in) > 0.33)
     bin_ = Ain @ x_f - slack
     return dict(G=G, g=g, Aeq=Aeq, beq=beq, Ain=Ain, bin=bin_)
@@ -70,11 +79,11 @@ def kkt_problem(rng, n):
     n_inactive = int(rng.integers(0, 2 * n))
     G = random_spd(rng, n)
     x = rng.standard_normal(n)
-    Aeq = rng.standard_normal((m_eq, n))
+    Aeq = rows(rng, m_eq, n)
     beq = Aeq @ x
-    A_act = rng.standard_normal((n_strong + n_weak, n))
+    A_act = rows(rng, n_strong + n_weak, n)
     b_act = A_act @ x
-    A_ina = rng.standard_normal((n_inactive, n))
+    A_ina = rows(rng, n_inactive, n)
     b_ina = A_ina @ x - rng.uniform(0.1, 2.0, n_inactive)
     l_eq = rng.standard_normal(m_eq)
     l_act = np.concatenate([rng.uniform(0.1, 2.0, n_strong), np.zeros(n_weak)])
@@ -150,13 +159,23 @@ def infeasible_problem(rng, n):
     return dict(G=p["G"], g=p["g"], Aeq=Aeq, beq=beq, Ain=Ain[perm], bin=bin_[perm])
 
 
-def quadprog_solve(p):
+def reference_solve(p):
+    """quadprog's x; daqp's where quadprog gives up (it reports "constraints are inconsistent"
+    at some feasible vertices where more than n rows meet)."""
     n = p["G"].shape[0]
     C = np.vstack([p["Aeq"], p["Ain"]]).reshape(-1, n)
     b = np.concatenate([p["beq"], p["bin"]])
     if b.size == 0:
         return np.linalg.solve(p["G"], -p["g"])
-    return quadprog.solve_qp(p["G"], -p["g"], C.T, b, p["Aeq"].shape[0])[0]
+    try:
+        return quadprog.solve_qp(p["G"], -p["g"], C.T, b, p["Aeq"].shape[0])[0]
+    except ValueError:
+        m_eq = p["Aeq"].shape[0]
+        upper = np.concatenate([p["beq"], np.full(p["bin"].size, 1e30)])
+        sense = np.concatenate([np.full(m_eq, 5), np.zeros(p["bin"].size)]).astype(np.int32)
+        x, _, exitflag, _ = daqp.solve(p["G"], p["g"], C, upper, b, sense)
+        assert exitflag == 1, f"daqp exit flag {exitflag} on a feasible problem"
+        return np.asarray(x)
 
 
 def to_json(p):
@@ -203,7 +222,7 @@ def feasible_set():
             base = base_problem(rng, n)
         else:
             base, known = kkt_problem(rng, n)
-        x_ref = quadprog_solve(base)
+        x_ref = reference_solve(base)
         p = degenerate(rng, base) if seed % 3 != 0 else base
         out.append((p, x_ref, known))
     return out
@@ -229,7 +248,7 @@ def test_feasible_problems_match_quadprog_and_kkt(feasible_set, feasible_results
         err = np.abs(x - x_ref).max() / max(1.0, np.abs(x_ref).max())
         worst["x"] = max(worst["x"], err)
         if err > X_TOL:
-            failures.append(f"problem {i} (n={x.size}): |x - x_quadprog| = {err:.2e}")
+            failures.append(f"problem {i} (n={x.size}): |x - x_reference| = {err:.2e}")
         if known is not None:
             err_known = np.abs(x - known).max() / max(1.0, np.abs(known).max())
             if err_known > X_TOL:

@@ -217,3 +217,57 @@ TEST(ContactConfig, ShippedYamlLoads) {
   EXPECT_EQ(c.left_sole_frame, "l_sole");
   EXPECT_EQ(c.right_sole_frame, "r_sole");
 }
+
+// ---- eq. (5) on the shipped biped: J_phi and the drift against central differences ----------
+namespace {
+std::shared_ptr<const RobotModel> biped() {
+  static const auto model =
+      RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
+  return model;
+}
+}  // namespace
+
+TEST(ContactConstraint, JacobianAndDriftMatchFiniteDifferences) {
+  const RobotModel& m = *biped();
+  const int n = m.nq();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd q = m.neutralConfiguration(), qd(n), qdd(n);
+  for (int i = 0; i < n; ++i) {
+    q[i] += 0.2 * u(rng);
+    qd[i] = u(rng);
+    qdd[i] = u(rng);
+  }
+  Workspace ws(m);
+  m.update(ws, q, qd);
+  const FrameId sole = m.frameId("l_sole");
+  // A planned pose away from the current one (phi != 0) for J_phi; at it (phi = 0) for drift.
+  Eigen::Isometry3d off = m.framePose(ws, sole);
+  off.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -1, 2).normalized()) * off.linear();
+  off.translation() += Eigen::Vector3d(0.05, -0.02, 0.01);
+  const ContactConstraint c_off(m, "l_sole", off);
+  const ContactConstraint c_at(sole, m.framePose(ws, sole));
+  ContactConstraintTerms t(n);
+  c_off.evaluate(m, ws, t);
+  EXPECT_GT(t.phi.norm(), 0.1);
+  const double h = 1e-6;
+  Workspace wp(m), wm(m);
+  // J_phi qd = d/dt phi(q + t qd).
+  m.update(wp, q + h * qd, qd);
+  m.update(wm, q - h * qd, qd);
+  const Vector6d fd_phidot = (c_off.phi(m, wp) - c_off.phi(m, wm)) / (2 * h);
+  EXPECT_LT((fd_phidot - t.phidot).norm(), 1e-6 * (1 + t.phidot.norm()));
+  EXPECT_LT((t.J_phi * qd - t.phidot).norm(), 1e-12 * (1 + t.phidot.norm()));
+  // phiddot = d/dt phidot along (q + t qd + t^2/2 qdd, qd + t qdd), exact at phi = 0.
+  ContactConstraintTerms t0(n), tp(n), tm(n);
+  c_at.evaluate(m, ws, t0);
+  EXPECT_LT(t0.phi.norm(), 1e-12);
+  m.update(wp, q + h * qd + 0.5 * h * h * qdd, qd + h * qdd);
+  m.update(wm, q - h * qd + 0.5 * h * h * qdd, qd - h * qdd);
+  c_at.evaluate(m, wp, tp);
+  c_at.evaluate(m, wm, tm);
+  const Vector6d fd_phiddot = (tp.phidot - tm.phidot) / (2 * h);
+  EXPECT_LT((fd_phiddot - t0.phiddot(qdd)).norm(), 1e-5 * (1 + fd_phiddot.norm()))
+      << fd_phiddot.transpose() << "\n" << t0.phiddot(qdd).transpose();
+  EXPECT_THROW(ContactConstraint(m, "no_such_frame", off), ReachError);
+}

@@ -240,3 +240,24 @@ TEST(RobotModel, SimplePendulumIsExact) {
   EXPECT_NEAR(M(0, 0), 2.0 * 0.49 + 0.02, 1e-12);
   EXPECT_NEAR(b[0], 2.0 * 9.81 * 0.7 * std::sin(0.4), 1e-12);
 }
+
+TEST(RobotModel, CoMJdotQdMatchesFiniteDifferences) {
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  Workspace ws(*model);
+  std::mt19937 rng(5);
+  const int n = model->nq();
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = randomState(*model, rng, false);
+    const Eigen::VectorXd qd = randomState(*model, rng, true);
+    model->update(ws, q, qd);
+    const Eigen::Vector3d drift = model->centerOfMassJdotQd(ws);
+    Eigen::Matrix3Xd Jp(3, n), Jm(3, n);
+    const double h = 1e-6;
+    model->update(ws, q + h * qd, qd);
+    model->centerOfMassJacobian(ws, Jp);
+    model->update(ws, q - h * qd, qd);
+    model->centerOfMassJacobian(ws, Jm);
+    const Eigen::Vector3d fd = (Jp - Jm) * qd / (2 * h);
+    EXPECT_LT((drift - fd).norm(), 1e-5 * (1 + fd.norm()));
+  }
+}

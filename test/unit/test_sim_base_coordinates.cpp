@@ -131,9 +131,9 @@ TEST(SimBaseCoordinates, VirtualStateRoundTripAndFiniteDifferences) {
     const BaseBodyState bp = coords.fromVirtual(traj.q(t + h), traj.qd(t + h));
     const BaseBodyState bm = coords.fromVirtual(traj.q(t - h), traj.qd(t - h));
     const Eigen::Vector3d v_fd = (bp.position - bm.position) / (2 * h);
-    const Eigen::Vector3d w_fd =
-        rotationLog(bp.orientation.toRotationMatrix() * bm.orientation.toRotationMatrix().transpose()) /
-        (2 * h);
+    const Eigen::Matrix3d Rp = bp.orientation.toRotationMatrix();
+    const Eigen::Matrix3d Rm = bm.orientation.toRotationMatrix();
+    const Eigen::Vector3d w_fd = rotationLog(Rp * Rm.transpose()) / (2 * h);
     EXPECT_LT((body.linear_velocity - v_fd).norm(), 1e-7);
     EXPECT_LT((body.angular_velocity - w_fd).norm(), 1e-7);
 

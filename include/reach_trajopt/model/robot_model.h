@@ -131,6 +131,8 @@ class RobotModel {
 
   /// Centre of mass in the world [m].
   Eigen::Vector3d centerOfMass(const Workspace& ws) const;
+  /// Jc_dot*qd: the CoM acceleration when qdd = 0 (after update()), world frame [m/s^2].
+  Eigen::Vector3d centerOfMassJdotQd(const Workspace& ws) const;
   /// 3 x n_q CoM Jacobian (world frame).
   void centerOfMassJacobian(Workspace& ws, Eigen::Ref<Eigen::Matrix3Xd> Jc) const;
 

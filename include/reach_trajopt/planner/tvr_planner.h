@@ -68,7 +68,7 @@ struct TvrStabilityReport {
   Eigen::Matrix4d closed_loop;                    ///< A(T) + B(T) K
   Eigen::Matrix<std::complex<double>, 4, 1> eigenvalues;
   double spectral_radius = 0.0;
-  bool stable = false;  ///< spectral radius < 1 (asymptotically stable step map)
+  bool stable = false;  ///< spectral radius < 1 - 1e-9 (asymptotically stable step map)
   std::string summary() const;  ///< one line: T, t_s, kappas, |lambda|_max, verdict
 };
 

@@ -83,6 +83,10 @@ class DualActiveSetQp {
 
   /// Same with a factorization of G computed beforehand (HessianFactor::compute), reused across
   /// problems that share G. The objective is evaluated with L (G + rho I = L L^T).
+  /// When the factor (same HessianFactor::id()) and A_eq are those of the previous solve of this
+  /// object, the QR of the equality rows (the paper's J and R after adding them) is reused, so
+  /// children of one parent (same M, J, weights; new torque or right-hand sides) only pay for
+  /// the inequality steps. A_eq is compared entry by entry (O(m_eq n)), so this is always safe.
   const QpResult& solve(const HessianFactor& factor, const VectorRef& g, const MatrixRef& A_eq,
                         const VectorRef& b_eq, const MatrixRef& A_in, const VectorRef& b_in,
                         const std::vector<int>* warm_start = nullptr);
@@ -101,8 +105,11 @@ class DualActiveSetQp {
   void run(const HessianFactor& factor, const VectorRef& g, const MatrixRef& A_eq,
            const VectorRef& b_eq, const MatrixRef& A_in, const VectorRef& b_in,
            const std::vector<int>* warm_start);
+  using RowRef = Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
   /// Appends a row to the initial Householder QR; false if it is dependent on the active rows.
-  bool householderAppend(const Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>& a);
+  bool householderAppend(const RowRef& a);
+  /// Adds a row to the active set with J formed; false if it is dependent on the active rows.
+  bool appendWithJ(const RowRef& a, int index);
   void formJ(const Eigen::MatrixXd& J0);
   /// x = x0 + J_1 R^{-T} w and u = R^{-1} R^{-T} w with w = b_A - N^T x0 (J formed).
   void solveOnActiveSet(const MatrixRef& A_eq, const VectorRef& b_eq, const MatrixRef& A_in,
@@ -123,12 +130,19 @@ class DualActiveSetQp {
   Eigen::MatrixXd J_, R_;
   Eigen::MatrixXd householder_;  // initial QR: column k holds reflector k below its diagonal
   Eigen::VectorXd tau_;
-  bool j_formed_ = false;
   const HessianFactor* factor_ = nullptr;  // factor of the current solve
   std::vector<int> active_;
   std::vector<char> is_active_;      // per inequality row
   std::vector<char> eq_redundant_;   // per equality row
   Eigen::VectorXd u_, x_, x0_, d_, z_, r_, w_, work_, s_, row_norm_;
+
+  // The active set after the equality rows, kept for the next solve with the same factor/A_eq.
+  bool cache_valid_ = false;
+  unsigned long long cache_factor_id_ = 0;
+  int cache_m_eq_ = 0, cache_q_ = 0;
+  Eigen::MatrixXd cache_A_eq_, cache_J_, cache_R_;
+  std::vector<int> cache_active_;
+  std::vector<char> cache_eq_redundant_;
 };
 
 }  // namespace qp

@@ -34,6 +34,9 @@ class HessianFactor {
   bool compute(const Eigen::Ref<const Eigen::MatrixXd>& G, double regularization = 0.0);
 
   bool valid() const { return valid_; }
+  /// Changes on every successful compute() (unique across all factors of the process), so a
+  /// solver can tell that the factor it cached equality work for is still the same.
+  unsigned long long id() const { return id_; }
   int size() const { return n_; }
   double regularization() const { return regularization_; }
   /// Lower-triangular Cholesky factor L (n x n; strict upper part is zero).
@@ -50,6 +53,7 @@ class HessianFactor {
  private:
   int n_;
   bool valid_ = false;
+  unsigned long long id_ = 0;
   double regularization_ = 0.0;
   Eigen::MatrixXd L_;
   Eigen::MatrixXd J0_;

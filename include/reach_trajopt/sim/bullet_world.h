@@ -119,7 +119,8 @@ class BulletWorld {
   int sole_body_[2] = {0, 0};
   Eigen::Isometry3d sole_in_principal_[2];  ///< sole frame in its body's principal frame
 
-  double time_ = 0.0;
+  long steps_ = 0;      ///< steps since the last reset
+  double time_ = 0.0;   ///< steps_ * time_step (no accumulated round-off)
   Eigen::VectorXd q_, qd_;
   std::vector<SoleContact> soles_;
   std::vector<std::string> non_foot_contacts_;

@@ -23,9 +23,10 @@ struct SimConfig {
   bool clamp_torques = true;   ///< saturate u at the URDF effort limits, as actuators do
   std::string left_sole_frame = "l_sole";   ///< sole-centre frames where wrenches are reported
   std::string right_sole_frame = "r_sole";
-  int solver_iterations = 50;         ///< Bullet constraint-solver iterations per step
+  int solver_iterations = 20;         ///< Bullet constraint-solver iterations per step
   double collision_margin = 1e-3;     ///< Bullet convex margin [m] (rounds box corners)
-  double max_coordinate_velocity = 1e3;  ///< Bullet's velocity clamp [m/s, rad/s], kept out of reach
+  /// Bullet clamps every velocity coordinate to this [m/s, rad/s]; kept out of reach.
+  double max_coordinate_velocity = 1e3;
 
   /// Throws ReachError naming the offending value (non-positive step, mu, iterations,
   /// negative margin, non-finite gravity, empty or equal sole frames).

@@ -1,0 +1,114 @@
+#pragma once
+/// \file whole_body_controller.h
+/// The whole-body controller of the paper's Sec. IV: an inverse-dynamics QP on the bundled
+/// solver, run at the simulator's rate (1 kHz).
+///
+/// Variables x = [qdd (n_q); lambda_i (6 per sole in contact)], torques eliminated through
+/// eq. (1): u = M_a qdd + b_a - J_a^T lambda (the actuated rows). The QP is
+///   min  sum_k w_k |J_k qdd + Jdot_k qd - a_k|^2 + w_qdd |qdd|^2 + w_lambda |lambda|^2
+///   s.t. M_b qdd + b_b = J_b^T lambda                 (floating-base rows of eq. 1)
+///        J_i qdd + Jdot_i qd = 0                      (contacts, eq. 5)
+///        C R lambda_i >= 0                            (wrench cones, eq. 7-8)
+///        -u_max <= M_a qdd + b_a - J_a^T lambda <= u_max   (torque limits)
+/// with tasks k: CoM position, pelvis orientation, swing sole pose (6-D) and joint posture,
+/// each a PD law a_k = a_ref + Kd (v_ref - v) + Kp (x_ref - x), plus an optional joint
+/// acceleration feed-forward (the OCP's trajectory in the proposed mode).
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/qp/dual_active_set_qp.h"
+
+namespace reach_trajopt {
+
+/// Task weights and PD gains of the whole-body controller (gains in 1/s^2 and 1/s).
+/// Larger weights make a task win over the others; larger gains track faster but amplify
+/// the simulator's contact noise.
+struct WbcConfig {
+  double w_com = 100.0, kp_com = 120.0, kd_com = 22.0;
+  double w_pelvis = 50.0, kp_pelvis = 300.0, kd_pelvis = 35.0;  ///< pelvis orientation
+  double w_swing = 200.0, kp_swing = 900.0, kd_swing = 60.0;    ///< swing sole pose
+  double w_posture = 0.5, kp_posture = 60.0, kd_posture = 12.0; ///< actuated joints
+  double w_qdd = 1e-4;     ///< regularization of qdd
+  double w_lambda = 1e-6;  ///< regularization of contact wrenches (N^2 -> cost)
+  /// \throws ReachError naming a negative or non-finite field.
+  void validate() const;
+};
+
+/// What the controller tracks at one tick. Positions in the world [m], orientations as
+/// world-from-frame rotations.
+struct WbcReference {
+  Eigen::Vector3d com_position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_acceleration = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d pelvis_rotation = Eigen::Matrix3d::Identity();
+  /// Swing sole target (used in single support for the sole not in contact).
+  Eigen::Vector3d swing_position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d swing_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d swing_acceleration = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d swing_rotation = Eigen::Matrix3d::Identity();
+  /// Posture target of all n_q coordinates (only the actuated ones are used); empty: the
+  /// model's configuration at construction.
+  Eigen::VectorXd posture;
+  /// Optional joint trajectory (n_q each, empty when unused): tracked by the posture task in
+  /// place of `posture`, with qdd_ff as its acceleration feed-forward.
+  Eigen::VectorXd q_ff, qd_ff, qdd_ff;
+};
+
+/// Result of one tick.
+struct WbcOutput {
+  qp::QpStatus status = qp::QpStatus::kInvalidInput;
+  Eigen::VectorXd u;         ///< joint torques, size n_u [Nm]
+  Eigen::VectorXd qdd;       ///< planned accelerations, size n_q
+  Vector6d lambda_left = Vector6d::Zero();   ///< [f; tau] world orientation at the sole [N, Nm]
+  Vector6d lambda_right = Vector6d::Zero();
+  std::string message;
+};
+
+/// @brief Inverse-dynamics QP whole-body controller (Sec. IV). Not thread-safe: one per sim.
+class WholeBodyController {
+ public:
+  /// \param posture  nominal configuration (n_q) for the posture task.
+  /// \throws ReachError on invalid configs, unknown sole frames or a wrong-size posture.
+  WholeBodyController(std::shared_ptr<const RobotModel> model, const ContactConfig& contact,
+                      const WbcConfig& config, const Eigen::VectorXd& posture);
+
+  /// One control tick at the measured state (q, qd) in contact mode `mode`.
+  /// On a QP failure the status says so and u holds the last successful torques.
+  /// \throws ReachError on wrong sizes or non-finite input.
+  const WbcOutput& compute(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                           const ContactMode& mode, const WbcReference& ref);
+
+  const RobotModel& model() const { return *model_; }
+  const WbcConfig& config() const { return config_; }
+  /// Sole frame ids (left, right).
+  FrameId soleFrame(Side s) const { return s == Side::kLeft ? left_sole_ : right_sole_; }
+
+ private:
+  void addTask(const Eigen::Ref<const Eigen::MatrixXd>& J, const Eigen::Ref<const Eigen::VectorXd>& drift,
+               const Eigen::Ref<const Eigen::VectorXd>& a_des, double weight);
+
+  std::shared_ptr<const RobotModel> model_;
+  ContactConfig contact_;
+  WbcConfig config_;
+  ContactWrenchCone cone_;
+  FrameId left_sole_, right_sole_, pelvis_;
+  Eigen::VectorXd posture_;
+  Workspace ws_;
+  qp::DualActiveSetQp qp_single_, qp_double_;
+  std::vector<int> warm_single_, warm_double_;
+  // Scratch, sized once.
+  Eigen::MatrixXd M_, G_, A_eq_, A_in_;
+  Eigen::VectorXd b_, g_, b_eq_, b_in_;
+  Matrix6Xd J_sole_[2], J_pelvis_;
+  Eigen::Matrix3Xd J_com_;
+  WbcOutput out_;
+};
+
+}  // namespace reach_trajopt

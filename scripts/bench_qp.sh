@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Builds bench/qp (the bundled QP against eiquadprog's C++ from the venv wheel, in its own CMake
+# project so the product never links eiquadprog) and prints its BENCH lines.
+#   scripts/bench_qp.sh [scale]   scale multiplies the number of problems (default 1)
+# Build directory: $REACH_WS/bench_qp (REACH_WS defaults to build_ws, as in scripts/env.sh).
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+prefix="$VENV/lib/python3.11/site-packages/cmeel.prefix"
+if [ ! -d "$prefix/lib/cmake/eiquadprog" ]; then
+  echo "[bench_qp] eiquadprog wheel not found under $prefix: run scripts/bootstrap" >&2
+  exit 1
+fi
+build="$WS/bench_qp"
+cmake -S "$REPO/bench/qp" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_CMAKE_SYSTEM_PATH=OFF >/dev/null
+cmake --build "$build" -j2 >/dev/null
+"$build/bench_qp" "${1:-1}"

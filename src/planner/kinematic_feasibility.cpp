@@ -1,0 +1,314 @@
+#include "reach_trajopt/planner/kinematic_feasibility.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Cholesky>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/contact/contact_constraint.h"
+
+namespace reach_trajopt {
+
+namespace {
+
+constexpr int kTaskRows = 16;  // left sole 6, right sole 6, pelvis height 1, pelvis rotation 3
+
+void requirePositive(const char* name, double v) {
+  if (!std::isfinite(v) || v <= 0.0) {
+    std::ostringstream os;
+    os << "KinematicFeasibilityConfig: " << name << " must be positive and finite, got " << v;
+    throw ReachError(os.str());
+  }
+}
+
+/// True when two rectangles (centre, heading, half extents hx, hy) intersect: separating axis
+/// test over the four edge normals.
+bool rectanglesOverlap(const Eigen::Vector2d& c1, double yaw1, const Eigen::Vector2d& c2,
+                       double yaw2, double hx, double hy) {
+  const Eigen::Matrix2d R1 = Eigen::Rotation2Dd(yaw1).toRotationMatrix();
+  const Eigen::Matrix2d R2 = Eigen::Rotation2Dd(yaw2).toRotationMatrix();
+  const Eigen::Vector2d d = c2 - c1;
+  const Eigen::Vector2d h(hx, hy);
+  for (const Eigen::Matrix2d* R : {&R1, &R2}) {
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector2d axis = R->col(k);
+      const double r1 = (R1.transpose() * axis).cwiseAbs().dot(h);
+      const double r2 = (R2.transpose() * axis).cwiseAbs().dot(h);
+      if (std::abs(d.dot(axis)) > r1 + r2) return false;
+    }
+  }
+  return true;
+}
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(3);
+  os << v;
+  return os.str();
+}
+
+}  // namespace
+
+void KinematicFeasibilityConfig::validate() const {
+  if (pelvis_frame.empty()) throw ReachError("KinematicFeasibilityConfig: empty pelvis_frame");
+  requirePositive("pelvis_height", pelvis_height);
+  requirePositive("position_tolerance", position_tolerance);
+  requirePositive("orientation_tolerance", orientation_tolerance);
+  requirePositive("damping", damping);
+  requirePositive("max_joint_step", max_joint_step);
+  requirePositive("workspace_radius", workspace_radius);
+  requirePositive("workspace_height", workspace_height);
+  if (max_iterations < 1) {
+    throw ReachError("KinematicFeasibilityConfig: max_iterations must be >= 1, got " +
+                     std::to_string(max_iterations));
+  }
+  if (!std::isfinite(sole_clearance) || sole_clearance < 0.0) {
+    throw ReachError("KinematicFeasibilityConfig: sole_clearance must be >= 0, got " +
+                     fmt(sole_clearance));
+  }
+  if (!std::isfinite(min_lateral_offset)) {
+    throw ReachError("KinematicFeasibilityConfig: min_lateral_offset must be finite");
+  }
+}
+
+KinematicFeasibilityConfig KinematicFeasibilityConfig::fromYaml(const YamlSection& s) {
+  s.requireOnlyKeys({"pelvis_frame", "pelvis_height", "position_tolerance",
+                     "orientation_tolerance", "max_iterations", "damping", "max_joint_step",
+                     "sole_clearance", "min_lateral_offset", "workspace_radius",
+                     "workspace_height"});
+  KinematicFeasibilityConfig c;
+  s.read("pelvis_frame", c.pelvis_frame);
+  s.read("pelvis_height", c.pelvis_height);
+  s.read("position_tolerance", c.position_tolerance);
+  s.read("orientation_tolerance", c.orientation_tolerance);
+  s.read("max_iterations", c.max_iterations);
+  s.read("damping", c.damping);
+  s.read("max_joint_step", c.max_joint_step);
+  s.read("sole_clearance", c.sole_clearance);
+  s.read("min_lateral_offset", c.min_lateral_offset);
+  s.read("workspace_radius", c.workspace_radius);
+  s.read("workspace_height", c.workspace_height);
+  try {
+    c.validate();
+  } catch (const ReachError& e) {
+    throw ReachError(s.where() + ": " + e.what());
+  }
+  return c;
+}
+
+Eigen::Isometry3d FlatContact::pose() const {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = position;
+  return T;
+}
+
+KinematicFeasibility::KinematicFeasibility(std::shared_ptr<const RobotModel> model,
+                                           const KinematicFeasibilityConfig& config,
+                                           const ContactConfig& contact)
+    : model_(std::move(model)), config_(config), contact_(contact) {
+  if (!model_) throw ReachError("KinematicFeasibility: null robot model");
+  config_.validate();
+  contact_.validate();
+  if (!model_->floatingBase()) {
+    throw ReachError("KinematicFeasibility: model " + model_->source() +
+                     " has no floating base (the pelvis must be free)");
+  }
+  left_sole_ = model_->frameId(contact_.left_sole_frame);
+  right_sole_ = model_->frameId(contact_.right_sole_frame);
+  pelvis_ = model_->frameId(config_.pelvis_frame);
+}
+
+KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatContact& current,
+                                                       const FlatContact& planned,
+                                                       const Eigen::VectorXd& q_init) const {
+  const RobotModel& model = *model_;
+  const int n = model.nq();
+  requireFinite("KinematicFeasibility: current contact position", current.position);
+  requireFinite("KinematicFeasibility: planned contact position", planned.position);
+  if (!std::isfinite(current.yaw) || !std::isfinite(planned.yaw)) {
+    throw ReachError("KinematicFeasibility: non-finite contact yaw");
+  }
+  if (q_init.size() != 0) {
+    requireSize("KinematicFeasibility: q_init", q_init.size(), n);
+    requireFinite("KinematicFeasibility: q_init", q_init);
+  }
+  const Side swing = opposite(stance);
+  const std::string& stance_name =
+      stance == Side::kLeft ? contact_.left_sole_frame : contact_.right_sole_frame;
+  const std::string& swing_name =
+      swing == Side::kLeft ? contact_.left_sole_frame : contact_.right_sole_frame;
+
+  const Eigen::Vector3d delta = planned.position - current.position;
+  if (delta.head<2>().norm() > config_.workspace_radius ||
+      std::abs(delta.z()) > config_.workspace_height) {
+    throw ReachError("KinematicFeasibility: step outside the workspace: planned " + swing_name +
+                     " is " + fmt(delta.head<2>().norm()) + " m from " + stance_name +
+                     " horizontally and " + fmt(delta.z()) + " m vertically (limits " +
+                     fmt(config_.workspace_radius) + " m, " + fmt(config_.workspace_height) +
+                     " m)");
+  }
+
+  KinematicFeasibilityResult result;
+  result.qd_f = Eigen::VectorXd::Zero(n);
+  const FlatContact& left = stance == Side::kLeft ? current : planned;
+  const FlatContact& right = stance == Side::kLeft ? planned : current;
+  const double yaw_mean = std::atan2(std::sin(left.yaw) + std::sin(right.yaw),
+                                     std::cos(left.yaw) + std::cos(right.yaw));
+
+  if (q_init.size() != 0) {
+    result.q_f = q_init;
+  } else {
+    // A standing guess: joints mid-range, base between the soles at the nominal height.
+    result.q_f = model.neutralConfiguration();
+    result.q_f.head<2>() = 0.5 * (left.position + right.position).head<2>();
+    result.q_f[2] = 0.5 * (left.position.z() + right.position.z()) + config_.pelvis_height;
+    result.q_f[3] = yaw_mean;
+    result.q_f[4] = result.q_f[5] = 0.0;
+  }
+
+  // One foot through the other: overlapping soles, or the swing sole across the stance sole.
+  const double margin = 0.5 * config_.sole_clearance;
+  if (rectanglesOverlap(current.position.head<2>(), current.yaw, planned.position.head<2>(),
+                        planned.yaw, contact_.half_length + margin,
+                        contact_.half_width + margin)) {
+    result.position_residual = result.orientation_residual =
+        std::numeric_limits<double>::infinity();
+    result.reason = "planned " + swing_name + " overlaps the stance sole " + stance_name +
+                    " (clearance " + fmt(config_.sole_clearance) +
+                    " m): one foot would pass through the other";
+    return result;
+  }
+  const Eigen::Vector2d offset =
+      Eigen::Rotation2Dd(-current.yaw) * delta.head<2>();  // stance heading frame
+  const double toward_swing = (swing == Side::kLeft ? 1.0 : -1.0) * offset.y();
+  if (toward_swing < config_.min_lateral_offset) {
+    result.position_residual = result.orientation_residual =
+        std::numeric_limits<double>::infinity();
+    result.reason = "planned " + swing_name + " crosses to the far side of the stance sole " +
+                    stance_name + " (lateral offset " + fmt(toward_swing) + " m < " +
+                    fmt(config_.min_lateral_offset) +
+                    " m): the swing leg would pass through the stance leg";
+    return result;
+  }
+
+  // ---- joint-limited IK: damped least squares with clamping ---------------------------------
+  Eigen::Isometry3d pelvis_target = Eigen::Isometry3d::Identity();
+  pelvis_target.linear() = Eigen::AngleAxisd(yaw_mean, Eigen::Vector3d::UnitZ()).matrix();
+  pelvis_target.translation().z() =
+      0.5 * (left.position.z() + right.position.z()) + config_.pelvis_height;
+  const ContactConstraint tasks[3] = {ContactConstraint(left_sole_, left.pose()),
+                                      ContactConstraint(right_sole_, right.pose()),
+                                      ContactConstraint(pelvis_, pelvis_target)};
+  const Eigen::VectorXd q_lo = model.positionLowerLimits();
+  const Eigen::VectorXd q_hi = model.positionUpperLimits();
+  result.q_f = result.q_f.cwiseMax(q_lo).cwiseMin(q_hi);
+
+  Workspace ws(model);
+  ContactConstraintTerms terms(n);
+  Eigen::Matrix<double, kTaskRows, 1> e;
+  Eigen::MatrixXd J(kTaskRows, n), Jf(kTaskRows, n);
+  Eigen::Matrix<double, kTaskRows, kTaskRows> JJt;
+  Eigen::VectorXd dq(n), q_next(n);
+  std::vector<bool> locked(n);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  double task_pos[3] = {0, 0, 0}, task_rot[3] = {0, 0, 0};
+
+  bool converged = false;
+  int it = 0;
+  for (;; ++it) {
+    model.update(ws, result.q_f, zero);
+    for (int t = 0; t < 3; ++t) {
+      tasks[t].evaluate(model, ws, terms);
+      if (t < 2) {
+        e.segment<6>(6 * t) = terms.phi;
+        J.middleRows<6>(6 * t) = terms.J_phi;
+        task_pos[t] = terms.phi.head<3>().norm();
+      } else {
+        e[12] = terms.phi[2];
+        e.tail<3>() = terms.phi.tail<3>();
+        J.row(12) = terms.J_phi.row(2);
+        J.bottomRows<3>() = terms.J_phi.bottomRows<3>();
+        task_pos[t] = std::abs(terms.phi[2]);
+      }
+      task_rot[t] = terms.phi.tail<3>().norm();
+    }
+    result.position_residual = *std::max_element(task_pos, task_pos + 3);
+    result.orientation_residual = *std::max_element(task_rot, task_rot + 3);
+    if (result.position_residual <= config_.position_tolerance &&
+        result.orientation_residual <= config_.orientation_tolerance) {
+      converged = true;
+      break;
+    }
+    if (it >= config_.max_iterations) break;
+
+    // Levenberg-style damping lambda^2 = damping + |e|^2: large far away (robust near the
+    // reach boundary), vanishing at the solution (quadratic convergence).
+    const double lambda = config_.damping + e.squaredNorm();
+    std::fill(locked.begin(), locked.end(), false);
+    dq.setZero();
+    for (int pass = 0; pass <= n; ++pass) {
+      Jf = J;
+      Eigen::Matrix<double, kTaskRows, 1> rhs = -e;
+      for (int i = 0; i < n; ++i) {
+        if (locked[i]) {
+          rhs -= J.col(i) * dq[i];
+          Jf.col(i).setZero();
+        }
+      }
+      JJt.noalias() = Jf * Jf.transpose();
+      JJt.diagonal().array() += lambda;
+      Eigen::VectorXd step = Jf.transpose() * JJt.ldlt().solve(rhs);
+      const double biggest = step.cwiseAbs().maxCoeff();
+      if (biggest > config_.max_joint_step) step *= config_.max_joint_step / biggest;
+      bool clamped = false;
+      for (int i = 0; i < n; ++i) {
+        if (locked[i]) continue;
+        dq[i] = step[i];
+        const double qi = result.q_f[i] + dq[i];
+        if (qi < q_lo[i] || qi > q_hi[i]) {
+          dq[i] = std::clamp(qi, q_lo[i], q_hi[i]) - result.q_f[i];
+          locked[i] = true;
+          clamped = true;
+        }
+      }
+      if (!clamped) break;
+    }
+    result.q_f += dq;
+    result.q_f = result.q_f.cwiseMax(q_lo).cwiseMin(q_hi);  // rounding
+  }
+  result.iterations = it;
+
+  if (converged) {
+    result.feasible = true;
+    return result;
+  }
+  const char* names[3] = {contact_.left_sole_frame.c_str(), contact_.right_sole_frame.c_str(),
+                          config_.pelvis_frame.c_str()};
+  int worst = 0;
+  for (int t = 1; t < 3; ++t) {
+    if (task_pos[t] + task_rot[t] > task_pos[worst] + task_rot[worst]) worst = t;
+  }
+  std::ostringstream os;
+  os << "kinematically infeasible: after " << it << " IK iterations " << names[worst]
+     << " misses its target by " << fmt(task_pos[worst]) << " m and " << fmt(task_rot[worst])
+     << " rad (tolerances " << config_.position_tolerance << " m, "
+     << config_.orientation_tolerance << " rad)";
+  std::string at_limits;
+  for (int i = 0; i < n; ++i) {
+    const auto& j = model.joints()[i];
+    if (j.is_virtual) continue;
+    const double tol = 1e-9;
+    if (result.q_f[i] <= q_lo[i] + tol) at_limits += " " + j.name + " (lower)";
+    if (result.q_f[i] >= q_hi[i] - tol) at_limits += " " + j.name + " (upper)";
+  }
+  if (!at_limits.empty()) os << "; joints at limits:" << at_limits;
+  result.reason = os.str();
+  return result;
+}
+
+}  // namespace reach_trajopt

@@ -1,0 +1,190 @@
+/// \file whole_body_controller.cpp
+/// Inverse-dynamics QP whole-body controller (see the header for the QP).
+
+#include "reach_trajopt/sim/whole_body_controller.h"
+
+#include <cmath>
+
+namespace reach_trajopt {
+namespace {
+
+/// World-frame rotation vector e with exp([e]) R = R_des (small-angle orientation error).
+Eigen::Vector3d orientationError(const Eigen::Matrix3d& R_des, const Eigen::Matrix3d& R) {
+  const Eigen::AngleAxisd aa(R_des * R.transpose());
+  return aa.angle() * aa.axis();
+}
+
+}  // namespace
+
+void WbcConfig::validate() const {
+  const double vals[] = {w_com,    kp_com,     kd_com,     w_pelvis, kp_pelvis, kd_pelvis,
+                         w_swing,  kp_swing,   kd_swing,   w_posture, kp_posture, kd_posture};
+  for (double v : vals)
+    if (!std::isfinite(v) || v < 0.0) throw ReachError("WbcConfig: weights and gains must be >= 0");
+  if (!(w_qdd > 0.0) || !(w_lambda > 0.0) || !std::isfinite(w_qdd) || !std::isfinite(w_lambda))
+    throw ReachError("WbcConfig: w_qdd and w_lambda must be > 0 (they keep the QP strictly convex)");
+}
+
+WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model,
+                                         const ContactConfig& contact, const WbcConfig& config,
+                                         const Eigen::VectorXd& posture)
+    : model_(std::move(model)),
+      contact_(contact),
+      config_(config),
+      cone_(contact),
+      left_sole_(model_->frameId(contact.left_sole_frame)),
+      right_sole_(model_->frameId(contact.right_sole_frame)),
+      pelvis_(model_->frameId(model_->linkNames().front())),
+      posture_(posture),
+      ws_(*model_),
+      qp_single_(model_->nq() + 6, 6 + 6, ContactWrenchCone::kRows + 2 * model_->nu()),
+      qp_double_(model_->nq() + 12, 6 + 12, 2 * ContactWrenchCone::kRows + 2 * model_->nu()) {
+  contact_.validate();
+  config_.validate();
+  if (!model_->floatingBase())
+    throw ReachError("WholeBodyController needs a floating-base model, got " + model_->source());
+  requireSize("WholeBodyController: posture", posture_.size(), model_->nq());
+  requireFinite("WholeBodyController: posture", posture_);
+  const int n = model_->nq();
+  M_.resize(n, n);
+  b_.resize(n);
+  for (auto& J : J_sole_) J.resize(6, n);
+  J_pelvis_.resize(6, n);
+  J_com_.resize(3, n);
+  const int nx = n + 12;
+  G_.resize(nx, nx);
+  g_.resize(nx);
+  A_eq_.resize(18, nx);
+  b_eq_.resize(18);
+  A_in_.resize(2 * ContactWrenchCone::kRows + 2 * model_->nu(), nx);
+  b_in_.resize(A_in_.rows());
+  out_.u = Eigen::VectorXd::Zero(model_->nu());
+  out_.qdd = Eigen::VectorXd::Zero(n);
+}
+
+void WholeBodyController::addTask(const Eigen::Ref<const Eigen::MatrixXd>& J,
+                                  const Eigen::Ref<const Eigen::VectorXd>& drift,
+                                  const Eigen::Ref<const Eigen::VectorXd>& a_des, double weight) {
+  const int n = model_->nq();
+  G_.topLeftCorner(n, n).noalias() += weight * J.transpose() * J;
+  g_.head(n).noalias() += weight * J.transpose() * (drift - a_des);
+}
+
+const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                              const ContactMode& mode, const WbcReference& ref) {
+  const RobotModel& m = *model_;
+  const int n = m.nq(), nu = m.nu();
+  const int nc = mode.contactCount();
+  if (nc == 0) throw ReachError("WholeBodyController: no sole in contact (flight is not handled)");
+  m.update(ws_, q, qd);
+  m.massMatrix(ws_, M_);
+  m.bias(ws_, b_);
+  const int nx = n + 6 * nc;
+  G_.topLeftCorner(nx, nx).setZero();
+  g_.head(nx).setZero();
+
+  // --- Tasks -----------------------------------------------------------------------------
+  const WbcConfig& c = config_;
+  m.centerOfMassJacobian(ws_, J_com_);
+  {
+    const Eigen::Vector3d com = m.centerOfMass(ws_);
+    const Eigen::Vector3d com_vel = J_com_ * qd;
+    const Eigen::Vector3d a = ref.com_acceleration + c.kd_com * (ref.com_velocity - com_vel) +
+                              c.kp_com * (ref.com_position - com);
+    addTask(J_com_, m.centerOfMassJdotQd(ws_), a, c.w_com);
+  }
+  {
+    m.frameJacobian(ws_, pelvis_, J_pelvis_);
+    const Eigen::Matrix3d R = m.framePose(ws_, pelvis_).linear();
+    const Eigen::Vector3d w = J_pelvis_.bottomRows<3>() * qd;
+    const Eigen::Vector3d a = -c.kd_pelvis * w + c.kp_pelvis * orientationError(ref.pelvis_rotation, R);
+    addTask(J_pelvis_.bottomRows<3>(), m.frameJdotQd(ws_, pelvis_).tail<3>(), a, c.w_pelvis);
+  }
+  for (int s = 0; s < 2; ++s) m.frameJacobian(ws_, s == 0 ? left_sole_ : right_sole_, J_sole_[s]);
+  if (mode.isSingleSupport()) {
+    const int sw = mode.swing() == Side::kLeft ? 0 : 1;
+    const FrameId id = sw == 0 ? left_sole_ : right_sole_;
+    const Eigen::Isometry3d T = m.framePose(ws_, id);
+    const Vector6d v = J_sole_[sw] * qd;
+    Vector6d a;
+    a.head<3>() = ref.swing_acceleration + c.kd_swing * (ref.swing_velocity - v.head<3>()) +
+                  c.kp_swing * (ref.swing_position - T.translation());
+    a.tail<3>() = -c.kd_swing * v.tail<3>() +
+                  c.kp_swing * orientationError(ref.swing_rotation, T.linear());
+    addTask(J_sole_[sw], m.frameJdotQd(ws_, id), a, c.w_swing);
+  }
+  {
+    const bool ff = ref.q_ff.size() == n;
+    const Eigen::VectorXd& q_ref = ff ? ref.q_ff : (ref.posture.size() == n ? ref.posture : posture_);
+    const int off = n - nu;
+    Eigen::VectorXd a = c.kp_posture * (q_ref.tail(nu) - q.tail(nu)) - c.kd_posture * qd.tail(nu);
+    if (ff && ref.qd_ff.size() == n) a += c.kd_posture * ref.qd_ff.tail(nu);
+    if (ff && ref.qdd_ff.size() == n) a += ref.qdd_ff.tail(nu);
+    G_.block(off, off, nu, nu).diagonal().array() += c.w_posture;
+    g_.segment(off, nu) -= c.w_posture * a;
+  }
+  G_.topLeftCorner(n, n).diagonal().array() += c.w_qdd;
+  G_.block(n, n, 6 * nc, 6 * nc).diagonal().array() += c.w_lambda;
+
+  // --- Constraints -------------------------------------------------------------------------
+  const int m_eq = 6 + 6 * nc;
+  const int m_in = ContactWrenchCone::kRows * nc + 2 * nu;
+  auto Aeq = A_eq_.topLeftCorner(m_eq, nx);
+  auto Ain = A_in_.topLeftCorner(m_in, nx);
+  Aeq.setZero();
+  Ain.setZero();
+  Aeq.topLeftCorner(6, n) = M_.topRows(6);
+  b_eq_.head(6) = -b_.head(6);
+  ContactWrenchCone::Matrix Cw;
+  int k = 0;
+  for (int s = 0; s < 2; ++s) {
+    if (!mode.inContact(s == 0 ? Side::kLeft : Side::kRight)) continue;
+    const int col = n + 6 * k;
+    const FrameId id = s == 0 ? left_sole_ : right_sole_;
+    Aeq.block(0, col, 6, 6) = -J_sole_[s].leftCols(6).transpose();
+    Aeq.block(6 + 6 * k, 0, 6, n) = J_sole_[s];
+    b_eq_.segment(6 + 6 * k, 6) = -m.frameJdotQd(ws_, id);
+    cone_.worldMatrix(m.framePose(ws_, id).linear(), Cw);
+    Ain.block(ContactWrenchCone::kRows * k, col, ContactWrenchCone::kRows, 6) = Cw;
+    // Torque rows: u = M_a qdd + b_a - J_a^T lambda.
+    const int t0 = ContactWrenchCone::kRows * nc;
+    Ain.block(t0, col, nu, 6) = J_sole_[s].rightCols(nu).transpose();
+    Ain.block(t0 + nu, col, nu, 6) = -J_sole_[s].rightCols(nu).transpose();
+    ++k;
+  }
+  b_in_.head(ContactWrenchCone::kRows * nc).setZero();
+  const int t0 = ContactWrenchCone::kRows * nc;
+  const Eigen::VectorXd u_max = m.effortLimits();
+  Ain.block(t0, 0, nu, n) = -M_.bottomRows(nu);          // u <= u_max
+  b_in_.segment(t0, nu) = b_.tail(nu) - u_max;
+  Ain.block(t0 + nu, 0, nu, n) = M_.bottomRows(nu);      // u >= -u_max
+  b_in_.segment(t0 + nu, nu) = -u_max - b_.tail(nu);
+
+  qp::DualActiveSetQp& solver = nc == 1 ? qp_single_ : qp_double_;
+  std::vector<int>& warm = nc == 1 ? warm_single_ : warm_double_;
+  const qp::QpResult& r = solver.solve(G_.topLeftCorner(nx, nx), g_.head(nx), Aeq,
+                                       b_eq_.head(m_eq), Ain, b_in_.head(m_in),
+                                       warm.empty() ? nullptr : &warm);
+  out_.status = r.status;
+  out_.message = r.message;
+  if (r.status != qp::QpStatus::kOptimal) {
+    warm.clear();
+    return out_;
+  }
+  warm = r.active_set;
+  out_.qdd = r.x.head(n);
+  out_.u = M_.bottomRows(nu) * out_.qdd + b_.tail(nu);
+  out_.lambda_left.setZero();
+  out_.lambda_right.setZero();
+  k = 0;
+  for (int s = 0; s < 2; ++s) {
+    if (!mode.inContact(s == 0 ? Side::kLeft : Side::kRight)) continue;
+    const Vector6d lam = r.x.segment<6>(n + 6 * k);
+    out_.u -= J_sole_[s].rightCols(nu).transpose() * lam;
+    (s == 0 ? out_.lambda_left : out_.lambda_right) = lam;
+    ++k;
+  }
+  return out_;
+}
+
+}  // namespace reach_trajopt
