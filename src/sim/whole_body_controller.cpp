@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "reach_trajopt/common/config_yaml.h"
+
 namespace reach_trajopt {
 namespace {
 
@@ -17,12 +19,36 @@ Eigen::Vector3d orientationError(const Eigen::Matrix3d& R_des, const Eigen::Matr
 }  // namespace
 
 void WbcConfig::validate() const {
-  const double vals[] = {w_com,    kp_com,     kd_com,     w_pelvis, kp_pelvis, kd_pelvis,
+  const double vals[] = {w_com, w_com_xy, kp_com,     kd_com,     w_pelvis, kp_pelvis, kd_pelvis,
                          w_swing,  kp_swing,   kd_swing,   w_posture, kp_posture, kd_posture};
   for (double v : vals)
     if (!std::isfinite(v) || v < 0.0) throw ReachError("WbcConfig: weights and gains must be >= 0");
   if (!(w_qdd > 0.0) || !(w_lambda > 0.0) || !std::isfinite(w_qdd) || !std::isfinite(w_lambda))
     throw ReachError("WbcConfig: w_qdd and w_lambda must be > 0 (they keep the QP strictly convex)");
+}
+
+WbcConfig WbcConfig::fromYaml(const YamlSection& s) {
+  s.requireOnlyKeys({"w_com", "w_com_xy", "kp_com", "kd_com", "w_pelvis", "kp_pelvis", "kd_pelvis", "w_swing",
+                     "kp_swing", "kd_swing", "w_posture", "kp_posture", "kd_posture", "w_qdd",
+                     "w_lambda"});
+  WbcConfig c;
+  s.read("w_com", c.w_com);
+  s.read("w_com_xy", c.w_com_xy);
+  s.read("kp_com", c.kp_com);
+  s.read("kd_com", c.kd_com);
+  s.read("w_pelvis", c.w_pelvis);
+  s.read("kp_pelvis", c.kp_pelvis);
+  s.read("kd_pelvis", c.kd_pelvis);
+  s.read("w_swing", c.w_swing);
+  s.read("kp_swing", c.kp_swing);
+  s.read("kd_swing", c.kd_swing);
+  s.read("w_posture", c.w_posture);
+  s.read("kp_posture", c.kp_posture);
+  s.read("kd_posture", c.kd_posture);
+  s.read("w_qdd", c.w_qdd);
+  s.read("w_lambda", c.w_lambda);
+  c.validate();
+  return c;
 }
 
 WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model,
@@ -91,7 +117,9 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
     const Eigen::Vector3d com_vel = J_com_ * qd;
     const Eigen::Vector3d a = ref.com_acceleration + c.kd_com * (ref.com_velocity - com_vel) +
                               c.kp_com * (ref.com_position - com);
-    addTask(J_com_, m.centerOfMassJdotQd(ws_), a, c.w_com);
+    const Eigen::Vector3d drift = m.centerOfMassJdotQd(ws_);
+    addTask(J_com_.topRows<2>(), drift.head<2>(), a.head<2>(), c.w_com_xy);
+    addTask(J_com_.bottomRows<1>(), drift.tail<1>(), a.tail<1>(), c.w_com);
   }
   {
     m.frameJacobian(ws_, pelvis_, J_pelvis_);
@@ -167,16 +195,34 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
                                        warm.empty() ? nullptr : &warm);
   out_.status = r.status;
   out_.message = r.message;
+  if (r.status == qp::QpStatus::kInfeasible) {
+    // The torque limits cannot be met together with the contacts: solve without them (the
+    // actuators saturate in the simulator) and report the tick as not optimal.
+    const qp::QpResult& relaxed = solver.solve(G_.topLeftCorner(nx, nx), g_.head(nx), Aeq,
+                                               b_eq_.head(m_eq), Ain.topRows(t0), b_in_.head(t0));
+    if (relaxed.status == qp::QpStatus::kOptimal) {
+      out_.message = "torque limits dropped: " + out_.message;
+      warm.clear();
+      fillOutput(relaxed, mode, n, nu);
+      return out_;
+    }
+  }
   if (r.status != qp::QpStatus::kOptimal) {
     warm.clear();
     return out_;
   }
   warm = r.active_set;
+  fillOutput(r, mode, n, nu);
+  return out_;
+}
+
+void WholeBodyController::fillOutput(const qp::QpResult& r, const ContactMode& mode, int n,
+                                     int nu) {
   out_.qdd = r.x.head(n);
   out_.u = M_.bottomRows(nu) * out_.qdd + b_.tail(nu);
   out_.lambda_left.setZero();
   out_.lambda_right.setZero();
-  k = 0;
+  int k = 0;
   for (int s = 0; s < 2; ++s) {
     if (!mode.inContact(s == 0 ? Side::kLeft : Side::kRight)) continue;
     const Vector6d lam = r.x.segment<6>(n + 6 * k);
@@ -184,7 +230,6 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
     (s == 0 ? out_.lambda_left : out_.lambda_right) = lam;
     ++k;
   }
-  return out_;
 }
 
 }  // namespace reach_trajopt

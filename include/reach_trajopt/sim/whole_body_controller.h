@@ -27,18 +27,25 @@
 
 namespace reach_trajopt {
 
+class YamlSection;
+
 /// Task weights and PD gains of the whole-body controller (gains in 1/s^2 and 1/s).
 /// Larger weights make a task win over the others; larger gains track faster but amplify
 /// the simulator's contact noise.
 struct WbcConfig {
-  double w_com = 100.0, kp_com = 120.0, kd_com = 22.0;
+  double w_com = 100.0, kp_com = 120.0, kd_com = 22.0;  ///< CoM height (z)
+  /// Horizontal CoM weight. Small: the horizontal CoM moves as the pendulum the TVR planner
+  /// assumes and the footsteps stabilize it, rather than the ankles fighting the swing leg.
+  double w_com_xy = 1.0;
   double w_pelvis = 50.0, kp_pelvis = 300.0, kd_pelvis = 35.0;  ///< pelvis orientation
   double w_swing = 200.0, kp_swing = 900.0, kd_swing = 60.0;    ///< swing sole pose
-  double w_posture = 0.5, kp_posture = 60.0, kd_posture = 12.0; ///< actuated joints
+  double w_posture = 0.03, kp_posture = 60.0, kd_posture = 12.0; ///< actuated joints
   double w_qdd = 1e-4;     ///< regularization of qdd
   double w_lambda = 1e-6;  ///< regularization of contact wrenches (N^2 -> cost)
   /// \throws ReachError naming a negative or non-finite field.
   void validate() const;
+  /// Reads the keys of this struct (same names) from a YAML section, then validates.
+  static WbcConfig fromYaml(const YamlSection& section);
 };
 
 /// What the controller tracks at one tick. Positions in the world [m], orientations as
@@ -91,6 +98,7 @@ class WholeBodyController {
   FrameId soleFrame(Side s) const { return s == Side::kLeft ? left_sole_ : right_sole_; }
 
  private:
+  void fillOutput(const qp::QpResult& r, const ContactMode& mode, int n, int nu);
   void addTask(const Eigen::Ref<const Eigen::MatrixXd>& J, const Eigen::Ref<const Eigen::VectorXd>& drift,
                const Eigen::Ref<const Eigen::VectorXd>& a_des, double weight);
 

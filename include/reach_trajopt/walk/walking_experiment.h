@@ -1,0 +1,129 @@
+#pragma once
+/// \file walking_experiment.h
+/// The stepping loop of the paper's Sec. IV on the Bullet simulation: DS -> SS-L -> DS -> SS-R
+/// -> ... At the start of every single support the TVR planner (eq. 11) proposes the next
+/// contact from the simulated CoM state (predicted to touchdown with the LIPM, eq. 9-10); the
+/// swing sole is taken there and the whole-body controller tracks the LIPM CoM reference about
+/// the stance sole. Baseline mode: heuristic bounds on, interpolated swing trajectory.
+/// A run ends after the requested number of steps, or at a fall (pelvis below a height, or a
+/// link other than the feet touching the ground), with a per-step record.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/planner/tvr_planner.h"
+#include "reach_trajopt/sim/bullet_world.h"
+#include "reach_trajopt/sim/sim_config.h"
+#include "reach_trajopt/sim/whole_body_controller.h"
+
+namespace reach_trajopt {
+
+class YamlSection;
+
+/// Parameters of a walking run. Durations [s], lengths [m], speeds [m/s].
+struct WalkConfig {
+  enum class Mode { kBaseline, kProposed };
+  Mode mode = Mode::kBaseline;
+  int steps = 20;                        ///< footsteps to walk (touchdowns)
+  double single_support_duration = 0.22; ///< nominal swing time
+  double double_support_duration = 0.04; ///< weight transfer between steps
+  double settle_duration = 0.2;          ///< initial standing before the first lift-off
+  double swing_height = 0.07;            ///< swing apex above the ground
+  double replan_fraction = 0.0;          ///< eq. (11) is re-evaluated from the measured CoM
+                                         ///< state during this fraction of the swing
+  double touchdown_depth = 0.01;         ///< nominal swing end below the ground (touchdown by contact)
+  double touchdown_force = 30.0;         ///< sole normal force that counts as touchdown [N]
+  double late_touchdown = 0.15;          ///< time past the nominal swing end before a fall is declared
+  double knee_bend = 0.6;                ///< standing posture [rad]
+  double forward_speed = 0.0;            ///< desired CoM speed along x (drives p_des of eq. 11)
+  Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
+  Side first_swing = Side::kRight;       ///< SS-L comes first: the right sole swings first
+  double fall_pelvis_height = 0.6;       ///< pelvis origin below this height = fall [m]
+  unsigned seed = 1;                     ///< seed of every random draw of the run
+  double max_sim_time = 60.0;            ///< hard stop [s]
+
+  /// \throws ReachError naming the first bad field.
+  void validate() const;
+  static WalkConfig fromYaml(const YamlSection& section);
+  static Mode parseMode(const std::string& name);  ///< "baseline" | "proposed"
+  static const char* modeName(Mode mode);
+};
+
+/// One footstep of a run.
+struct StepRecord {
+  int index = 0;                      ///< 1, 2, ...
+  Side swing = Side::kRight;          ///< the sole that stepped
+  double plan_time = 0.0;             ///< sim time of lift-off and planning [s]
+  double touchdown_time = 0.0;        ///< sim time of touchdown [s] (0 if none)
+  LipmState com_at_plan;              ///< measured CoM state at planning
+  LipmState com_predicted;            ///< LIPM prediction at nominal touchdown (planner input)
+  Eigen::Vector2d stance = Eigen::Vector2d::Zero();          ///< stance sole centre [m]
+  Eigen::Vector2d planned_tvr = Eigen::Vector2d::Zero();     ///< eq. (11) without bounds [m]
+  Eigen::Vector2d planned = Eigen::Vector2d::Zero();         ///< the contact aimed at [m]
+  Eigen::Vector3d executed = Eigen::Vector3d::Zero();        ///< sole centre at touchdown [m]
+  double touchdown_error = 0.0;       ///< |executed_xy - planned| [m]
+  bool offset_clipped = false;        ///< heuristic bounds moved the TVR step
+  bool touched_down = false;
+  std::string verdict = "not_checked";  ///< reachability verdict (proposed mode)
+  double hausdorff_distance = -1.0;   ///< [m], -1 when not computed
+  double check_time_s = 0.0;          ///< reachability check wall time
+  double ocp_time_s = 0.0;            ///< OCP wall time
+};
+
+/// What the loop sees at one control tick (for recorders and the ROS layer).
+struct WalkTick {
+  double time = 0.0;                  ///< sim time [s]
+  ContactMode mode;
+  const Eigen::VectorXd* q = nullptr;   ///< measured state (our coordinates)
+  const Eigen::VectorXd* qd = nullptr;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_reference = Eigen::Vector3d::Zero();
+  const WbcOutput* wbc = nullptr;
+  const std::vector<SoleContact>* soles = nullptr;
+};
+
+/// Outcome of a run.
+struct WalkResult {
+  WalkConfig::Mode mode = WalkConfig::Mode::kBaseline;
+  int steps = 0;                      ///< completed footsteps (touchdowns)
+  bool fell = false;
+  std::string end_reason;             ///< "completed", or why it fell / stopped
+  double sim_time = 0.0;              ///< [s]
+  double wall_time = 0.0;             ///< [s]
+  int qp_failures = 0;                ///< controller ticks whose QP was not optimal
+  double max_touchdown_error = 0.0;   ///< [m]
+  std::vector<StepRecord> records;
+  /// One line: WALK mode=<m> steps=<n> fell=<yes|no> ... (the format of `make demo`).
+  std::string summaryLine() const;
+};
+
+/// @brief The walking experiment of Sec. IV: Bullet world + whole-body controller + TVR.
+class WalkingExperiment {
+ public:
+  /// \throws ReachError on invalid configs or a URDF the simulator cannot load.
+  WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk, const TvrConfig& tvr,
+                    const ContactConfig& contact, const WbcConfig& wbc, const SimConfig& sim);
+  ~WalkingExperiment();
+
+  /// Runs one walk from the standing pose. `on_tick` (optional) is called after every
+  /// control tick, `on_step` after every touchdown.
+  WalkResult run(const std::function<void(const WalkTick&)>& on_tick = {},
+                 const std::function<void(const StepRecord&)>& on_step = {});
+
+  const RobotModel& model() const { return *model_; }
+  std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
+
+ private:
+  struct Impl;
+  std::shared_ptr<const RobotModel> model_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace reach_trajopt
