@@ -1,0 +1,63 @@
+// The walking loop on the Bullet simulation: baseline walking in place for 20 steps without a
+// fall and with touchdowns on the planned footholds; swing trajectory endpoints and derivatives;
+// configuration errors.
+
+#include <gtest/gtest.h>
+
+#include "reach_trajopt/walk/swing_trajectory.h"
+#include "reach_trajopt/walk/walking_experiment.h"
+
+using namespace reach_trajopt;
+
+namespace {
+const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf";
+}
+
+TEST(SwingTrajectory, EndpointsAndDerivatives) {
+  const Eigen::Vector3d a(0.0, -0.1, 0.0), b(0.3, -0.25, 0.0);
+  SwingTrajectory s(a, b, 0.22, 0.07, 0.01);
+  EXPECT_LT((s.sample(0.0).position - a).norm(), 1e-12);
+  EXPECT_LT((s.sample(0.22 - 1e-12).position - (b - Eigen::Vector3d(0, 0, 0.01))).norm(), 1e-9);
+  EXPECT_NEAR(s.sample(0.11).position.z(), 0.07 - 0.005, 1e-9);  // apex minus half the depth
+  for (double t : {0.03, 0.09, 0.15, 0.2}) {
+    const double h = 1e-6;
+    const SwingSample p = s.sample(t + h), m = s.sample(t - h), c = s.sample(t);
+    EXPECT_LT((c.velocity - (p.position - m.position) / (2 * h)).norm(), 1e-6);
+    EXPECT_LT((c.acceleration - (p.velocity - m.velocity) / (2 * h)).norm(), 1e-4);
+  }
+  EXPECT_THROW(SwingTrajectory(a, b, 0.0, 0.07, 0.01), ReachError);
+  EXPECT_THROW(SwingTrajectory(a, Eigen::Vector3d(NAN, 0, 0), 0.2, 0.07, 0.01), ReachError);
+}
+
+TEST(WalkingExperiment, BaselineWalksInPlaceTwentySteps) {
+  WalkConfig walk;
+  walk.steps = 20;
+  WalkingExperiment experiment(kUrdf, walk, TvrConfig{}, ContactConfig{}, WbcConfig{}, SimConfig{});
+  int ticks = 0;
+  const WalkResult r = experiment.run([&](const WalkTick&) { ++ticks; });
+  EXPECT_FALSE(r.fell) << r.summaryLine();
+  EXPECT_EQ(r.steps, 20) << r.summaryLine();
+  EXPECT_LT(r.max_touchdown_error, 0.02) << r.summaryLine();
+  ASSERT_EQ(r.records.size(), 20u);
+  for (size_t i = 0; i < r.records.size(); ++i) {
+    const StepRecord& s = r.records[i];
+    EXPECT_TRUE(s.touched_down);
+    EXPECT_EQ(s.swing, i % 2 == 0 ? Side::kRight : Side::kLeft) << "steps must alternate";
+    // The swing sole lands on the ground (sole height within a centimetre of z = 0).
+    EXPECT_NEAR(s.executed.z(), 0.0, 0.01);
+  }
+  EXPECT_NEAR(ticks * 1e-3, r.sim_time, 2e-3);
+}
+
+TEST(WalkingExperiment, ConfigErrors) {
+  WalkConfig walk;
+  walk.single_support_duration = -0.1;
+  EXPECT_THROW(walk.validate(), ReachError);
+  walk = WalkConfig{};
+  walk.initial_com_velocity.x() = NAN;
+  EXPECT_THROW(walk.validate(), ReachError);
+  EXPECT_THROW(WalkConfig::parseMode("fast"), ReachError);
+  EXPECT_THROW(WalkingExperiment("/nonexistent.urdf", WalkConfig{}, TvrConfig{}, ContactConfig{},
+                                 WbcConfig{}, SimConfig{}),
+               ReachError);
+}
