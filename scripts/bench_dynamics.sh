@@ -18,7 +18,8 @@ if [ ! -x "$VENV/bin/python" ]; then
   echo "[bench_dynamics] venv $VENV missing: run scripts/bootstrap" >&2
   exit 1
 fi
-prefix="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/cmeel.prefix"
+site="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+prefix="$site/cmeel.prefix"
 build="$WS/bench_dynamics"
 urdf="$REPO/urdf/biped.urdf"
 model="$build/biped_pinocchio.txt"            # composite root PX PY PZ RZ RY RX (= ours)

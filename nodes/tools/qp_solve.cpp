@@ -49,7 +49,8 @@ double readNumber(const json& v, const std::string& where) {
   if (v.is_string()) {
     const std::string s = v.get<std::string>();
     if (s == "nan" || s == "NaN") return std::numeric_limits<double>::quiet_NaN();
-    if (s == "inf" || s == "+inf" || s == "Infinity") return std::numeric_limits<double>::infinity();
+    if (s == "inf" || s == "+inf" || s == "Infinity")
+      return std::numeric_limits<double>::infinity();
     if (s == "-inf" || s == "-Infinity") return -std::numeric_limits<double>::infinity();
   }
   throw BadProblem(where + ": expected a number, got " + v.dump());
@@ -152,7 +153,8 @@ json solveOne(const json& p) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 2 || (argc == 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help"))) {
+  const std::string arg1 = argc == 2 ? argv[1] : "";
+  if (argc > 2 || arg1 == "-h" || arg1 == "--help") {
     std::cerr << "usage: qp_solve [problem.json]   (stdin when no file; a list = batch)\n";
     return 2;
   }

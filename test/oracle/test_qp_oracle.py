@@ -12,10 +12,9 @@ Feasible problems are built from a known feasible point (or a known optimum with
 and weakly active rows). Degenerate copies (duplicated and scaled inequality rows, equality rows
 that are combinations of others, zero rows, inequalities implied by others) do not change the
 feasible set or the optimum, so the reference is quadprog on the non-degenerate base problem
-(quadprog itself refuses dependent equality rows; daqp stands in where quadprog gives up). Infeasible problems carry a Farkas certificate
-by construction. All problems go to one `qp_solve` process (batch mode: a JSON list).
+(quadprog itself refuses dependent equality rows; daqp stands in where quadprog gives up).
+Infeasible problems carry a Farkas certificate by construction. All problems go to one `qp_solve` process (batch mode: a JSON list).
 """
-import json
 
 import daqp
 import numpy as np
@@ -34,9 +33,9 @@ KKT_TOL = 1e-8
 def pick_n(rng):
     """Mostly the small sizes of the contact QPs, some up to 120 variables."""
     u = rng.random()
-    if u < 0.75:
+    if u < 0.65:
         return int(rng.integers(5, 31))
-    if u < 0.95:
+    if u < 0.9:
         return int(rng.integers(31, 61))
     return int(rng.integers(61, 121))
 

@@ -15,14 +15,15 @@
 /// so at the optimum   G x + g = A_eq^T lambda_eq + A_in^T lambda_in,  lambda_in >= 0,
 /// lambda_in_j (A_in x - b_in)_j = 0.
 ///
-/// Method: start from the unconstrained minimum x0 = -G^{-1} g; put the equality rows (and the
-/// inequality rows of a warm start) in the active set with one Householder QR of L^{-1} N
-/// (the paper's J = L^{-T} Q, R), dropping warm-start rows whose multiplier comes out negative;
+/// Method: start from the unconstrained minimum x0 = -G^{-1} g; put the equality rows in the
+/// active set with one Householder QR of L^{-1} A_eq^T (the paper's J = L^{-T} Q and R; cached
+/// for the next solve with the same factor and A_eq), then the inequality rows of a warm start,
+/// dropping warm-start rows whose multiplier comes out negative;
 /// then repeat the paper's steps 1-2: pick the most violated inequality (violation divided by
 /// the row norm), take dual/primal steps along z = J_2 J_2^T n_p, r = R^{-1} J_1^T n_p, dropping
-/// blocking constraints, and add it with Givens rotations. Every iterate is dual feasible, so
-/// "no violated constraint" is the optimum and "violated constraint with z = 0 and no
-/// constraint to drop" proves infeasibility.
+/// blocking rows (Givens rotations restore R), and add it with one Householder reflector. Every
+/// iterate is dual feasible, so "no violated constraint" is the optimum and "violated constraint
+/// with z = 0 and no constraint to drop" proves infeasibility.
 
 #include <vector>
 
