@@ -1,0 +1,61 @@
+#pragma once
+/// \file ocp_config.h
+/// Parameters of the transition OCP (eq. 22-23). Speed against accuracy:
+///  - segments: spline segments over the horizon; variables = 12 (N - 1) + 6 (strict) or
+///    12 (N + 1) + 8 (relaxed), 42 / 68 for N = 4. More segments: richer motions, but SLSQP
+///    needs more iterations (measured: N = 6 about 1.5x the iterations of N = 4).
+///  - check_interval: spacing of the samples where cones, torque bounds, hulls and the cost are
+///    evaluated inside the NLP. Smaller: more rows, slower; the result is always re-checked at
+///    output_dt and samples that violate are added (refinement), up to max_refinements.
+///  - cone_margin, torque_margin: how far inside the cones and torque bounds the NLP samples
+///    must stay, so that the samples in between (re-checked at 1 ms) stay inside too; larger
+///    margins mean fewer refinement re-solves but a slightly smaller feasible set.
+///  - central_differences: d/dq by central instead of forward differences (2x the gradient cost,
+///    about 1e-10 instead of 1e-7 relative error).
+
+#include <string>
+
+namespace reach_trajopt {
+
+class YamlSection;
+
+/// Transition OCP settings. The cost (22) is written in scaled form:
+///   J = (1/T) int [ w_torque |u ./ u_max|^2 + w_wrench |lambda / (m g)|^2
+///                 + w_position |q - q_f|^2 + w_velocity |qd - qd_f|^2 ] dt + w_eps |eps|^2,
+/// i.e. Qu = w_torque diag(u_max)^-2 / T, Ql = w_wrench / (m g)^2 / T, Qx = diag(w_position,
+/// w_velocity) / T, integrated by the trapezoid rule over the check samples.
+struct TransitionOcpConfig {
+  int segments = 4;                 ///< cubic B-spline segments over the horizon (>= 2)
+  double check_interval = 0.02;     ///< NLP sample spacing [s]
+  double output_dt = 0.001;         ///< output / verification sample spacing [s] (controller)
+  double w_torque = 1.0;            ///< weight of |u / u_max|^2
+  double w_wrench = 0.1;            ///< weight of |lambda / (m g)|^2
+  double w_position = 0.1;          ///< weight of |q - q_f|^2 [1/rad^2, 1/m^2]
+  double w_velocity = 0.001;        ///< weight of |qd - qd_f|^2 [s^2/rad^2]
+  double w_eps = 1.0e4;             ///< weight of |eps|^2 in the relaxed problem [1/m^2]
+  /// Relaxed problem only: at t_f the floating base (the URDF root, the pelvis) stands upright
+  /// (roll = pitch = 0) at this height above the mean sole height [m], the posture of the
+  /// kinematic feasibility check (Sec. III-B), so the landing configuration is an IK solution
+  /// of that check. <= 0 disables it (the base is then free, e.g. it may crouch to reach).
+  double terminal_pelvis_height = 1.05;
+  double cone_margin = 0.01;        ///< cone rows required >= margin m g inside the NLP
+  double torque_margin = 0.01;      ///< |u| <= (1 - margin) u_max inside the NLP
+  bool ground_clearance = true;     ///< swing sole z >= min(z_target, z(t_0)) at NLP samples
+  double tolerance = 1.0e-4;        ///< accepted violation, each family (units: see result)
+  double input_tolerance = 1.0e-4;  ///< x_0, x_f on their contacts [m, rad, m/s, rad/s]
+  int max_refinements = 3;          ///< re-solves (violating samples added, or a restart)
+  int max_evaluations = 400;        ///< NLopt maxeval per solve
+  double time_limit = 10.0;         ///< wall-clock limit for the whole request [s]
+  double ftol_rel = 1.0e-6;         ///< NLopt relative cost tolerance
+  double xtol_rel = 1.0e-7;         ///< NLopt relative variable tolerance
+  double fd_step = 1.0e-6;          ///< finite-difference step in q [rad, m]
+  bool central_differences = false;  ///< see file comment
+  double fit_regularization = 1.0e-6;  ///< seed fit: weight of the second differences
+
+  /// Throws ReachError naming the first bad value.
+  void validate() const;
+  /// Reads the keys of this struct (same names) from a YAML section, then validates.
+  static TransitionOcpConfig fromYaml(const YamlSection& section);
+};
+
+}  // namespace reach_trajopt

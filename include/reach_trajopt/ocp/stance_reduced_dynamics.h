@@ -1,0 +1,120 @@
+#pragma once
+/// \file stance_reduced_dynamics.h
+/// Eq. (1) with the stance contact of eq. (5) held exactly, in the actuated coordinates q_a.
+///
+/// In single support the stance sole is fixed at its planned pose P_s. Given q_a, the floating
+/// base is the unique pose that puts the stance sole there: T_wb = P_s T_bs(q_a)^-1 (T_bs by
+/// forward kinematics with the base at the origin), read as x, y, z, yaw, pitch, roll
+/// (R = Rz Ry Rx). Differentiating J_s qd = 0 gives qd = T qd_a and qdd = T qdd_a + k with
+///   T = [G; I],  G = -J_sb^-1 J_sa,  k = [-J_sb^-1 Jdot_s qd; 0],
+/// (J_sb: the 6 x 6 base block of the stance sole Jacobian, invertible away from pitch = +-90
+/// degrees). So phi_s = phidot_s = phiddot_s = 0 hold by construction at every t. With
+/// tau = M qdd + b - J_2^T lambda_2 (lambda_2: the new contact's wrench, non-zero only at t_f),
+/// the base rows of eq. (1) give the stance wrench and the actuated rows the torques uniquely:
+///   lambda_s = J_sb^-T tau_b,   u = T^T tau = tau_a + G^T tau_b.
+/// Eq. (1) therefore holds exactly for any joint trajectory: no wrench variables are needed in
+/// single support, and the OCP only keeps the inequality constraints (cones, torque bounds).
+///
+/// The "signals" evaluated at one time are, in this order:
+///   u (n_u) [N m], lambda_s (6) [N, N m], swing sole position (3) [m], phi_2 (6) [m, rad],
+///   phidot_2 (6), phiddot_2 (6), q (n_q), qd (n_q)
+/// with phi_2 the new contact's eq. (5) error to the swing target. Their Jacobian with respect
+/// to the inputs [q_a, qd_a, qdd_a, lambda_2] is: analytic in qdd_a and lambda_2 (the signals are
+/// affine in both), exact central differences in qd_a (the signals are quadratic in qd at fixed
+/// q, so central differences have no truncation error), and finite differences in q_a
+/// (forward or central, step from TransitionOcpConfig).
+
+#include <memory>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "reach_trajopt/contact/contact_constraint.h"
+#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/model/robot_model.h"
+
+namespace reach_trajopt {
+
+/// Reduced single-support dynamics of eq. (1) + (5) (see file comment). Immutable; each thread
+/// passes its own Scratch.
+class StanceReducedDynamics {
+ public:
+  /// \param stance_frame, swing_frame  sole frames (RobotModel::frameId)
+  /// \param stance_pose   planned stance sole pose (world)
+  /// \param swing_target  planned new contact pose (world)
+  /// \param yaw_reference base yaw [rad] near which the reconstructed yaw is unwrapped
+  /// Throws ReachError for a fixed-base model or invalid poses.
+  StanceReducedDynamics(std::shared_ptr<const RobotModel> model, FrameId stance_frame,
+                        const Eigen::Isometry3d& stance_pose, FrameId swing_frame,
+                        const Eigen::Isometry3d& swing_target, double yaw_reference);
+
+  const RobotModel& model() const { return *model_; }
+  int nq() const { return nq_; }
+  int nu() const { return nu_; }
+
+  // Signal layout.
+  int uOffset() const { return 0; }
+  int lambdaOffset() const { return nu_; }
+  int swingPositionOffset() const { return nu_ + 6; }
+  int phi2Offset() const { return nu_ + 9; }
+  int phidot2Offset() const { return nu_ + 15; }
+  int phiddot2Offset() const { return nu_ + 21; }
+  int qOffset() const { return nu_ + 27; }
+  int qdOffset() const { return nu_ + 27 + nq_; }
+  int signalCount() const { return nu_ + 27 + 2 * nq_; }
+  /// Inputs: [q_a (n_u), qd_a (n_u), qdd_a (n_u), lambda_2 (6)].
+  int inputCount() const { return 3 * nu_ + 6; }
+
+  /// Per-thread buffers (a Workspace and the intermediate matrices), sized once.
+  struct Scratch {
+    explicit Scratch(const StanceReducedDynamics& d);
+    Workspace ws;
+    Eigen::VectorXd qz, vz, q, qd, qdd, tau, tau_ext, qd_nominal, signals_pert, input_pert;
+    Matrix6Xd Js, J2;
+    ContactConstraintTerms swing;
+    Eigen::Matrix<double, 6, 6> Jb_inv;
+    Eigen::MatrixXd G, MT, M;
+    Vector6d drift_s, lambda_s;
+    Eigen::Vector3d swing_position;
+  };
+
+  /// Full configuration for q_a: base from the stance sole (see file comment).
+  void configuration(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qa,
+                     Eigen::Ref<Eigen::VectorXd> q) const;
+
+  /// Signals at (q_a, qd_a, qdd_a, lambda_2). Afterwards s.q, s.qd, s.qdd, s.tau (= M qdd + b),
+  /// s.lambda_s hold the full state of this sample. No allocation.
+  void evaluate(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
+                Eigen::Ref<Eigen::VectorXd> signals) const;
+
+  /// Signals and their Jacobian (signalCount x inputCount). The Scratch's state afterwards is
+  /// unspecified (it holds perturbed evaluations).
+  /// \param fd_step  step in q_a [rad]; \param central  central instead of forward differences
+  void evaluate(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
+                Eigen::Ref<Eigen::VectorXd> signals, Eigen::Ref<Eigen::MatrixXd> jacobian,
+                double fd_step, bool central) const;
+
+  const ContactConstraint& swingContact() const { return swing_; }
+  FrameId stanceFrame() const { return stance_frame_; }
+  FrameId swingFrame() const { return swing_frame_; }
+  const Eigen::Isometry3d& stancePose() const { return stance_pose_; }
+
+ private:
+  /// Base reconstruction, update(q, qd), Jacobians, drifts.
+  void kinematics(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qa,
+                  const Eigen::Ref<const Eigen::VectorXd>& qda) const;
+  /// update(q, qd) at the current s.q and the velocity terms (drifts, phidot_2).
+  void velocityTerms(Scratch& s) const;
+  /// qdd, tau, lambda_s, u and the signal vector.
+  void dynamics(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                const Eigen::Ref<const Vector6d>& lambda2, Eigen::Ref<Eigen::VectorXd> out) const;
+
+  std::shared_ptr<const RobotModel> model_;
+  int nq_, nu_;
+  FrameId stance_frame_, swing_frame_;
+  Eigen::Isometry3d stance_pose_;
+  ContactConstraint swing_;
+  double yaw_reference_;
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,157 @@
+#pragma once
+/// \file transition_nlp.h
+/// The transcription of the transition OCP (eq. 22-23) that NLopt's SLSQP solves.
+///
+/// Why this transcription. SLSQP is a dense SQP method whose cost per iteration grows as n^3
+/// (ANCHORS.md), so the variable count must stay in the hundreds. We therefore
+///  1. write the 12 actuated joint trajectories as clamped cubic B-splines with few segments
+///     (cubic_bspline.h): q_a(t) = sum_k N_k(t) c_k. The first two and (strict problem) last two
+///     control points encode x(t_0) = x_0 and x(t_f) = x_f exactly, so the boundary states are
+///     eliminated rather than constrained; joint limits become bounds on the control points
+///     (the convex-hull property of B-splines keeps q_a(t) inside them for every t);
+///  2. hold the stance contact of eq. (5) exactly by construction: the floating base follows
+///     from q_a and the fixed stance sole (stance_reduced_dynamics.h), so phi_s, phidot_s and
+///     phiddot_s vanish at every t, not only at collocation points;
+///  3. eliminate torques and stance wrenches by inverse dynamics: in single support the base
+///     rows of eq. (1) fix lambda_s and the actuated rows give u, so eq. (1) holds exactly at
+///     every t. Only the new contact's wrench lambda_2 at t_f (double support: the split between
+///     the feet is free) is a variable (6, scaled by m g);
+///  4. keep the inequality constraints (both cones of eq. 8, torque bounds, reachable-set hulls
+///     A y <= b of the swing sole, optional ground clearance) at a set of samples: a uniform
+///     grid (check_interval), the times of the hull slices used, and any time the 1 ms
+///     re-check found violated (refinement, see transition_ocp.h). t_f is sampled twice: just
+///     before touchdown (single support, lambda_2 = 0) and at touchdown (double support);
+///  5. new-mode contact at t_f: phi_2 = 0 and phidot_2 = 0 follow from x(t_f) = x_f (checked on
+///     the input); phiddot_2 = 0 is an equality (6 rows). Relaxed problem: the last two control
+///     points are free, eps = (eps_x, eps_y) are variables, and the equalities are
+///     phi_2 - [eps; 0 0 0 0] = 0, phidot_2 = 0, phiddot_2 = 0 (18 rows), and, unless disabled,
+///     the base upright at the nominal height (3 rows: TransitionOcpConfig::
+///     terminal_pelvis_height), so the landing is a kinematically feasible stance (Sec. III-B).
+/// Variables: 12 (N - 1) + 6 (strict) or 12 (N + 1) + 8 (relaxed); N = 6 segments gives 66 / 92.
+///
+/// Gradients: per sample, the signals' Jacobian with respect to (q_a, qd_a, qdd_a, lambda_2)
+/// (stance_reduced_dynamics.h: analytic / exact / finite differences) chained with the spline
+/// basis (each sample depends on 4 control points per joint). Checked against central finite
+/// differences of this class's functions in test_ocp_nlp.cpp.
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ocp/cubic_bspline.h"
+#include "reach_trajopt/ocp/ocp_config.h"
+#include "reach_trajopt/ocp/stance_reduced_dynamics.h"
+#include "reach_trajopt/ocp/transition_request.h"
+
+namespace reach_trajopt {
+
+using RowMajorMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// Values (and optionally gradients) of the NLP at one point x. Jacobians are row-major, the
+/// layout NLopt's vector constraints use.
+struct NlpValues {
+  double cost = 0.0;
+  Eigen::VectorXd cost_gradient;   ///< n
+  Eigen::VectorXd equality;        ///< m_eq, = 0 at a solution
+  RowMajorMatrixXd equality_jacobian;    ///< m_eq x n
+  Eigen::VectorXd inequality;      ///< m_in, <= 0 at a solution
+  RowMajorMatrixXd inequality_jacobian;  ///< m_in x n
+};
+
+/// One state of the sampled transition trajectory (full coordinates).
+struct TransitionSampleState {
+  Eigen::VectorXd q, qd, qdd, u;  ///< n_q, n_q, n_q, n_u
+  Vector6d lambda_stance = Vector6d::Zero(), lambda_new = Vector6d::Zero();  ///< world [N, N m]
+  Eigen::Vector3d swing_position = Eigen::Vector3d::Zero();  ///< [m]
+  Vector6d phi2 = Vector6d::Zero(), phidot2 = Vector6d::Zero(), phiddot2 = Vector6d::Zero();
+};
+
+/// The NLP of one transition request in strict or relaxed form (see file comment). The request
+/// must have been validated (TransitionOcp does it). Not thread-safe (owns scratch buffers).
+class TransitionNlp {
+ public:
+  TransitionNlp(std::shared_ptr<const RobotModel> model, const TransitionOcpConfig& config,
+                const ContactConfig& contact, const TransitionRequest& request, bool relaxed);
+
+  bool relaxed() const { return relaxed_; }
+  int variableCount() const { return n_x_; }
+  int equalityCount() const { return relaxed_ ? (pelvis_posture_ ? 21 : 18) : 6; }
+  int inequalityCount() const { return inequality_count_; }
+  const Eigen::VectorXd& lowerBounds() const { return lower_; }
+  const Eigen::VectorXd& upperBounds() const { return upper_; }
+  const CubicBSplineBasis& basis() const { return basis_; }
+  const StanceReducedDynamics& dynamics() const { return *dyn_; }
+  double weight() const { return weight_; }  ///< m g [N]
+
+  /// Initial guess: the seed path (or a cubic Hermite x_0 -> x_f) fitted by SPQR, clamped
+  /// to the bounds; lambda_2 = 0, eps = 0.
+  Eigen::VectorXd initialGuess() const;
+
+  /// Cost, equalities (= 0) and inequalities (<= 0) at x; gradients when `gradients`.
+  void evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues& out);
+
+  /// The NLP sample times [s] (sorted).
+  const std::vector<double>& sampleTimes() const { return sample_times_; }
+  /// Adds inequality samples at these times (refinement) and hull slices by index.
+  void addSamples(const std::vector<double>& times, const std::vector<int>& slices);
+  /// Slices currently enforced.
+  const std::vector<int>& enforcedSlices() const { return enforced_slices_; }
+
+  /// The full state at time t in [0, T] for the solution x (lambda_2 acts only at t = T).
+  void state(const Eigen::VectorXd& x, double t, TransitionSampleState& out);
+  /// eps of x (zero for the strict problem) [m].
+  Eigen::Vector2d eps(const Eigen::VectorXd& x) const;
+  /// lambda_2 of x [N, N m].
+  Vector6d lambdaNew(const Eigen::VectorXd& x) const;
+
+ private:
+  struct Sample {
+    double t = 0.0;
+    bool final = false;       ///< the double-support sample at t_f (lambda_2 acts)
+    std::vector<int> slices;  ///< hull slices enforced at this sample
+    double weight = 0.0;      ///< trapezoid cost weight (1/T int dt)
+  };
+  void rebuildSamples();
+  /// q_a, qd_a, qdd_a at t from x into `input` (lambda_2 part set by the caller).
+  void splineInput(const Eigen::VectorXd& x, const CubicBSplineBasis::Row& row,
+                   Eigen::Ref<Eigen::VectorXd> input) const;
+  double controlPoint(const Eigen::VectorXd& x, int k, int joint) const;
+  int freeIndex(int k) const;  ///< first variable of control point k, -1 when fixed
+
+  std::shared_ptr<const RobotModel> model_;
+  TransitionOcpConfig config_;
+  TransitionRequest request_;
+  bool relaxed_;
+  int nq_, nu_;
+  CubicBSplineBasis basis_;
+  std::unique_ptr<StanceReducedDynamics> dyn_;
+  std::unique_ptr<StanceReducedDynamics::Scratch> scratch_;
+  ContactWrenchCone::Matrix C_stance_, C_new_;
+  Eigen::MatrixXd fixed_points_;  ///< K x n_u, rows of the fixed control points
+  int first_free_, last_free_;    ///< range of free control points
+  int n_x_, lambda_index_, eps_index_;
+  Eigen::VectorXd lower_, upper_;
+  Eigen::VectorXd u_max_inv_;
+  double weight_;
+  double ground_floor_;
+  bool ground_clearance_;
+  bool pelvis_posture_;
+  double pelvis_height_target_;  ///< world z of the base at t_f (relaxed) [m]
+  std::vector<double> sample_times_;
+  std::vector<Sample> samples_;
+  std::vector<int> enforced_slices_;
+  std::vector<double> extra_times_;
+  std::vector<Eigen::MatrixX2d> slice_A_;  ///< rows normalized
+  std::vector<Eigen::VectorXd> slice_b_;
+  int inequality_count_ = 0;
+  // Scratch for evaluate().
+  Eigen::VectorXd input_, signals_;
+  Eigen::MatrixXd jin_, jloc_;
+};
+
+}  // namespace reach_trajopt

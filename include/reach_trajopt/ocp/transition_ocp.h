@@ -1,0 +1,68 @@
+#pragma once
+/// \file transition_ocp.h
+/// The transition optimal control problem of eq. (22)-(23), solved with NLopt's LD_SLSQP:
+/// from x_0 in single support (SS-L or SS-R) to x_f in double support over a fixed horizon,
+///   min  sum_j u_j^T Qu u_j + lambda_j^T Ql lambda_j + (x_j - x_f)^T Qx (x_j - x_f)
+///   s.t. eq. (1); stance contact (5) and cone (8); new contact at t_f: phi_2 = phidot_2 =
+///        phiddot_2 = 0 and its cone; |u| <= u_max; x(t_0) = x_0, x(t_f) = x_f; the swing sole
+///        inside each time slice's reachable-set hull.
+/// The transcription (joint B-splines, exact stance contact, torques and stance wrenches by
+/// inverse dynamics) is explained in transition_nlp.h.
+///
+/// Relaxation for an unreachable foothold (Sec. III-D): x(t_f) = x_f is dropped and the new
+/// contact becomes phi_2 - eps = 0 with eps = [eps_x, eps_y, 0, 0, 0, 0] and cost w_eps |eps|^2:
+/// the swing sole lands at the closest reachable point, and the result is flagged relaxed.
+///
+/// Procedure: validate the request; warm start by the SPQR fit of the seed path; SLSQP; sample
+/// the result at output_dt and re-check every constraint family with the full model
+/// (transition_check.h); if some cone, torque bound or hull is violated between NLP samples, add
+/// those times and re-solve from the last solution (at most max_refinements times). Status:
+/// converged (strict) or relaxed when the re-check passes (every family <= tolerance), else
+/// failed with the family, the amount and NLopt's code; a wall-clock time_limit bounds it all.
+
+#include <chrono>
+#include <memory>
+
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ocp/ocp_config.h"
+#include "reach_trajopt/ocp/transition_request.h"
+#include "reach_trajopt/ocp/transition_result.h"
+
+namespace reach_trajopt {
+
+/// Eq. (22)-(23) for one contact transition (see file comment). Immutable; solve() is
+/// thread-safe (each call builds its own NLP and workspaces).
+class TransitionOcp {
+ public:
+  /// Throws ReachError on an invalid config, a fixed-base model or unknown sole frames.
+  TransitionOcp(std::shared_ptr<const RobotModel> model, const TransitionOcpConfig& config = {},
+                const ContactConfig& contact = {});
+
+  /// Solves one request. Throws ReachError on bad input (see validate()); solver trouble is a
+  /// result with status kFailed and a reason, never an exception.
+  TransitionResult solve(const TransitionRequest& request) const;
+
+  /// Throws ReachError naming the problem: wrong sizes or non-finite values, a horizon that is
+  /// not positive or shorter than two output samples, slice / seed times outside [0, horizon],
+  /// malformed hulls or seeds, invalid poses, x_0 off its stance contact (|phi_s| or
+  /// |phidot_s| > input_tolerance) or, for RelaxationMode::kStrict, x_f off its two contacts.
+  void validate(const TransitionRequest& request) const;
+
+  /// True when x_f holds both contacts within input_tolerance (strict problem well posed).
+  bool finalStateOnContacts(const TransitionRequest& request) const;
+
+  const TransitionOcpConfig& config() const { return config_; }
+  const ContactConfig& contact() const { return contact_; }
+  const RobotModel& model() const { return *model_; }
+
+ private:
+  TransitionResult solveMode(const TransitionRequest& request, bool relaxed,
+                             std::chrono::steady_clock::time_point deadline) const;
+
+  std::shared_ptr<const RobotModel> model_;
+  TransitionOcpConfig config_;
+  ContactConfig contact_;
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,56 @@
+#pragma once
+/// \file footstep_reachability.h
+/// The check of one planned footstep as the paper runs it (Sec. III-B then III-C/D): first the
+/// kinematic feasibility of the new foothold (joint-limited IK with both soles held); if it
+/// fails, the step is unreachable ("we cannot obtain a reachable path toward the next mode if
+/// the planned contact location is kinematically infeasible"); otherwise its q_f with
+/// qd_f = 0 (or a given touchdown velocity) is x_f of the bidirectional reachability check from
+/// the current state x_0 in single support.
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/reach/reachability_analyzer.h"
+
+namespace reach_trajopt {
+
+/// A planned footstep from a single-support state.
+struct FootstepRequest {
+  Side stance = Side::kLeft;  ///< the held sole (mode SS-stance); the other one steps
+  FlatContact stance_foothold;  ///< where the stance sole is held [m, rad]
+  FlatContact target;           ///< the planned next foothold of the swing sole
+  Eigen::VectorXd q0, qd0;      ///< x_0 (size n_q)
+  Eigen::VectorXd qdf;          ///< touchdown velocity (empty: zero)
+};
+
+/// Outcome: the kinematic stage and, when it passed, the reachability result.
+struct FootstepResult {
+  bool reachable = false;
+  bool kinematically_feasible = false;
+  std::string reason;                     ///< why (either stage)
+  KinematicFeasibilityResult kinematics;  ///< q_f and the IK residuals
+  ReachResult reach;                      ///< empty unless kinematically feasible
+};
+
+/// @brief Kinematic feasibility (III-B) followed by the reachability check (13)-(21).
+class FootstepReachability {
+ public:
+  FootstepReachability(std::shared_ptr<const ReachabilityAnalyzer> analyzer,
+                       std::shared_ptr<const KinematicFeasibility> kinematics);
+  /// \throws ReachError on bad input (see ReachabilityAnalyzer::check and
+  ///     KinematicFeasibility::check); an infeasible foothold is a result, not an error.
+  FootstepResult check(const FootstepRequest& request) const;
+  FootstepResult check(const FootstepRequest& request, const ReachConfig& config) const;
+
+  const ReachabilityAnalyzer& analyzer() const { return *analyzer_; }
+
+ private:
+  std::shared_ptr<const ReachabilityAnalyzer> analyzer_;
+  std::shared_ptr<const KinematicFeasibility> kinematics_;
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,73 @@
+#pragma once
+/// \file forward_step.h
+/// One forward step of the reachable set, eq. (15)-(16): from a state x_j and a drawn torque u,
+/// the QP
+///   min |qdd|^2_Wqdd + |du|^2_Wu + sum_i |lambda_i|^2_Wl
+///   s.t. M qdd + b = S^T (u + du) + J^T lambda          (eq. 1)
+///        J_phi,i qdd = -Jdot_phi,i qd - beta (phi_i / dt^2 + 2 phidot_i / dt)   (eq. 5)
+///        -u_max <= u + du <= u_max,   C_i R_i lambda_i >= 0   (eq. 7-8)
+///        |qd + dt qdd| <= qd_max,     q_min <= q_{j+1} <= q_max
+/// then x_{j+1} = [q_j + dt qd_{j+1}; qd_j + dt qdd] (semi-implicit; or q_j + dt qd_j).
+///
+/// Solved in the reduced form: given u + du, the equality rows fix [qdd; lambda] uniquely
+/// (K [qdd; lambda] = [S^T (u + du) - b; a_c] with K = [M, -J^T; J_phi, 0], invertible when
+/// the contact Jacobian has full row rank), so [qdd; lambda] = P (u + du) + r0 and the QP is
+/// over du alone (n_u variables, no equality rows). Everything that depends on the parent only
+/// (M, b, J, the LU of K, P, the QP Hessian and its factorization, the inequality matrix) is
+/// computed once in setParent() and shared by all its children; a child costs one QP solve,
+/// warm-started from the previous child's active set.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include "reach_trajopt/contact/contact_constraint.h"
+#include "reach_trajopt/qp/dual_active_set_qp.h"
+#include "reach_trajopt/qp/hessian_factor.h"
+#include "reach_trajopt/reach/reach_context.h"
+
+namespace reach_trajopt {
+
+/// @brief Per-thread solver of the forward step (15)-(16). Sized once; no heap allocation in
+/// setParent() / child().
+class ForwardStep {
+ public:
+  explicit ForwardStep(const ReachContext& context);
+
+  /// Evaluates the dynamics at the parent x_j = (q, qd). Returns false when no child can be
+  /// feasible (explicit integrator with q + dt qd outside the limits, or a singular K).
+  bool setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
+                 const Eigen::Ref<const Eigen::VectorXd>& qd);
+
+  /// Solves (15) for the drawn torque u (size n_u). On success fills the child's q, qd, its
+  /// output y / rate, and the recorded u + du, lambda, and returns true; false when the QP is
+  /// infeasible or the child leaves the state constraints.
+  bool child(const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::Ref<Eigen::VectorXd> q_child,
+             Eigen::Ref<Eigen::VectorXd> qd_child, Eigen::Ref<Eigen::VectorXd> y,
+             Eigen::Ref<Eigen::VectorXd> y_rate, Eigen::Ref<Eigen::VectorXd> u_out,
+             Eigen::Ref<Eigen::VectorXd> lambda_out);
+
+  Workspace& workspace() { return ws_; }
+  long qpCount() const { return qp_count_; }
+
+ private:
+  const ReachContext& ctx_;
+  Workspace ws_;
+  int n_, nu_, m_, rows_;
+  Eigen::VectorXd q_, qd_;
+  Eigen::MatrixXd M_, K_, E_, P_, PtW_, G_, A_in_, J_;
+  Eigen::VectorXd b_, r0_, s_, g_, b_in_, z_, w_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  ContactConstraintTerms terms_;
+  ContactWrenchCone::Matrix cone_world_[2];
+  qp::HessianFactor factor_;
+  qp::DualActiveSetQp qp_;
+  Eigen::MatrixXd empty_eq_;
+  Eigen::VectorXd empty_beq_;
+  std::vector<int> warm_;
+  bool parent_ok_ = false;
+  long qp_count_ = 0;
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,98 @@
+#pragma once
+/// \file reach_config.h
+/// Parameters of the reachability check (DESIGN.md Sec. 3, eq. 13-21, Prop. 1-2) and what each
+/// one costs. The paper gives dt = 1 ms, 1e4 samples at the first step and delta = 1e-5; the
+/// rest are ours (documented here and in config/biped.yaml, section `reach:`).
+///
+/// Time line of one check (all times relative to t_0, the time of x_0):
+///   forward set  from x_0 at 0 up to t_1 = window_end            (eq. 15-16)
+///   backward set from x_f at t_f = horizon back to t_2 = window_start  (eq. 17-20)
+///   the test (14) on every slice t in [t_2, t_1] (the overlap window).
+/// Forward-only checking (the paper's earlier method) is window_start = window_end = horizon.
+///
+/// Speed knobs (cost ~ QPs solved): initial_samples (one QP each, at the first step of each
+/// direction), children_per_parent x max_boundary (QPs per later step), the number of steps
+/// window_end / dt + (horizon - window_start) / dt.
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace reach_trajopt {
+
+class YamlSection;
+
+/// Configuration of ReachabilityAnalyzer. validate() throws ReachError naming a bad field.
+struct ReachConfig {
+  // ---- time line -------------------------------------------------------------------------
+  double dt = 1e-3;             ///< time step of (16) and (20) [s] (paper: 1 ms)
+  double horizon = 0.08;        ///< t_f - t_0 [s]
+  double window_start = 0.03;   ///< t_2 - t_0 [s]: the backward set reaches back to here
+  double window_end = 0.05;     ///< t_1 - t_0 [s]: the forward set reaches up to here
+  // ---- sampling ------------------------------------------------------------------------
+  int initial_samples = 10000;  ///< samples drawn at the first step of each direction (paper 1e4)
+  int children_per_parent = 8;  ///< samples drawn from each boundary sample at later steps
+  int max_boundary = 96;        ///< cap on the boundary samples propagated per slice (21)
+  int angular_bins = 16;        ///< bins around the centroid per plane (keeps concave parts)
+  /// Interior samples propagated besides the boundary ones (evenly spread over the slice):
+  /// without them the later slices are thin shells around their sets.
+  int interior_samples = 32;
+  /// Draws per kept sample at the later backward steps: (19) rejects most draws of (17), so
+  /// the backward direction draws more than the forward one (whose QP repairs its draws).
+  int backward_children_per_parent = 24;
+  /// Boundary selection (21) uses y + tau * ydot for each tau here [s]: with tau = 0 only the
+  /// positions count; tau > 0 also keeps the samples whose velocity points outward, which are
+  /// the ones the next steps' extremes come from.
+  std::vector<double> boundary_lookahead = {0.0, 0.005, 0.02};
+  /// Fraction of the draws of each parent (u of (15), d of (17)) that are vertices of their
+  /// box (every component at a random bound), in antithetic pairs +v, -v; the rest are
+  /// uniform. The extremes of a reachable set come from bang-bang inputs, which uniform draws
+  /// almost never produce. 0 = the paper's uniform draws.
+  double vertex_fraction = 0.25;
+  std::uint64_t seed = 1;       ///< random stream: results are identical for any thread count
+  int threads = 0;              ///< OpenMP threads (0: OpenMP's default)
+  // ---- forward QP (15) ----------------------------------------------------------------------
+  /// "semi_implicit": q_{j+1} = q_j + dt qd_{j+1}, the exact inverse of the backward step (20),
+  /// so both sets and the witness path belong to one discrete-time system; positions then
+  /// depend on the sample's acceleration. "explicit": q_{j+1} = q_j + dt qd_j as printed in (16)
+  /// (all children of a parent then share one position; the position limits are imposed one
+  /// step ahead, on q_j + 2 dt qd_j + dt^2 qdd).
+  std::string forward_integrator = "semi_implicit";
+  double w_qdd = 1e-4;          ///< W_qdd of (15) [per (rad/s^2)^2]
+  double w_du = 1.0;            ///< W_u of (15): large, so u + du stays close to the drawn u
+  double w_lambda = 1e-6;       ///< W_lambda of (15)
+  /// beta in [0, 1] of the contact acceleration rows: J_phi qdd = -Jdot_phi qd -
+  /// beta (phi / dt^2 + 2 phidot / dt); 0 is eq. (5) as printed; > 0 removes the O(dt^2)
+  /// drift of the Euler steps (1 = deadbeat in two steps). Also used by the backward step.
+  double contact_stabilization = 0.5;
+  // ---- backward draws (17) ----------------------------------------------------------------
+  double backward_joint_accel = 10.0;  ///< a_max of the actuated coordinates [rad/s^2 or m/s^2]
+  double backward_base_accel = 2.0;    ///< a_max of the six floating-base coordinates
+  // ---- the test (14), Prop. 1-2 -------------------------------------------------------------
+  double delta = 1e-5;          ///< Prop. 2 threshold on d_H [m] (paper 1e-5), used as min(delta, K)
+  /// The sets overlap at a slice when a sample of one lies inside the other's convex hull, or
+  /// a forward and a backward output lie closer than min(K, overlap_gap_max): closer than the
+  /// sampling resolution K of Prop. 2 (largest nearest-neighbour gap of the sparser set), but
+  /// never farther apart than this [m].
+  double overlap_gap_max = 5e-3;
+  // ---- output and states ----------------------------------------------------------------
+  std::string output_frame;     ///< frame of y; empty: the swing sole of the mode
+  std::string output_axes = "xyz";  ///< world axes of the frame origin in y (1-3 of x, y, z)
+  /// Samples whose swing sole origin is below the target foothold height minus this are
+  /// rejected (the ground); negative infinity disables. [m]
+  double swing_ground_margin = 0.0;
+  double contact_tolerance = 1e-4;  ///< |phi| allowed at x_0 and x_f [m, rad]
+  double contact_velocity_tolerance = 1e-3;  ///< |J qd| allowed at x_0 and x_f [m/s, rad/s]
+  double limit_tolerance = 1e-9;    ///< slack on position / velocity / torque limits
+
+  void validate() const;
+  /// Reads the keys (same names as the fields) of a YAML section on top of `base`, then
+  /// validates. Unknown keys throw.
+  static ReachConfig fromYaml(const YamlSection& section, const ReachConfig& base);
+  /// Same on top of the defaults.
+  static ReachConfig fromYaml(const YamlSection& section);
+  bool semiImplicit() const { return forward_integrator == "semi_implicit"; }
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,172 @@
+#pragma once
+/// \file reachability_analyzer.h
+/// The reachability check of the paper's Sec. III-C/D (eq. 13-21, Prop. 1-2), in the corrected
+/// reading of DESIGN.md Sec. 3: can the robot, in contact mode m_k from x_0, reach x_f (a state
+/// of the next mode m_{k+1}, e.g. the touchdown of the swing sole) within the horizon?
+///
+///  1. Forward set (15)-(16) from x_0 over [0, t_1], backward set (17)-(20) from x_f over
+///     [t_2, t_f], dt apart. The first step of each direction draws `initial_samples` inputs
+///     (paper: 1e4); every later step draws `children_per_parent` from each boundary sample
+///     (21) of the previous slice. Slices hold the outputs y = swing sole position (13).
+///  2. On each slice t in the overlap window [t_2, t_1]: the Hausdorff distance (14) between
+///     the forward and backward output sets (k-d trees), the resolution K of Prop. 2 and the
+///     closest pair.
+///  3. Verdict: reachable when on some slice the sets overlap (a sample of one set inside the
+///     other's convex hull, or a forward and a backward output closer than
+///     min(K, overlap_gap_max): the sets touch at their sampling resolution) or
+///     d_H <= min(delta, K) (Prop. 2). Else unreachable, with the closest approach. The hull
+///     test treats each slice's output set as convex (an over-approximation); the witness then
+///     shows how close an actual pair of samples came.
+///  4. Witness: on the slice with the closest pair, the forward path x_0 -> a and the backward
+///     path b -> x_f traced through parent indices, with (u, lambda) of every step, the gap
+///     between a and b and the largest constraint violation along the path.
+///
+/// Choosing the time line (see ReachConfig): for the biped's single support -> double support
+/// check, x_0 is a mid-swing state (swing sole in the air, moving toward the target) and x_f
+/// the touchdown state (KinematicFeasibility's q_f, qd_f = 0). The sets can only meet where the
+/// swing sole can travel between the two states in the horizon; the window should sit in the
+/// middle, where both sets have spread (the paper's sets met at t = 0.04 s).
+///
+/// Parallelism: OpenMP over (parent, chunk of children); one ForwardStep / BackwardStep
+/// (model workspace and QP solver) per thread; the random numbers of a sample depend only on
+/// (seed, direction, step, parent, child) and results are written at fixed indices, so the
+/// sets, verdict and witness are bit-identical for any thread count.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/reach/hausdorff.h"
+#include "reach_trajopt/reach/reach_config.h"
+#include "reach_trajopt/reach/sample_slice.h"
+
+namespace reach_trajopt {
+
+/// One check: mode m_k, x_0, x_f and the footholds.
+struct ReachProblem {
+  ContactMode mode = ContactMode::singleSupport(Side::kLeft);  ///< m_k during [t_0, t_f]
+  Eigen::VectorXd q0, qd0;  ///< x_0 (size n_q each): must satisfy m_k's contacts and limits
+  Eigen::VectorXd qf, qdf;  ///< x_f: must satisfy m_k's contacts, the target's, and limits
+  /// Planned world poses of the left (0) and right (1) soles held in m_k.
+  std::optional<Eigen::Isometry3d> footholds[2];
+  /// The swing sole's next foothold (m_{k+1} = m_k plus this contact); x_f must have the swing
+  /// sole on it. Empty for systems without contacts (then x_f is only checked for limits).
+  std::optional<Eigen::Isometry3d> target;
+};
+
+/// The test (14) on one slice of the overlap window.
+struct SliceComparison {
+  double time = 0.0;       ///< t - t_0 [s]
+  int forward_slice = 0;   ///< index into ReachResult::forward
+  int backward_slice = 0;  ///< index into ReachResult::backward
+  SetDistance distance;    ///< d_H, directed distances, K's, closest pair
+  double overlap_tolerance = 0.0;  ///< min(K, overlap_gap_max) [m]
+  int backward_inside_forward = 0;  ///< backward outputs inside the forward set's convex hull
+  int forward_inside_backward = 0;  ///< forward outputs inside the backward set's convex hull
+  /// A sample of one set inside the other's hull, or closest <= overlap_tolerance.
+  bool overlap = false;
+  bool within_delta = false;       ///< d_H <= min(delta, K) (Prop. 2)
+};
+
+/// Largest constraint violations along a path (all >= 0; 0 = satisfied).
+struct PathViolation {
+  double dynamics = 0.0;       ///< |M qdd + b - S^T u - J^T lambda|_inf of eq. (1) [N, Nm]
+  double cone = 0.0;           ///< max(0, -min C R lambda) of eq. (8) [N]
+  double torque = 0.0;         ///< max(0, |u| - u_max) [Nm]
+  double position_limit = 0.0; ///< [m, rad]
+  double velocity_limit = 0.0; ///< [m/s, rad/s]
+  double contact = 0.0;        ///< max |phi| of the held soles (eq. 5) [m, rad]
+  double contact_velocity = 0.0;  ///< max |J_phi qd| [m/s, rad/s]
+  double integration = 0.0;    ///< max |q_{k+1} - (q_k + dt qd)| of the Euler steps [m, rad]
+  double max() const;
+};
+
+/// A state path x_0 -> a | b -> x_f through the closest forward/backward pair (a, b).
+struct WitnessPath {
+  bool valid = false;
+  std::vector<double> time;  ///< t - t_0 of each state [s] (a and b share a time)
+  Eigen::MatrixXd q, qd;     ///< n_q x L
+  /// Step k (state k -> k+1): torques and wrenches (n_u x (L-1), 6 n_c x (L-1)); the junction
+  /// step a -> b (index `junction`) has none (zeros).
+  Eigen::MatrixXd u, lambda;
+  /// Step k evaluates eq. (1) at state k with qdd = (qd_{k+1} - qd_k) / dt; forward steps use
+  /// the configured forward integrator, backward ones the semi-implicit step.
+  std::vector<char> semi_implicit_step;
+  int junction = -1;            ///< index of a (the last forward state); b is junction + 1
+  Eigen::MatrixXd output;       ///< n_y x L swing sole outputs [m]
+  double output_gap = 0.0;      ///< |y(a) - y(b)| [m]
+  double position_gap = 0.0;    ///< |q_a - q_b|_inf [m, rad]
+  double velocity_gap = 0.0;    ///< |qd_a - qd_b|_inf [m/s, rad/s]
+  PathViolation violation;      ///< over every state and every step except the junction
+};
+
+/// Counts of one check.
+struct ReachCounts {
+  long forward_samples = 0, backward_samples = 0;    ///< kept samples (roots excluded)
+  long forward_qps = 0, backward_qps = 0;            ///< QPs solved
+  long forward_rejected = 0, backward_rejected = 0;  ///< draws that gave no sample
+  int threads = 1;
+};
+
+/// Wall times of one check [s].
+struct ReachTimings {
+  double forward = 0.0, backward = 0.0, boundary = 0.0, hausdorff = 0.0, witness = 0.0;
+  double total = 0.0;
+};
+
+/// Everything a check returns.
+struct ReachResult {
+  bool reachable = false;
+  std::string reason;                 ///< one sentence explaining the verdict
+  std::vector<SampleSlice> forward;   ///< slice j at time j dt (slice 0 = x_0)
+  std::vector<SampleSlice> backward;  ///< slice j at time t_f - j dt (slice 0 = x_f)
+  std::vector<SliceComparison> window;  ///< the test (14) on [t_2, t_1]
+  int best = -1;                      ///< index into window of the witness slice
+  WitnessPath witness;
+  ReachCounts counts;
+  ReachTimings timings;
+  double dt = 0.0;                    ///< time step used [s]
+  bool semi_implicit = true;          ///< forward integrator used
+  std::vector<std::string> joint_names;  ///< names of q's coordinates
+};
+
+/// @brief Bidirectional sampling-based reachability check of eq. (13)-(21) and Prop. 1-2.
+/// Immutable; check() may run concurrently from several threads.
+class ReachabilityAnalyzer {
+ public:
+  /// \throws ReachError on an invalid config or contact config.
+  ReachabilityAnalyzer(std::shared_ptr<const RobotModel> model, const ContactConfig& contact,
+                       const ReachConfig& config);
+
+  /// Runs the check. Throws ReachError on bad input: wrong sizes or non-finite states, x_0
+  /// violating m_k's contacts (phi, J qd beyond the tolerances) or the limits, x_f violating
+  /// m_k's or the target's contacts or the limits (an infeasible x_f), a mode without
+  /// footholds, or a config with an empty window or zero samples.
+  ReachResult check(const ReachProblem& problem) const;
+  /// Same with another configuration (e.g. more samples) for this one call.
+  ReachResult check(const ReachProblem& problem, const ReachConfig& config) const;
+
+  /// The configuration q of sample `index` of a slice (exact, from its parent chain).
+  /// \param forward  true: result.forward, false: result.backward
+  Eigen::VectorXd sampleConfiguration(const ReachResult& result, bool forward, int slice,
+                                      int index) const;
+
+  const ReachConfig& config() const { return config_; }
+  const ContactConfig& contactConfig() const { return contact_; }
+  const RobotModel& model() const { return *model_; }
+  std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
+
+ private:
+  std::shared_ptr<const RobotModel> model_;
+  ContactConfig contact_;
+  ReachConfig config_;
+};
+
+}  // namespace reach_trajopt

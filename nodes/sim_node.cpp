@@ -1,0 +1,274 @@
+/// sim_node: the walking experiment of the paper's Sec. IV (Bullet world + whole-body controller
+/// at 1 kHz + TVR stepping loop) run in simulated time, published for ROS:
+///   /clock (rosgraph_msgs/Clock)     sim time, every ~clock_period of sim time
+///   joint_states (sensor_msgs)       actuated joints q, qd, u
+///   /tf (tf2_ros)                    every link from the model's forward kinematics, world->pelvis
+///   com_state (CenterOfMassState)    CoM position, velocity, controller reference
+///   contact_state (ContactState)     measured and commanded sole wrenches, sole poses
+///   contact_wrench/<sole> (geometry_msgs/WrenchStamped)  measured wrench in the sole frame
+///   step_report (StepReport)         one per touchdown (and one for a step ending in a fall)
+///   markers (visualization_msgs/MarkerArray)  footholds planned/executed, CoM and swing paths
+///   walk_result (std_msgs/String, latched)    the summary line, published when the run ends
+/// Parameters (private): ~config (YAML with sections contact, planner, walk, wbc; default
+/// config/biped.yaml of the package), ~sim_config (YAML with a sim section, optional), ~mode
+/// (baseline|proposed), ~steps, ~seed, ~forward_speed [m/s], ~push_vx, ~push_vy [m/s],
+/// ~publish_period [s of sim time, 0.01], ~clock_period [s, 0.001], ~marker_period [s, 0.1],
+/// ~wait_for_subscribers (N: wait until every topic has N subscribers, e.g. a recorder; 0),
+/// ~wait_timeout [s wall, 20], ~real_time_factor (0: as fast as possible), ~linger [s wall, 1],
+/// ~exit_when_done (true: exit ~linger seconds after the walk ends, so a launch with
+/// required="true" ends with it; false: stay up, walk_result stays available, until shutdown).
+/// The robot is read from the `robot_description` parameter (URDF text).
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ros/package.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/JointState.h>
+#include <std_msgs/String.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/markers.h"
+#include "reach_trajopt/walk/walking_experiment.h"
+
+using namespace reach_trajopt;
+namespace rb = reach_trajopt::ros_bridge;
+
+namespace {
+
+struct Shutdown {};  // thrown from the tick callback to leave the walking loop on ros shutdown
+
+/// The URDF text of `robot_description` written to a private temporary file (the simulator
+/// loads a file); removed on destruction.
+class TempUrdf {
+ public:
+  explicit TempUrdf(const std::string& xml) {
+    char name[] = "/tmp/reach_trajopt_urdf_XXXXXX";
+    const int fd = mkstemp(name);
+    if (fd < 0) throw ReachError("cannot create a temporary URDF file");
+    close(fd);
+    path_ = name;
+    std::ofstream out(path_);
+    out << xml;
+    if (!out) throw ReachError("cannot write the temporary URDF file " + path_);
+  }
+  ~TempUrdf() { std::remove(path_.c_str()); }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+template <typename T>
+T param(const ros::NodeHandle& nh, const std::string& name, const T& fallback) {
+  T value;
+  return nh.getParam(name, value) ? value : fallback;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "sim_node");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    std::string urdf_xml;
+    if (!nh.getParam("robot_description", urdf_xml) || urdf_xml.empty())
+      throw ReachError("parameter 'robot_description' (URDF text) is not set");
+    const std::string config_path =
+        param<std::string>(pnh, "config", ros::package::getPath("reach_trajopt") +
+                                              "/config/biped.yaml");
+    const std::string sim_config_path = param<std::string>(pnh, "sim_config", "");
+
+    const YamlSection file = YamlSection::loadFile(config_path);
+    WalkConfig walk = file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
+    const TvrConfig tvr = TvrConfig::fromYaml(file.section("planner"));
+    const ContactConfig contact = ContactConfig::fromYaml(file.section("contact"));
+    const WbcConfig wbc = file.has("wbc") ? WbcConfig::fromYaml(file.section("wbc")) : WbcConfig{};
+    SimConfig sim = file.has("sim") ? SimConfig::fromYaml(file.section("sim")) : SimConfig{};
+    if (!sim_config_path.empty()) {
+      const YamlSection sim_file = YamlSection::loadFile(sim_config_path);
+      sim = SimConfig::fromYaml(sim_file.section("sim"));
+    }
+    std::string mode;
+    if (pnh.getParam("mode", mode)) walk.mode = WalkConfig::parseMode(mode);
+    int int_value = 0;
+    if (pnh.getParam("steps", int_value)) walk.steps = int_value;
+    if (pnh.getParam("seed", int_value)) {
+      if (int_value < 0) throw ReachError("~seed must be >= 0");
+      walk.seed = static_cast<unsigned>(int_value);
+    }
+    pnh.getParam("forward_speed", walk.forward_speed);
+    pnh.getParam("push_vx", walk.initial_com_velocity.x());
+    pnh.getParam("push_vy", walk.initial_com_velocity.y());
+    walk.validate();
+
+    const double publish_period = param(pnh, "publish_period", 0.01);
+    const double clock_period = param(pnh, "clock_period", 0.001);
+    const double marker_period = param(pnh, "marker_period", 0.1);
+    const int wait_for_subscribers = param(pnh, "wait_for_subscribers", 0);
+    const double wait_timeout = param(pnh, "wait_timeout", 20.0);
+    const double real_time_factor = param(pnh, "real_time_factor", 0.0);
+    const double linger = param(pnh, "linger", 1.0);
+    const bool exit_when_done = param(pnh, "exit_when_done", true);
+    if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
+      throw ReachError("~publish_period, ~clock_period and ~marker_period must be > 0");
+
+    const TempUrdf urdf(urdf_xml);
+    WalkingExperiment experiment(urdf.path(), walk, tvr, contact, wbc, sim);
+    const RobotModel& model = experiment.model();
+    Workspace ws(model);
+    rb::LinkTransforms link_tf(model);
+
+    // Large queues: the loop may run faster than real time, a recorder must not lose messages.
+    const int kQueue = 2000;
+    ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", kQueue);
+    ros::Publisher joint_pub = nh.advertise<sensor_msgs::JointState>("joint_states", kQueue);
+    ros::Publisher com_pub = nh.advertise<reach_trajopt::CenterOfMassState>("com_state", kQueue);
+    ros::Publisher contact_pub =
+        nh.advertise<reach_trajopt::ContactState>("contact_state", kQueue);
+    ros::Publisher wrench_pub[2] = {
+        nh.advertise<geometry_msgs::WrenchStamped>("contact_wrench/" + contact.left_sole_frame,
+                                                   kQueue),
+        nh.advertise<geometry_msgs::WrenchStamped>("contact_wrench/" + contact.right_sole_frame,
+                                                   kQueue)};
+    ros::Publisher step_pub = nh.advertise<reach_trajopt::StepReport>("step_report", 100);
+    ros::Publisher marker_pub = nh.advertise<visualization_msgs::MarkerArray>("markers", 100);
+    ros::Publisher result_pub = nh.advertise<std_msgs::String>("walk_result", 1, true);
+    tf2_ros::TransformBroadcaster tf_broadcaster;
+
+    if (wait_for_subscribers > 0) {
+      const std::vector<ros::Publisher*> pubs = {&clock_pub,   &joint_pub,     &com_pub,
+                                                 &contact_pub, &wrench_pub[0], &wrench_pub[1],
+                                                 &step_pub,    &marker_pub,    &result_pub};
+      const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_timeout);
+      auto ready = [&]() {
+        for (const ros::Publisher* p : pubs)
+          if (static_cast<int>(p->getNumSubscribers()) < wait_for_subscribers) return false;
+        return true;
+      };
+      while (ros::ok() && !ready() && ros::WallTime::now() < deadline)
+        ros::WallDuration(0.05).sleep();
+      if (!ready()) ROS_WARN("sim_node: starting without %d subscriber(s) on every topic",
+                             wait_for_subscribers);
+      ros::WallDuration(0.5).sleep();  // let /tf's subscribers connect as well
+    }
+    ROS_INFO("sim_node: %s walk of %d steps, seed %u, robot '%s'",
+             WalkConfig::modeName(walk.mode), walk.steps, walk.seed, model.name().c_str());
+
+    std::vector<Eigen::Vector3d> planned, executed, com_path, swing_path;
+    visualization_msgs::MarkerArray swing_paths;  // one LINE_STRIP per finished step
+    sensor_msgs::JointState joint_msg;
+    const double half_length = contact.half_length, half_width = contact.half_width;
+    double ground_z = 0.0;  // height of the last executed foothold [m]
+    double next_publish = publish_period, next_clock = 0.0, next_marker = marker_period;
+    const ros::WallTime wall_start = ros::WallTime::now();
+    const Eigen::VectorXd no_effort;
+
+    auto publishMarkers = [&](const ros::Time& stamp) {
+      visualization_msgs::MarkerArray a =
+          rb::footholdMarkers(planned, executed, half_length, half_width, stamp);
+      a.markers.push_back(
+          rb::pathMarker(com_path, rb::kNsComPath, 0, 0.01, {0.9f, 0.2f, 0.2f, 1.0f}, stamp));
+      if (!swing_path.empty())  // the current swing, id = next step index
+        a.markers.push_back(rb::pathMarker(swing_path, rb::kNsSwingPath,
+                                           static_cast<int>(executed.size()) + 1, 0.005,
+                                           {0.6f, 0.2f, 0.8f, 1.0f}, stamp));
+      a.markers.insert(a.markers.end(), swing_paths.markers.begin(), swing_paths.markers.end());
+      marker_pub.publish(a);
+    };
+
+    auto onTick = [&](const WalkTick& tick) {
+      if (!ros::ok()) throw Shutdown{};
+      const double t = tick.time;
+      if (t + 1e-9 >= next_clock) {
+        rosgraph_msgs::Clock c;
+        c.clock = ros::Time(t);
+        clock_pub.publish(c);
+        next_clock += clock_period;
+      }
+      if (tick.mode.isSingleSupport() && tick.soles)
+        swing_path.push_back(
+            (*tick.soles)[static_cast<int>(tick.mode.swing())].sole_pose.translation());
+      if (t + 1e-9 < next_publish) return;
+      next_publish += publish_period;
+      const ros::Time stamp(t);
+      model.update(ws, *tick.q, *tick.qd);
+      tf_broadcaster.sendTransform(link_tf.compute(ws, stamp));
+      rb::fillJointState(model, *tick.q, *tick.qd, tick.wbc ? tick.wbc->u : no_effort, stamp,
+                         joint_msg);
+      joint_pub.publish(joint_msg);
+      com_pub.publish(rb::toCenterOfMassStateMsg(tick, stamp));
+      contact_pub.publish(rb::toContactStateMsg(tick, stamp));
+      if (tick.soles)
+        for (size_t i = 0; i < tick.soles->size() && i < 2; ++i)
+          wrench_pub[i].publish(rb::toSoleWrenchMsg((*tick.soles)[i], stamp));
+      com_path.push_back(tick.com);
+      if (t + 1e-9 >= next_marker) {
+        next_marker += marker_period;
+        publishMarkers(stamp);
+      }
+      if (real_time_factor > 0.0) {
+        const double ahead = t / real_time_factor - (ros::WallTime::now() - wall_start).toSec();
+        if (ahead > 0.0) ros::WallDuration(ahead).sleep();
+      }
+    };
+
+    auto onStep = [&](const StepRecord& r) {
+      ground_z = r.executed.z();
+      step_pub.publish(rb::toStepReportMsg(r, walk.mode, false, ground_z));
+      planned.emplace_back(r.planned.x(), r.planned.y(), r.executed.z());
+      executed.push_back(r.executed);
+      swing_paths.markers.push_back(rb::pathMarker(swing_path, rb::kNsSwingPath, r.index, 0.005,
+                                                   {0.6f, 0.2f, 0.8f, 1.0f},
+                                                   ros::Time(r.touchdown_time)));
+      swing_path.clear();
+      publishMarkers(ros::Time(r.touchdown_time));
+    };
+
+    WalkResult result;
+    try {
+      result = experiment.run(onTick, onStep);
+    } catch (const Shutdown&) {
+      ROS_WARN("sim_node: shut down during the walk");
+      return 0;
+    }
+    const ros::Time end_stamp(result.sim_time);
+    // A fall gets its own report (fell = true, touched_down = false), stamped at the fall: the
+    // step in progress when the loop recorded it, otherwise the next step's index.
+    if (result.fell) {
+      StepRecord r;
+      if (!result.records.empty() && !result.records.back().touched_down) {
+        r = result.records.back();
+      } else {
+        r.index = result.steps + 1;
+        if (!result.records.empty()) r.swing = opposite(result.records.back().swing);
+      }
+      reach_trajopt::StepReport msg = rb::toStepReportMsg(r, walk.mode, true, ground_z);
+      msg.header.stamp = end_stamp;
+      step_pub.publish(msg);
+    }
+    rosgraph_msgs::Clock c;
+    c.clock = end_stamp;
+    clock_pub.publish(c);
+    publishMarkers(end_stamp);
+    std_msgs::String summary;
+    summary.data = result.summaryLine();
+    result_pub.publish(summary);
+    ROS_INFO("sim_node: %s", summary.data.c_str());
+    ros::WallDuration(linger).sleep();  // let subscribers (a recorder) receive the last messages
+    if (!exit_when_done) ros::waitForShutdown();  // keep the latched walk_result available
+  } catch (const std::exception& e) {
+    ROS_FATAL("sim_node: %s", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,115 @@
+/// tvr_planner_node: the next contact location from the CoM state, by the TVR planner of
+/// eq. (11) (DESIGN.md Sec. 3 sign convention). At every switch into single support seen on
+/// `com_state`, the measured CoM state is predicted to the nominal touchdown with the LIPM about
+/// the stance sole (eq. 9-10), eq. (11) gives the foothold, and a ContactPlan (SS then DS) is
+/// published on `contact_plan`.
+///   subscribes: com_state (CenterOfMassState), contact_state (ContactState: sole poses)
+///   publishes:  contact_plan (ContactPlan)
+/// Parameters (private): ~config (YAML with sections planner and walk; default
+/// config/biped.yaml of the package), ~mode (baseline: heuristic bounds on | proposed: off),
+/// ~forward_speed [m/s] (desired CoM speed along x, drives p_des of eq. 11).
+/// The LIPM height is the CoM height measured at the first message, as in the walking loop.
+
+#include <memory>
+#include <string>
+
+#include <ros/package.h>
+#include <ros/ros.h>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/walk/walking_experiment.h"
+
+using namespace reach_trajopt;
+namespace rb = reach_trajopt::ros_bridge;
+
+namespace {
+
+/// Plans one step per single-support phase from the latest messages.
+class TvrPlannerNode {
+ public:
+  TvrPlannerNode(ros::NodeHandle& nh, const TvrConfig& tvr, const WalkConfig& walk)
+      : tvr_(tvr), walk_(walk) {
+    plan_pub_ = nh.advertise<reach_trajopt::ContactPlan>("contact_plan", 10);
+    contact_sub_ = nh.subscribe("contact_state", 10, &TvrPlannerNode::onContact, this);
+    com_sub_ = nh.subscribe("com_state", 10, &TvrPlannerNode::onCom, this);
+  }
+
+ private:
+  void onContact(const reach_trajopt::ContactState::ConstPtr& msg) { contact_ = msg; }
+
+  void onCom(const reach_trajopt::CenterOfMassState::ConstPtr& msg) {
+    try {
+      if (!planner_) {
+        tvr_.com_height = msg->position.z;  // the LIPM height is the measured CoM height
+        planner_ = std::make_unique<TvrPlanner>(tvr_);
+        com0_x_ = msg->position.x;
+        start_time_ = msg->header.stamp.toSec();
+      }
+      const ContactMode mode = ContactMode::fromName(msg->contact_mode);
+      const bool entering = mode.isSingleSupport() && mode != last_mode_;
+      last_mode_ = mode;
+      if (!entering || !contact_) return;
+      plan(*msg, mode);
+    } catch (const std::exception& e) {
+      ROS_ERROR_THROTTLE(1.0, "tvr_planner_node: %s", e.what());
+    }
+  }
+
+  void plan(const reach_trajopt::CenterOfMassState& com, const ContactMode& mode) {
+    const Side stance = mode.stance();
+    Eigen::Vector3d soles[2];
+    if (contact_->sole_poses.size() != 2)
+      throw ReachError("contact_state must carry the two sole poses (left, right)");
+    for (int i = 0; i < 2; ++i) soles[i] = rb::fromPointMsg(contact_->sole_poses[i].position);
+    TvrInput in;
+    in.swing = opposite(stance);
+    in.stance = soles[static_cast<int>(stance)].head<2>();
+    LipmState now;
+    now.p = rb::fromPointMsg(com.position).head<2>();
+    now.pd = rb::fromVector3Msg(com.velocity).head<2>();
+    const double t = com.header.stamp.toSec() - start_time_;
+    const double T = walk_.single_support_duration;
+    in.com = planner_->lipm().propagate(now, in.stance, T);
+    in.p_des = Eigen::Vector2d(com0_x_ + walk_.forward_speed * (t + T),
+                               0.5 * (soles[0].y() + soles[1].y()));
+    const TvrStep step = planner_->plan(in);
+    plan_pub_.publish(rb::toContactPlanMsg(in, step, T, walk_.double_support_duration,
+                                           soles[static_cast<int>(stance)].z(),
+                                           com.header.stamp));
+  }
+
+  TvrConfig tvr_;
+  WalkConfig walk_;
+  std::unique_ptr<TvrPlanner> planner_;
+  ContactMode last_mode_ = ContactMode::doubleSupport();
+  double com0_x_ = 0.0, start_time_ = 0.0;
+  reach_trajopt::ContactState::ConstPtr contact_;
+  ros::Publisher plan_pub_;
+  ros::Subscriber contact_sub_, com_sub_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "tvr_planner_node");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    std::string config_path = ros::package::getPath("reach_trajopt") + "/config/biped.yaml";
+    pnh.getParam("config", config_path);
+    const YamlSection file = YamlSection::loadFile(config_path);
+    TvrConfig tvr = TvrConfig::fromYaml(file.section("planner"));
+    WalkConfig walk = file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
+    std::string mode;
+    if (pnh.getParam("mode", mode)) walk.mode = WalkConfig::parseMode(mode);
+    pnh.getParam("forward_speed", walk.forward_speed);
+    walk.validate();
+    tvr.heuristic_bounds = walk.mode == WalkConfig::Mode::kBaseline;
+    TvrPlannerNode node(nh, tvr, walk);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("tvr_planner_node: %s", e.what());
+    return 2;
+  }
+  return 0;
+}

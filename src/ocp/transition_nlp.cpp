@@ -1,0 +1,443 @@
+#include "reach_trajopt/ocp/transition_nlp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ocp/spline_fit.h"
+
+namespace reach_trajopt {
+
+namespace {
+
+const std::string& soleName(const ContactConfig& c, Side s) {
+  return s == Side::kLeft ? c.left_sole_frame : c.right_sole_frame;
+}
+
+}  // namespace
+
+TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
+                             const TransitionOcpConfig& config, const ContactConfig& contact,
+                             const TransitionRequest& request, bool relaxed)
+    : model_(std::move(model)),
+      config_(config),
+      request_(request),
+      relaxed_(relaxed),
+      nq_(model_->nq()),
+      nu_(model_->nu()),
+      basis_(request.horizon, config.segments),
+      pelvis_posture_(relaxed && config.terminal_pelvis_height > 0.0),
+      pelvis_height_target_(0.5 * (request.stance_pose.translation().z() +
+                                   request.swing_target.translation().z()) +
+                            config.terminal_pelvis_height) {
+  const RobotModel& m = *model_;
+  const Side swing = opposite(request.stance);
+  dyn_ = std::make_unique<StanceReducedDynamics>(
+      model_, m.frameId(soleName(contact, request.stance)), request.stance_pose,
+      m.frameId(soleName(contact, swing)), request.swing_target, request.q0[3]);
+  scratch_ = std::make_unique<StanceReducedDynamics::Scratch>(*dyn_);
+  const ContactWrenchCone cone(contact);
+  C_stance_ = cone.worldMatrix(request.stance_pose.linear());
+  C_new_ = cone.worldMatrix(request.swing_target.linear());
+  weight_ = m.totalMass() * m.gravity().norm();
+  u_max_inv_ = m.effortLimits().cwiseInverse();
+
+  // Fixed control points: x_0 always, x_f in the strict problem.
+  const int K = basis_.controlPoints();
+  fixed_points_ = Eigen::MatrixXd::Zero(K, nu_);
+  Eigen::VectorXd c0, c1, c2, c3;
+  CubicBSplineBasis::boundaryControlPoints(basis_.knotSpacing(), request.q0.tail(nu_),
+                                           request.qd0.tail(nu_), request.qf.tail(nu_),
+                                           request.qdf.tail(nu_), c0, c1, c2, c3);
+  fixed_points_.row(0) = c0.transpose();
+  fixed_points_.row(1) = c1.transpose();
+  if (!relaxed_) {
+    fixed_points_.row(K - 2) = c2.transpose();
+    fixed_points_.row(K - 1) = c3.transpose();
+  }
+  first_free_ = 2;
+  last_free_ = relaxed_ ? K - 1 : K - 3;
+  const int n_free = last_free_ - first_free_ + 1;
+  lambda_index_ = n_free * nu_;
+  eps_index_ = lambda_index_ + 6;
+  n_x_ = eps_index_ + (relaxed_ ? 2 : 0);
+
+  const double inf = std::numeric_limits<double>::infinity();
+  lower_ = Eigen::VectorXd::Constant(n_x_, -inf);
+  upper_ = Eigen::VectorXd::Constant(n_x_, inf);
+  const Eigen::VectorXd q_lo = m.positionLowerLimits().tail(nu_);
+  const Eigen::VectorXd q_hi = m.positionUpperLimits().tail(nu_);
+  for (int k = 0; k < n_free; ++k) {
+    lower_.segment(k * nu_, nu_) = q_lo;
+    upper_.segment(k * nu_, nu_) = q_hi;
+  }
+
+  // Ground clearance floor: the target height, or lower when x_0's swing sole is lower.
+  Eigen::VectorXd q_start(nq_);
+  dyn_->configuration(*scratch_, request.q0.tail(nu_), q_start);
+  ground_clearance_ = config.ground_clearance;
+  ground_floor_ =
+      std::min(request.swing_target.translation().z(), scratch_->swing_position.z());
+
+  // Hulls with unit normals (violations in metres).
+  for (const ReachableSlice& s : request.slices) {
+    Eigen::MatrixX2d A = s.A;
+    Eigen::VectorXd b = s.b;
+    for (Eigen::Index r = 0; r < A.rows(); ++r) {
+      const double n = A.row(r).norm();
+      A.row(r) /= n;
+      b[r] /= n;
+    }
+    slice_A_.push_back(A);
+    slice_b_.push_back(b);
+  }
+  // Initially, the slice nearest to each grid time.
+  const int grid = static_cast<int>(std::ceil(basis_.duration() / config_.check_interval - 1e-9));
+  for (int j = 0; j <= grid && !request.slices.empty(); ++j) {
+    const double t = basis_.duration() * j / grid;
+    int best = -1;
+    double best_dt = 0.5 * config_.check_interval + 1e-12;
+    for (size_t i = 0; i < request.slices.size(); ++i) {
+      const double dt = std::abs(request.slices[i].time - t);
+      if (dt <= best_dt) {
+        best_dt = dt;
+        best = static_cast<int>(i);
+      }
+    }
+    if (best >= 0 && std::find(enforced_slices_.begin(), enforced_slices_.end(), best) ==
+                         enforced_slices_.end()) {
+      enforced_slices_.push_back(best);
+    }
+  }
+  rebuildSamples();
+
+  input_.resize(dyn_->inputCount());
+  signals_.resize(dyn_->signalCount());
+  jin_.resize(dyn_->signalCount(), dyn_->inputCount());
+  jloc_.resize(dyn_->signalCount(), 4 * nu_ + 6);
+}
+
+void TransitionNlp::rebuildSamples() {
+  const double T = basis_.duration();
+  const int grid = static_cast<int>(std::ceil(T / config_.check_interval - 1e-9));
+  std::vector<double> times;
+  for (int j = 0; j <= grid; ++j) times.push_back(T * j / grid);
+  for (double t : extra_times_) times.push_back(t);
+  for (int s : enforced_slices_) times.push_back(request_.slices[s].time);
+  for (double& t : times) t = std::min(std::max(t, 0.0), T);
+  std::sort(times.begin(), times.end());
+  const double merge = 1e-9 + 1e-9 * T;
+  std::vector<double> unique;
+  for (double t : times) {
+    if (unique.empty() || t - unique.back() > merge) unique.push_back(t);
+  }
+  unique.back() = T;  // t_f in single support (just before touchdown)
+  unique.push_back(T);  // t_f in double support
+  sample_times_ = unique;
+  sample_times_.pop_back();
+  const int n = static_cast<int>(unique.size());
+  samples_.assign(n, Sample());
+  for (int i = 0; i < n; ++i) {
+    samples_[i].t = unique[i];
+    samples_[i].final = i + 1 == n;
+    const double lo = i > 0 ? unique[i - 1] : unique[i];
+    const double hi = i + 1 < n ? unique[i + 1] : unique[i];
+    samples_[i].weight = 0.5 * (hi - lo) / T;
+  }
+  // The trapezoid end weight of t_f is shared by its two samples.
+  samples_[n - 2].weight = samples_[n - 1].weight = 0.25 * (unique[n - 2] - unique[n - 3]) / T;
+  for (int s : enforced_slices_) {
+    const double t = request_.slices[s].time;
+    int best = 0;
+    for (int i = 1; i + 1 < n; ++i) {
+      if (std::abs(unique[i] - t) < std::abs(unique[best] - t)) best = i;
+    }
+    samples_[best].slices.push_back(s);
+  }
+  inequality_count_ = 0;
+  for (int i = 0; i < n; ++i) {
+    inequality_count_ += ContactWrenchCone::kRows + 2 * nu_;
+    if (ground_clearance_ && i > 0 && samples_[i].t < T) inequality_count_ += 1;
+    for (int s : samples_[i].slices) inequality_count_ += static_cast<int>(slice_b_[s].size());
+  }
+  inequality_count_ += ContactWrenchCone::kRows;  // new contact's cone at t_f
+}
+
+void TransitionNlp::addSamples(const std::vector<double>& times, const std::vector<int>& slices) {
+  for (double t : times) extra_times_.push_back(t);
+  for (int s : slices) {
+    if (s < 0 || s >= static_cast<int>(request_.slices.size())) {
+      throw ReachError("TransitionNlp::addSamples: slice index out of range");
+    }
+    if (std::find(enforced_slices_.begin(), enforced_slices_.end(), s) == enforced_slices_.end())
+      enforced_slices_.push_back(s);
+  }
+  rebuildSamples();
+}
+
+int TransitionNlp::freeIndex(int k) const {
+  if (k < first_free_ || k > last_free_) return -1;
+  return (k - first_free_) * nu_;
+}
+
+double TransitionNlp::controlPoint(const Eigen::VectorXd& x, int k, int joint) const {
+  const int i = freeIndex(k);
+  return i < 0 ? fixed_points_(k, joint) : x[i + joint];
+}
+
+void TransitionNlp::splineInput(const Eigen::VectorXd& x, const CubicBSplineBasis::Row& row,
+                                Eigen::Ref<Eigen::VectorXd> input) const {
+  input.head(3 * nu_).setZero();
+  for (int j = 0; j < 4; ++j) {
+    const int k = row.first + j;
+    for (int a = 0; a < nu_; ++a) {
+      const double c = controlPoint(x, k, a);
+      input[a] += row.value[j] * c;
+      input[nu_ + a] += row.d1[j] * c;
+      input[2 * nu_ + a] += row.d2[j] * c;
+    }
+  }
+}
+
+Eigen::Vector2d TransitionNlp::eps(const Eigen::VectorXd& x) const {
+  return relaxed_ ? Eigen::Vector2d(x.segment<2>(eps_index_)) : Eigen::Vector2d::Zero();
+}
+
+Vector6d TransitionNlp::lambdaNew(const Eigen::VectorXd& x) const {
+  return weight_ * x.segment<6>(lambda_index_);
+}
+
+Eigen::VectorXd TransitionNlp::initialGuess() const {
+  const double T = basis_.duration();
+  Eigen::VectorXd times;
+  Eigen::MatrixXd samples;
+  if (!request_.seed.empty()) {
+    times = request_.seed.time;
+    samples = request_.seed.q.bottomRows(nu_).transpose();
+  } else {
+    // Cubic Hermite x_0 -> x_f in the joints.
+    const int n = std::max(2, static_cast<int>(std::ceil(T / config_.output_dt)) + 1);
+    times.resize(n);
+    samples.resize(n, nu_);
+    const Eigen::VectorXd p0 = request_.q0.tail(nu_), v0 = request_.qd0.tail(nu_);
+    const Eigen::VectorXd p1 = request_.qf.tail(nu_), v1 = request_.qdf.tail(nu_);
+    for (int i = 0; i < n; ++i) {
+      const double t = T * i / (n - 1), s = t / T;
+      const double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s;
+      const double h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
+      times[i] = t;
+      samples.row(i) = (h00 * p0 + h10 * T * v0 + h01 * p1 + h11 * T * v1).transpose();
+    }
+  }
+  const int K = basis_.controlPoints();
+  std::vector<bool> fixed(K, false);
+  for (int k = 0; k < K; ++k) fixed[k] = freeIndex(k) < 0;
+  const Eigen::MatrixXd c = fitSplineControlPoints(basis_, times, samples, fixed, fixed_points_,
+                                                   config_.fit_regularization);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n_x_);
+  for (int k = first_free_; k <= last_free_; ++k) {
+    x.segment(freeIndex(k), nu_) = c.row(k).transpose();
+  }
+  return x.cwiseMax(lower_).cwiseMin(upper_);
+}
+
+void TransitionNlp::state(const Eigen::VectorXd& x, double t, TransitionSampleState& out) {
+  requireSize("TransitionNlp::state x", x.size(), n_x_);
+  const double T = basis_.duration();
+  const bool final = t >= T - 1e-12;
+  splineInput(x, basis_.evaluate(t), input_);
+  input_.tail<6>() = final ? lambdaNew(x) : Vector6d::Zero();
+  dyn_->evaluate(*scratch_, input_, signals_);
+  const StanceReducedDynamics& d = *dyn_;
+  out.q = scratch_->q;
+  out.qd = scratch_->qd;
+  out.qdd = scratch_->qdd;
+  out.u = signals_.segment(d.uOffset(), nu_);
+  out.lambda_stance = signals_.segment<6>(d.lambdaOffset());
+  out.lambda_new = input_.tail<6>();
+  out.swing_position = signals_.segment<3>(d.swingPositionOffset());
+  out.phi2 = signals_.segment<6>(d.phi2Offset());
+  out.phidot2 = signals_.segment<6>(d.phidot2Offset());
+  out.phiddot2 = signals_.segment<6>(d.phiddot2Offset());
+}
+
+void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues& out) {
+  requireSize("TransitionNlp::evaluate x", x.size(), n_x_);
+  const StanceReducedDynamics& d = *dyn_;
+  const int m_eq = equalityCount(), m_in = inequalityCount();
+  out.cost = 0.0;
+  out.equality.setZero(m_eq);
+  out.inequality.setZero(m_in);
+  if (gradients) {
+    out.cost_gradient.setZero(n_x_);
+    out.equality_jacobian.setZero(m_eq, n_x_);
+    out.inequality_jacobian.setZero(m_in, n_x_);
+  }
+  const double W = weight_;
+  const Eigen::VectorXd& qf = request_.qf;
+  const Eigen::VectorXd& qdf = request_.qdf;
+  const int n_s = static_cast<int>(samples_.size());
+  const int lcols = 4 * nu_ + 6;
+  int row = 0;
+  CubicBSplineBasis::Row brow;
+  // Adds a local gradient (over the 4 control points of this sample and lambda_2) to a row.
+  using StridedRow = Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
+  auto scatter = [&](Eigen::Ref<Eigen::RowVectorXd> target, const StridedRow& local,
+                     bool final) {
+    for (int j = 0; j < 4; ++j) {
+      const int idx = freeIndex(brow.first + j);
+      if (idx >= 0) target.segment(idx, nu_) += local.segment(j * nu_, nu_);
+    }
+    if (final) target.segment(lambda_index_, 6) += local.tail(6);
+  };
+  Eigen::RowVectorXd grow(lcols), coeff(d.signalCount());
+  Eigen::Matrix<double, ContactWrenchCone::kRows, Eigen::Dynamic> cone_rows(
+      ContactWrenchCone::kRows, lcols);
+
+  for (int i = 0; i < n_s; ++i) {
+    const Sample& smp = samples_[i];
+    const bool final = smp.final;
+    brow = basis_.evaluate(smp.t);
+    splineInput(x, brow, input_);
+    input_.tail<6>() = final ? lambdaNew(x) : Vector6d::Zero();
+    if (gradients) {
+      d.evaluate(*scratch_, input_, signals_, jin_, config_.fd_step,
+                 config_.central_differences);
+      for (int j = 0; j < 4; ++j) {
+        jloc_.middleCols(j * nu_, nu_) = brow.value[j] * jin_.leftCols(nu_);
+        jloc_.middleCols(j * nu_, nu_) += brow.d1[j] * jin_.middleCols(nu_, nu_);
+        jloc_.middleCols(j * nu_, nu_) += brow.d2[j] * jin_.middleCols(2 * nu_, nu_);
+      }
+      jloc_.rightCols<6>() = W * jin_.rightCols<6>();  // variables are lambda_2 / (m g)
+    } else {
+      d.evaluate(*scratch_, input_, signals_);
+    }
+    const auto u = signals_.segment(d.uOffset(), nu_);
+    const auto lam = signals_.segment<6>(d.lambdaOffset());
+    const auto q = signals_.segment(d.qOffset(), nq_);
+    const auto qd = signals_.segment(d.qdOffset(), nq_);
+
+    // ---- cost (22), scaled ---------------------------------------------------------------
+    const Eigen::VectorXd us = u.cwiseProduct(u_max_inv_);
+    const double c_u = config_.w_torque * us.squaredNorm();
+    const double c_l = config_.w_wrench * lam.squaredNorm() / (W * W);
+    const double c_q = config_.w_position * (q - qf).squaredNorm();
+    const double c_v = config_.w_velocity * (qd - qdf).squaredNorm();
+    out.cost += smp.weight * (c_u + c_l + c_q + c_v);
+    if (gradients) {
+      coeff.setZero();
+      coeff.segment(d.uOffset(), nu_) =
+          (2.0 * config_.w_torque) * us.cwiseProduct(u_max_inv_).transpose();
+      coeff.segment<6>(d.lambdaOffset()) = (2.0 * config_.w_wrench / (W * W)) * lam.transpose();
+      coeff.segment(d.qOffset(), nq_) = (2.0 * config_.w_position) * (q - qf).transpose();
+      coeff.segment(d.qdOffset(), nq_) = (2.0 * config_.w_velocity) * (qd - qdf).transpose();
+      grow.noalias() = smp.weight * coeff * jloc_;
+      scatter(out.cost_gradient.transpose(), grow, final);
+    }
+    if (final) {
+      const Vector6d xl = x.segment<6>(lambda_index_);
+      out.cost += smp.weight * config_.w_wrench * xl.squaredNorm();
+      if (gradients) {
+        out.cost_gradient.segment<6>(lambda_index_) +=
+            smp.weight * 2.0 * config_.w_wrench * xl;
+      }
+    }
+
+    // ---- inequalities (<= 0) ---------------------------------------------------------------
+    // Stance cone (8): -(C lambda_s) / (m g) + margin <= 0.
+    out.inequality.segment<ContactWrenchCone::kRows>(row) =
+        -(C_stance_ * lam) / W + Eigen::Matrix<double, 16, 1>::Constant(config_.cone_margin);
+    if (gradients) {
+      cone_rows.noalias() = (-1.0 / W) * C_stance_ * jloc_.middleRows<6>(d.lambdaOffset());
+      for (int r = 0; r < ContactWrenchCone::kRows; ++r) {
+        scatter(out.inequality_jacobian.row(row + r), cone_rows.row(r), final);
+      }
+    }
+    row += ContactWrenchCone::kRows;
+    // Torque bounds: +-u / u_max - (1 - margin) <= 0.
+    for (int a = 0; a < nu_; ++a) {
+      for (int sgn = -1; sgn <= 1; sgn += 2) {
+        out.inequality[row] = sgn * us[a] - (1.0 - config_.torque_margin);
+        if (gradients) {
+          grow = (sgn * u_max_inv_[a]) * jloc_.row(d.uOffset() + a);
+          scatter(out.inequality_jacobian.row(row), grow, final);
+        }
+        ++row;
+      }
+    }
+    // Ground clearance: floor - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality).
+    if (ground_clearance_ && i > 0 && smp.t < basis_.duration()) {
+      out.inequality[row] = ground_floor_ - signals_[d.swingPositionOffset() + 2];
+      if (gradients) {
+        grow = -jloc_.row(d.swingPositionOffset() + 2);
+        scatter(out.inequality_jacobian.row(row), grow, final);
+      }
+      ++row;
+    }
+    // Reachable-set hulls: A y - b <= 0, y the swing sole's (x, y).
+    for (int s : smp.slices) {
+      const Eigen::MatrixX2d& A = slice_A_[s];
+      const Eigen::VectorXd& b = slice_b_[s];
+      const Eigen::Vector2d y = signals_.segment<2>(d.swingPositionOffset());
+      for (Eigen::Index r = 0; r < A.rows(); ++r) {
+        out.inequality[row] = A.row(r).dot(y) - b[r];
+        if (gradients) {
+          grow = A(r, 0) * jloc_.row(d.swingPositionOffset()) +
+                 A(r, 1) * jloc_.row(d.swingPositionOffset() + 1);
+          scatter(out.inequality_jacobian.row(row), grow, final);
+        }
+        ++row;
+      }
+    }
+    if (!final) continue;
+
+    // New contact's cone at t_f: -(C lambda_2) / (m g) <= 0, linear in the variables.
+    const Vector6d xl = x.segment<6>(lambda_index_);
+    out.inequality.segment<ContactWrenchCone::kRows>(row) = -(C_new_ * xl);
+    if (gradients) {
+      out.inequality_jacobian.block<ContactWrenchCone::kRows, 6>(row, lambda_index_) = -C_new_;
+    }
+    row += ContactWrenchCone::kRows;
+
+    // ---- equalities: new-mode contact at t_f ------------------------------------------------
+    int erow = 0;
+    auto addEquality = [&](int signal_offset) {
+      out.equality.segment<6>(erow) = signals_.segment<6>(signal_offset);
+      if (gradients) {
+        for (int r = 0; r < 6; ++r) {
+          scatter(out.equality_jacobian.row(erow + r), jloc_.row(signal_offset + r), true);
+        }
+      }
+      erow += 6;
+    };
+    if (relaxed_) {
+      addEquality(d.phi2Offset());
+      out.equality.head<2>() -= x.segment<2>(eps_index_);
+      if (gradients) {
+        out.equality_jacobian(0, eps_index_) -= 1.0;
+        out.equality_jacobian(1, eps_index_ + 1) -= 1.0;
+      }
+      addEquality(d.phidot2Offset());
+    }
+    addEquality(d.phiddot2Offset());
+    if (pelvis_posture_) {  // base z, pitch, roll at t_f
+      const int rows[3] = {2, 4, 5};
+      for (int r : rows) {
+        out.equality[erow] = signals_[d.qOffset() + r] - (r == 2 ? pelvis_height_target_ : 0.0);
+        if (gradients) {
+          scatter(out.equality_jacobian.row(erow), jloc_.row(d.qOffset() + r), true);
+        }
+        ++erow;
+      }
+    }
+  }
+  if (relaxed_) {
+    const Eigen::Vector2d e = x.segment<2>(eps_index_);
+    out.cost += config_.w_eps * e.squaredNorm();
+    if (gradients) out.cost_gradient.segment<2>(eps_index_) += 2.0 * config_.w_eps * e;
+  }
+  if (row != m_in) throw ReachError("TransitionNlp: internal error, inequality count mismatch");
+}
+
+}  // namespace reach_trajopt

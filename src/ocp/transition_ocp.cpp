@@ -1,0 +1,388 @@
+#include "reach_trajopt/ocp/transition_ocp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <vector>
+
+#include <nlopt.hpp>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/contact/contact_constraint.h"
+#include "reach_trajopt/ocp/transition_check.h"
+#include "reach_trajopt/ocp/transition_nlp.h"
+
+namespace reach_trajopt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const std::string& soleName(const ContactConfig& c, Side s) {
+  return s == Side::kLeft ? c.left_sole_frame : c.right_sole_frame;
+}
+
+const char* nloptResultName(nlopt::result r) {
+  switch (r) {
+    case nlopt::FAILURE: return "FAILURE";
+    case nlopt::INVALID_ARGS: return "INVALID_ARGS";
+    case nlopt::OUT_OF_MEMORY: return "OUT_OF_MEMORY";
+    case nlopt::ROUNDOFF_LIMITED: return "ROUNDOFF_LIMITED";
+    case nlopt::FORCED_STOP: return "FORCED_STOP";
+    case nlopt::SUCCESS: return "SUCCESS";
+    case nlopt::STOPVAL_REACHED: return "STOPVAL_REACHED";
+    case nlopt::FTOL_REACHED: return "FTOL_REACHED";
+    case nlopt::XTOL_REACHED: return "XTOL_REACHED";
+    case nlopt::MAXEVAL_REACHED: return "MAXEVAL_REACHED";
+    case nlopt::MAXTIME_REACHED: return "MAXTIME_REACHED";
+    default: return "UNKNOWN";
+  }
+}
+
+/// Evaluates the NLP once per point for the objective and both constraint callbacks.
+struct NloptBridge {
+  TransitionNlp* nlp = nullptr;
+  nlopt::opt* opt = nullptr;
+  Eigen::VectorXd x;
+  bool valid = false, has_gradients = false;
+  NlpValues values;
+  int gradient_evaluations = 0;
+  std::string error;
+
+  bool prepare(unsigned n, const double* xp, bool gradients) {
+    if (!error.empty()) return false;
+    const bool same = valid && std::memcmp(x.data(), xp, n * sizeof(double)) == 0;
+    if (same && (has_gradients || !gradients)) return true;
+    x = Eigen::Map<const Eigen::VectorXd>(xp, n);
+    try {
+      nlp->evaluate(x, gradients, values);
+      if (!std::isfinite(values.cost) || !values.equality.allFinite() ||
+          !values.inequality.allFinite()) {
+        throw ReachError("non-finite NLP values");
+      }
+    } catch (const std::exception& e) {
+      error = e.what();
+      valid = false;
+      opt->force_stop();
+      return false;
+    }
+    valid = true;
+    has_gradients = gradients;
+    if (gradients) ++gradient_evaluations;
+    return true;
+  }
+
+  static double objective(unsigned n, const double* x, double* grad, void* data) {
+    auto* b = static_cast<NloptBridge*>(data);
+    if (!b->prepare(n, x, grad != nullptr)) return HUGE_VAL;
+    if (grad) Eigen::Map<Eigen::VectorXd>(grad, n) = b->values.cost_gradient;
+    return b->values.cost;
+  }
+  static void equality(unsigned m, double* result, unsigned n, const double* x, double* grad,
+                       void* data) {
+    auto* b = static_cast<NloptBridge*>(data);
+    if (!b->prepare(n, x, grad != nullptr)) {
+      std::fill(result, result + m, HUGE_VAL);
+      return;
+    }
+    Eigen::Map<Eigen::VectorXd>(result, m) = b->values.equality;
+    if (grad) Eigen::Map<RowMajorMatrixXd>(grad, m, n) = b->values.equality_jacobian;
+  }
+  static void inequality(unsigned m, double* result, unsigned n, const double* x, double* grad,
+                         void* data) {
+    auto* b = static_cast<NloptBridge*>(data);
+    if (!b->prepare(n, x, grad != nullptr)) {
+      std::fill(result, result + m, HUGE_VAL);
+      return;
+    }
+    Eigen::Map<Eigen::VectorXd>(result, m) = b->values.inequality;
+    if (grad) Eigen::Map<RowMajorMatrixXd>(grad, m, n) = b->values.inequality_jacobian;
+  }
+};
+
+/// Runs SLSQP from x (updated in place). Returns NLopt's code name; `error` gets callback
+/// failures.
+std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, double max_time,
+                     Eigen::VectorXd& x, int& evaluations, std::string& error) {
+  const unsigned n = static_cast<unsigned>(nlp.variableCount());
+  nlopt::opt opt(nlopt::LD_SLSQP, n);
+  NloptBridge bridge;
+  bridge.nlp = &nlp;
+  bridge.opt = &opt;
+  auto toStd = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  opt.set_lower_bounds(toStd(nlp.lowerBounds()));
+  opt.set_upper_bounds(toStd(nlp.upperBounds()));
+  opt.set_min_objective(&NloptBridge::objective, &bridge);
+  opt.add_equality_mconstraint(&NloptBridge::equality, &bridge,
+                               std::vector<double>(nlp.equalityCount(), 1e-10));
+  opt.add_inequality_mconstraint(&NloptBridge::inequality, &bridge,
+                                 std::vector<double>(nlp.inequalityCount(), 1e-10));
+  opt.set_ftol_rel(config.ftol_rel);
+  opt.set_xtol_rel(config.xtol_rel);
+  opt.set_maxeval(config.max_evaluations);
+  opt.set_maxtime(max_time);
+  std::vector<double> xv = toStd(x);
+  double f = 0.0;
+  nlopt::result code = nlopt::FAILURE;
+  try {
+    code = opt.optimize(xv, f);
+  } catch (const nlopt::roundoff_limited&) {
+    code = nlopt::ROUNDOFF_LIMITED;
+  } catch (const nlopt::forced_stop&) {
+    code = nlopt::FORCED_STOP;
+  } catch (const std::invalid_argument& e) {
+    code = nlopt::INVALID_ARGS;
+    error = e.what();
+  } catch (const std::bad_alloc&) {
+    code = nlopt::OUT_OF_MEMORY;
+  } catch (const std::runtime_error&) {
+    code = nlopt::FAILURE;
+  }
+  if (!bridge.error.empty()) error = bridge.error;
+  const Eigen::VectorXd xn = Eigen::Map<const Eigen::VectorXd>(xv.data(), n);
+  if (xn.allFinite()) x = xn;
+  evaluations += bridge.gradient_evaluations;
+  return nloptResultName(code);
+}
+
+/// Samples the NLP solution at output_dt (and exactly at t_f) into `res`.
+void sampleSolution(TransitionNlp& nlp, const Eigen::VectorXd& x, double dt, Side stance,
+                    TransitionResult& res) {
+  const double T = nlp.basis().duration();
+  const int nq = nlp.dynamics().nq(), nu = nlp.dynamics().nu();
+  int n = static_cast<int>(std::floor(T / dt + 1e-9)) + 1;
+  const bool on_grid = std::abs((n - 1) * dt - T) <= 1e-9;
+  if (!on_grid) ++n;
+  res.dt = dt;
+  res.time.resize(n);
+  res.q.resize(nq, n);
+  res.qd.resize(nq, n);
+  res.qdd.resize(nq, n);
+  res.u.resize(nu, n);
+  res.lambda.setZero(12, n);
+  const int is = stance == Side::kLeft ? 0 : 6, in = 6 - is;
+  TransitionSampleState st;
+  for (int k = 0; k < n; ++k) {
+    const double t = k + 1 == n ? T : k * dt;
+    nlp.state(x, t, st);
+    res.time[k] = t;
+    res.q.col(k) = st.q;
+    res.qd.col(k) = st.qd;
+    res.qdd.col(k) = st.qdd;
+    res.u.col(k) = st.u;
+    res.lambda.col(k).segment<6>(is) = st.lambda_stance;
+    res.lambda.col(k).segment<6>(in) = st.lambda_new;
+    if (k + 1 == n) res.landing_position = st.swing_position;
+  }
+  res.relaxed = nlp.relaxed();
+  res.eps = nlp.eps(x);
+}
+
+std::string worstFamily(const ConstraintViolations& v) {
+  const std::pair<const char*, double> f[] = {
+      {"dynamics", v.dynamics},           {"stance_contact", v.stance_contact},
+      {"stance_cone", v.stance_cone},     {"new_contact", v.new_contact},
+      {"new_cone", v.new_cone},           {"torque", v.torque},
+      {"joint_limits", v.joint_limits},   {"reachable_set", v.reachable_set},
+      {"initial_state", v.initial_state}, {"final_state", v.final_state}};
+  const auto* w = std::max_element(std::begin(f), std::end(f),
+                                   [](const auto& a, const auto& b) { return a.second < b.second; });
+  std::ostringstream os;
+  os << w->first << " violated by " << w->second;
+  return os.str();
+}
+
+}  // namespace
+
+TransitionOcp::TransitionOcp(std::shared_ptr<const RobotModel> model,
+                             const TransitionOcpConfig& config, const ContactConfig& contact)
+    : model_(std::move(model)), config_(config), contact_(contact) {
+  if (!model_) throw ReachError("TransitionOcp: null robot model");
+  if (!model_->floatingBase()) throw ReachError("TransitionOcp: needs a floating-base model");
+  config_.validate();
+  contact_.validate();
+  model_->frameId(contact_.left_sole_frame);
+  model_->frameId(contact_.right_sole_frame);
+}
+
+void TransitionOcp::validate(const TransitionRequest& r) const {
+  const RobotModel& m = *model_;
+  const int nq = m.nq();
+  requireSize("TransitionOcp: q0", r.q0.size(), nq);
+  requireSize("TransitionOcp: qd0", r.qd0.size(), nq);
+  requireSize("TransitionOcp: qf", r.qf.size(), nq);
+  requireSize("TransitionOcp: qdf", r.qdf.size(), nq);
+  requireFinite("TransitionOcp: q0", r.q0);
+  requireFinite("TransitionOcp: qd0", r.qd0);
+  requireFinite("TransitionOcp: qf", r.qf);
+  requireFinite("TransitionOcp: qdf", r.qdf);
+  std::ostringstream os;
+  if (!std::isfinite(r.horizon) || r.horizon <= 0.0 || r.horizon < config_.output_dt) {
+    os << "TransitionOcp: inconsistent horizon " << r.horizon
+       << " s: must be finite and at least one output sample (" << config_.output_dt << " s)";
+    throw ReachError(os.str());
+  }
+  // Poses: finite, proper rotations (ContactConstraint checks both).
+  try {
+    ContactConstraint(0, r.stance_pose);
+    ContactConstraint(0, r.swing_target);
+  } catch (const ReachError& e) {
+    throw ReachError(std::string("TransitionOcp: stance_pose / swing_target: ") + e.what());
+  }
+  const double t_tol = 1e-9 + 1e-9 * r.horizon;
+  for (size_t i = 0; i < r.slices.size(); ++i) {
+    const ReachableSlice& s = r.slices[i];
+    const std::string what = "TransitionOcp: slice " + std::to_string(i);
+    if (!std::isfinite(s.time) || s.time < -t_tol || s.time > r.horizon + t_tol) {
+      os << what << ": time " << s.time << " s outside [0, " << r.horizon << "] s";
+      throw ReachError(os.str());
+    }
+    if (s.A.rows() == 0) throw ReachError(what + ": empty hull");
+    requireSize((what + ": b").c_str(), s.b.size(), s.A.rows());
+    requireFinite((what + ": A").c_str(), s.A);
+    requireFinite((what + ": b").c_str(), s.b);
+    for (Eigen::Index k = 0; k < s.A.rows(); ++k) {
+      if (s.A.row(k).norm() < 1e-12) throw ReachError(what + ": zero normal in A");
+    }
+  }
+  if (!r.seed.empty()) {
+    requireSize("TransitionOcp: seed q columns", r.seed.q.cols(), r.seed.time.size());
+    requireSize("TransitionOcp: seed q rows", r.seed.q.rows(), nq);
+    requireFinite("TransitionOcp: seed time", r.seed.time);
+    requireFinite("TransitionOcp: seed q", r.seed.q);
+    for (Eigen::Index k = 0; k < r.seed.time.size(); ++k) {
+      if (r.seed.time[k] < -t_tol || r.seed.time[k] > r.horizon + t_tol ||
+          (k > 0 && r.seed.time[k] < r.seed.time[k - 1])) {
+        os << "TransitionOcp: seed time " << r.seed.time[k] << " s at index " << k
+           << " is outside [0, " << r.horizon << "] s or not increasing";
+        throw ReachError(os.str());
+      }
+    }
+  }
+  // x_0 on its stance contact.
+  Workspace ws(m);
+  m.update(ws, r.q0, r.qd0);
+  const ContactConstraint stance(m, soleName(contact_, r.stance), r.stance_pose);
+  ContactConstraintTerms terms(nq);
+  stance.evaluate(m, ws, terms);
+  const double off = std::max(terms.phi.cwiseAbs().maxCoeff(), terms.phidot.cwiseAbs().maxCoeff());
+  if (off > config_.input_tolerance) {
+    os << "TransitionOcp: x_0 is off its stance contact " << soleName(contact_, r.stance)
+       << ": max(|phi|, |phidot|) = " << off << " > " << config_.input_tolerance;
+    throw ReachError(os.str());
+  }
+  if (r.relaxation == RelaxationMode::kStrict && !finalStateOnContacts(r)) {
+    throw ReachError(
+        "TransitionOcp: x_f does not hold both contacts (stance pose and swing target) within "
+        "input_tolerance: the strict problem x(t_f) = x_f is inconsistent (use kRelaxed or "
+        "kAuto)");
+  }
+}
+
+bool TransitionOcp::finalStateOnContacts(const TransitionRequest& r) const {
+  const RobotModel& m = *model_;
+  Workspace ws(m);
+  m.update(ws, r.qf, r.qdf);
+  ContactConstraintTerms terms(m.nq());
+  double off = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const Side s = k == 0 ? r.stance : opposite(r.stance);
+    const ContactConstraint c(m, soleName(contact_, s), k == 0 ? r.stance_pose : r.swing_target);
+    c.evaluate(m, ws, terms);
+    off = std::max({off, terms.phi.cwiseAbs().maxCoeff(), terms.phidot.cwiseAbs().maxCoeff()});
+  }
+  return off <= config_.input_tolerance;
+}
+
+TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool relaxed,
+                                          Clock::time_point deadline) const {
+  TransitionNlp nlp(model_, config_, contact_, request, relaxed);
+  Eigen::VectorXd x = nlp.initialGuess();
+  TransitionResult res;
+  std::string error;
+  for (int round = 0;; ++round) {
+    const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (remaining <= 0.0) {
+      res.status = OcpStatus::kFailed;
+      res.reason = "time limit of " + std::to_string(config_.time_limit) + " s reached";
+      if (res.time.size() == 0) sampleSolution(nlp, x, config_.output_dt, request.stance, res);
+      break;
+    }
+    res.nlopt_status = runSlsqp(nlp, config_, remaining, x, res.iterations, error);
+    ++res.solves;
+    res.variables = nlp.variableCount();
+    res.constraints = nlp.equalityCount() + nlp.inequalityCount();
+    sampleSolution(nlp, x, config_.output_dt, request.stance, res);
+    const TransitionCheck check =
+        checkTransition(*model_, contact_, request, res, 0.5 * config_.tolerance);
+    res.violation = check.violation;
+    if (getenv("OCP_DEBUG")) fprintf(stderr, "round %d nlopt %s evals %d max viol %g %s times %zu slices %zu\n", round, res.nlopt_status.c_str(), res.iterations, res.violation.max(), worstFamily(res.violation).c_str(), check.violating_times.size(), check.violating_slices.size()); if (getenv("OCP_DEBUG")) for (double t : check.violating_times) fprintf(stderr, "  t=%g\n", t);
+    if (!error.empty()) {
+      res.status = OcpStatus::kFailed;
+      res.reason = "NLP evaluation failed: " + error;
+      break;
+    }
+    if (res.violation.max() <= config_.tolerance) {
+      res.status = relaxed ? OcpStatus::kRelaxed : OcpStatus::kConverged;
+      res.reason.clear();
+      break;
+    }
+    res.status = OcpStatus::kFailed;
+    res.reason = worstFamily(res.violation) + " (tolerance " + std::to_string(config_.tolerance) +
+                 ", NLopt " + res.nlopt_status + ", " + std::to_string(res.solves) + " solves)";
+    if (res.nlopt_status == "MAXTIME_REACHED") {
+      res.reason = "time limit reached: " + res.reason;
+      break;
+    }
+    if (round >= config_.max_refinements) break;
+    // Violations between samples: add those samples. Otherwise SLSQP stopped at an infeasible
+    // point (its tolerance tests do not look at feasibility): restart from there, which resets
+    // its quasi-Newton matrix.
+    if (!check.violating_times.empty() || !check.violating_slices.empty()) {
+      nlp.addSamples(check.violating_times, check.violating_slices);
+    }
+  }
+  NlpValues values;
+  nlp.evaluate(x, false, values);
+  res.cost = values.cost;
+  return res;
+}
+
+TransitionResult TransitionOcp::solve(const TransitionRequest& request) const {
+  const Clock::time_point start = Clock::now();
+  const Clock::time_point deadline =
+      start + std::chrono::duration_cast<Clock::duration>(
+                  std::chrono::duration<double>(config_.time_limit));
+  validate(request);
+  TransitionResult res;
+  switch (request.relaxation) {
+    case RelaxationMode::kStrict:
+      res = solveMode(request, false, deadline);
+      break;
+    case RelaxationMode::kRelaxed:
+      res = solveMode(request, true, deadline);
+      break;
+    case RelaxationMode::kAuto: {
+      if (finalStateOnContacts(request)) {
+        res = solveMode(request, false, deadline);
+        if (res.status != OcpStatus::kFailed) break;
+        const TransitionResult strict = res;
+        res = solveMode(request, true, deadline);
+        res.iterations += strict.iterations;
+        res.solves += strict.solves;
+        const std::string note = "strict problem failed (" + strict.reason + ")";
+        res.reason = res.reason.empty() ? note : note + "; relaxed: " + res.reason;
+      } else {
+        res = solveMode(request, true, deadline);
+        const std::string note = "x_f is off its contacts: solved the relaxed problem";
+        res.reason = res.reason.empty() ? note : note + "; " + res.reason;
+      }
+      break;
+    }
+  }
+  res.solve_time = std::chrono::duration<double>(Clock::now() - start).count();
+  return res;
+}
+
+}  // namespace reach_trajopt

@@ -1,0 +1,161 @@
+/// \file backward_step.cpp
+/// The backward step (17)-(20) (see the header).
+
+#include "reach_trajopt/reach/backward_step.h"
+
+#include <cmath>
+
+#include "reach_trajopt/reach/sample_slice.h"
+
+namespace reach_trajopt {
+
+namespace {
+/// Rows of (19): the cone and the two torque bounds.
+int inequalityRows(const ReachContext& c) {
+  return ContactWrenchCone::kRows * c.nc + 2 * c.nu;
+}
+}  // namespace
+
+BackwardStep::BackwardStep(const ReachContext& context)
+    : ctx_(context),
+      ws_(*context.model),
+      n_(context.n),
+      nu_(context.nu),
+      m_(context.m()),
+      m_eq_(context.floating ? 6 : 0),
+      rows_(inequalityRows(context)),
+      lu_m_(context.n),
+      lu_c_(context.m()),
+      terms_(context.n),
+      factor_(context.m() > 0 ? context.m() : 1),
+      qp_(context.m() > 0 ? context.m() : 1, context.floating ? 6 : 0, inequalityRows(context)) {
+  q_prev_.resize(n_);
+  qd_j_.resize(n_);
+  b_.resize(n_);
+  qdd_.resize(n_);
+  v_.resize(n_);
+  w_.resize(n_);
+  e_.resize(m_);
+  M_.resize(n_, n_);
+  Jc_.resize(m_, n_);
+  Jphi_.resize(m_, n_);
+  MinvJt_.resize(n_, m_);
+  Lambda_.resize(m_, m_);
+  Jbar_.resize(n_, m_);
+  N_.resize(n_, n_);
+  J_.resize(6, n_);
+  A_eq_.setZero(m_eq_, m_);
+  b_eq_.resize(m_eq_);
+  A_in_.setZero(rows_, m_);
+  b_in_.resize(rows_);
+  g_.setZero(m_);
+  tau_.resize(n_);
+  d_max_.resize(n_);
+  for (int i = 0; i < n_; ++i) {
+    const bool base = ctx_.floating && i < 6;
+    d_max_[i] = ctx_.config.dt *
+                (base ? ctx_.config.backward_base_accel : ctx_.config.backward_joint_accel);
+  }
+  if (m_ > 0) factor_.compute(Eigen::MatrixXd::Identity(m_, m_));  // cost |lambda|^2 (19)
+  warm_.reserve(rows_);
+}
+
+bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
+                             const Eigen::Ref<const Eigen::VectorXd>& qd) {
+  parent_ok_ = false;
+  warm_.clear();
+  const RobotModel& model = *ctx_.model;
+  const double dt = ctx_.config.dt;
+  qd_j_ = qd;
+  backwardConfiguration(q, qd, dt, q_prev_);
+  const double tol = ctx_.config.limit_tolerance;
+  for (int i : ctx_.finite_position)
+    if (q_prev_[i] < ctx_.q_min[i] - tol || q_prev_[i] > ctx_.q_max[i] + tol) return false;
+  model.update(ws_, q_prev_, qd_j_);  // q-only quantities below (M, J, phi, poses)
+  model.massMatrix(ws_, M_);
+  lu_m_.compute(M_);
+  const double beta = ctx_.config.contact_stabilization;
+  for (int c = 0; c < ctx_.nc; ++c) {
+    const ContactConstraint& cc = ctx_.contacts[c];
+    cc.evaluate(model, ws_, terms_);
+    model.frameJacobian(ws_, cc.frame(), J_);
+    Jc_.middleRows(6 * c, 6) = J_;
+    Jphi_.middleRows(6 * c, 6) = terms_.J_phi;
+    e_.segment<6>(6 * c) = terms_.J_phi * qd_j_ - beta * terms_.phi / dt;
+    ctx_.cone.worldMatrix(model.framePose(ws_, cc.frame()).linear(), cone_world_[c]);
+  }
+  if (m_ > 0) {
+    // Jbar = M^-1 J^T (J M^-1 J^T)^-1 (dynamically consistent inverse of eq. 17).
+    MinvJt_ = lu_m_.solve(Jphi_.transpose());
+    Lambda_.noalias() = Jphi_ * MinvJt_;
+    lu_c_.compute(Lambda_);
+    const double piv = lu_c_.matrixLU().diagonal().cwiseAbs().minCoeff();
+    if (!(piv > 1e-12 * lu_c_.matrixLU().diagonal().cwiseAbs().maxCoeff())) return false;
+    Jbar_ = lu_c_.solve(MinvJt_.transpose()).transpose();  // Lambda symmetric
+    N_.setIdentity();
+    N_.noalias() -= Jbar_ * Jphi_;
+    w_.noalias() = Jbar_ * e_;
+    // Rows of (19): base rows J_b^T lambda = M_b qdd + b_b; cone; torque bounds.
+    if (m_eq_ > 0) A_eq_ = Jc_.leftCols(6).transpose();
+    int r = 0;
+    for (int c = 0; c < ctx_.nc; ++c) {
+      A_in_.block(r, 6 * c, ContactWrenchCone::kRows, 6) = cone_world_[c];
+      r += ContactWrenchCone::kRows;
+    }
+    const int off = n_ - nu_;
+    A_in_.block(r, 0, nu_, m_) = Jc_.middleCols(off, nu_).transpose();  // u <= u_max
+    A_in_.block(r + nu_, 0, nu_, m_) = -Jc_.middleCols(off, nu_).transpose();  // u >= -u_max
+  } else {
+    N_.setIdentity();
+    w_.setZero();
+  }
+  parent_ok_ = true;
+  return true;
+}
+
+bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
+                         Eigen::Ref<Eigen::VectorXd> q_prev, Eigen::Ref<Eigen::VectorXd> qd_prev,
+                         Eigen::Ref<Eigen::VectorXd> y, Eigen::Ref<Eigen::VectorXd> y_rate,
+                         Eigen::Ref<Eigen::VectorXd> u_out,
+                         Eigen::Ref<Eigen::VectorXd> lambda_out) {
+  if (!parent_ok_) return false;
+  const RobotModel& model = *ctx_.model;
+  const double dt = ctx_.config.dt;
+  v_.noalias() = N_ * d;
+  v_ += w_;
+  qd_prev = qd_j_ - v_;
+  q_prev = q_prev_;
+  if (!ctx_.withinLimits(q_prev, qd_prev)) return false;
+  model.update(ws_, q_prev_, qd_prev);
+  if (!ctx_.swingClear(ws_)) return false;
+  model.bias(ws_, b_);
+  qdd_ = v_ / dt;
+  tau_.noalias() = M_ * qdd_;
+  tau_ += b_;  // M qdd + b = S^T u + J^T lambda
+  const int off = n_ - nu_;
+  if (m_ == 0) {
+    u_out = tau_.tail(nu_);
+    for (int i = 0; i < nu_; ++i)
+      if (std::abs(u_out[i]) > ctx_.u_max[i] + ctx_.config.limit_tolerance) return false;
+  } else {
+    if (m_eq_ > 0) b_eq_ = tau_.head(6);
+    int r = ContactWrenchCone::kRows * ctx_.nc;
+    b_in_.head(r).setZero();
+    for (int i = 0; i < nu_; ++i) {
+      b_in_[r + i] = tau_[off + i] - ctx_.u_max[i];         // J_a^T l >= tau_a - u_max
+      b_in_[r + nu_ + i] = -ctx_.u_max[i] - tau_[off + i];  // -J_a^T l >= -u_max - tau_a
+    }
+    ++qp_count_;
+    const qp::QpResult& res =
+        qp_.solve(factor_, g_, A_eq_, b_eq_, A_in_, b_in_, warm_.empty() ? nullptr : &warm_);
+    if (res.status != qp::QpStatus::kOptimal) return false;
+    warm_ = res.active_set;
+    lambda_out = res.x;
+    u_out = tau_.tail(nu_);
+    u_out.noalias() -= Jc_.middleCols(off, nu_).transpose() * res.x;
+  }
+  ctx_.output(ws_, y, y_rate);
+  return true;
+}
+
+}  // namespace reach_trajopt

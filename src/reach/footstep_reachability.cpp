@@ -1,0 +1,44 @@
+/// \file footstep_reachability.cpp
+/// Kinematic feasibility, then the reachability check, of one footstep.
+
+#include "reach_trajopt/reach/footstep_reachability.h"
+
+#include "reach_trajopt/common/error.h"
+
+namespace reach_trajopt {
+
+FootstepReachability::FootstepReachability(std::shared_ptr<const ReachabilityAnalyzer> analyzer,
+                                           std::shared_ptr<const KinematicFeasibility> kinematics)
+    : analyzer_(std::move(analyzer)), kinematics_(std::move(kinematics)) {
+  if (!analyzer_ || !kinematics_) throw ReachError("FootstepReachability: null component");
+}
+
+FootstepResult FootstepReachability::check(const FootstepRequest& request) const {
+  return check(request, analyzer_->config());
+}
+
+FootstepResult FootstepReachability::check(const FootstepRequest& r,
+                                           const ReachConfig& config) const {
+  FootstepResult out;
+  out.kinematics = kinematics_->check(r.stance, r.stance_foothold, r.target, r.q0);
+  out.kinematically_feasible = out.kinematics.feasible;
+  if (!out.kinematics.feasible) {
+    out.reason = "unreachable: the foothold is kinematically infeasible (" +
+                 out.kinematics.reason + ")";
+    return out;
+  }
+  ReachProblem p;
+  p.mode = ContactMode::singleSupport(r.stance);
+  p.q0 = r.q0;
+  p.qd0 = r.qd0;
+  p.qf = out.kinematics.q_f;
+  p.qdf = r.qdf.size() ? r.qdf : Eigen::VectorXd::Zero(p.qf.size());
+  p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();
+  p.target = r.target.pose();
+  out.reach = analyzer_->check(p, config);
+  out.reachable = out.reach.reachable;
+  out.reason = out.reach.reason;
+  return out;
+}
+
+}  // namespace reach_trajopt

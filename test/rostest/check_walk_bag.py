@@ -1,0 +1,249 @@
+#!/usr/bin/python3
+"""rostest checker of walk_bag.test: waits for the walk to end, stops the recorder so the bag is
+closed, then checks the bag with two independent readers (rosbag, and the `rosbags` PyPI package
+of the project venv) and `rosbag info`:
+  - every topic of the run is present;
+  - the TF tree is complete: every link of robot_description reaches "world";
+  - every marker is in the "world" frame, footholds and CoM path are drawn;
+  - the step reports are consistent with the simulation: indices 1..N, alternating swing sides,
+    increasing touchdown times, header stamps equal to the touchdown times, touchdown_error equal
+    to |executed - planned|, the executed foothold equal to the swing sole position given by the
+    recorded TF at touchdown, and the count equal to the one of walk_result.
+Private parameters: ~bag (path), ~steps (expected steps), ~recorder (node name of rosbag record).
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+import unittest
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import rosbag
+import rosnode
+import rospy
+import rostest
+from std_msgs.msg import String
+
+PKG = "reach_trajopt"
+TOPICS = ["/clock", "/tf", "/joint_states", "/com_state", "/contact_state",
+          "/contact_wrench/l_sole", "/contact_wrench/r_sole", "/step_report", "/markers",
+          "/walk_result", "/contact_plan"]
+
+
+def quat_to_matrix(q):
+    x, y, z, w = q.x, q.y, q.z, q.w
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def to_matrix(t):
+    T = np.eye(4)
+    T[:3, :3] = quat_to_matrix(t.rotation)
+    T[:3, 3] = [t.translation.x, t.translation.y, t.translation.z]
+    return T
+
+
+def world_pose(frame, edges):
+    """Pose of `frame` in "world" by composing the parent -> child transforms in `edges`."""
+    T = np.eye(4)
+    hops = 0
+    while frame != "world":
+        parent, rel = edges[frame]
+        T = rel @ T
+        frame = parent
+        hops += 1
+        if hops > 100:
+            raise RuntimeError("TF loop")
+    return T
+
+
+ROSBAGS_SCRIPT = r"""
+import json, sys
+from pathlib import Path
+from rosbags.highlevel import AnyReader
+from rosbags.typesys import Stores, get_typestore
+out = {"counts": {}, "steps": []}
+with AnyReader([Path(sys.argv[1])], default_typestore=get_typestore(Stores.ROS1_NOETIC)) as r:
+    for c in r.connections:
+        out["counts"][c.topic] = out["counts"].get(c.topic, 0) + c.msgcount
+    cons = [c for c in r.connections if c.topic == "/step_report"]
+    for c, t, raw in r.messages(connections=cons):
+        m = r.deserialize(raw, c.msgtype)
+        out["steps"].append([int(m.index), m.swing_side, m.executed.x, m.executed.y,
+                             m.planned.x, m.planned.y, m.touchdown_time])
+print(json.dumps(out))
+"""
+
+
+class WalkBagTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("check_walk_bag", anonymous=True)
+        cls.bag_path = rospy.get_param("~bag")
+        cls.expected_steps = int(rospy.get_param("~steps", 4))
+        recorder = rospy.get_param("~recorder", "/walk_recorder")
+        # 1. The walk's end (walk_result is latched), in wall time: sim time runs in bursts.
+        result = []
+        sub = rospy.Subscriber("/walk_result", String, lambda m: result.append(m.data))
+        deadline = time.time() + 150.0
+        while not result and time.time() < deadline and not rospy.is_shutdown():
+            time.sleep(0.1)
+        sub.unregister()
+        if not result:
+            raise AssertionError("no walk_result within 150 s")
+        cls.walk_result = result[0]
+        rospy.loginfo("walk_result: %s", cls.walk_result)
+        time.sleep(1.0)  # the recorder drains its queues
+        # 2. Stop the recorder: rosbag closes the bag (".active" renamed) on shutdown.
+        rosnode.kill_nodes([recorder])
+        deadline = time.time() + 30.0
+        while time.time() < deadline:
+            if os.path.exists(cls.bag_path) and not os.path.exists(cls.bag_path + ".active"):
+                break
+            time.sleep(0.2)
+        fields = dict(kv.split("=", 1) for kv in cls.walk_result.split()[1:] if "=" in kv)
+        cls.result_steps = int(fields["steps"])
+        cls.fell = fields.get("fell") == "yes"
+        # 3. Read everything once.
+        cls.msgs = {}
+        with rosbag.Bag(cls.bag_path) as bag:
+            cls.bag_topics = set(bag.get_type_and_topic_info().topics.keys())
+            for topic, msg, _ in bag.read_messages():
+                cls.msgs.setdefault(topic, []).append(msg)
+        cls.urdf_links = [l.get("name") for l in
+                          ET.fromstring(rospy.get_param("/robot_description")).findall("link")]
+
+    def test_topics_present(self):
+        for t in TOPICS:
+            self.assertIn(t, self.bag_topics, "topic %s missing from the bag" % t)
+            self.assertGreater(len(self.msgs.get(t, [])), 0, t)
+        clock = [m.clock.to_sec() for m in self.msgs["/clock"]]
+        self.assertTrue(all(b > a for a, b in zip(clock, clock[1:])), "/clock not increasing")
+
+    def test_steps_walked(self):
+        if self.fell:
+            rospy.logwarn("the walk fell (%s): checking the plumbing only", self.walk_result)
+            self.assertTrue(any(r.fell for r in self.msgs["/step_report"]),
+                            "a fallen walk must end with a StepReport with fell = true")
+        else:
+            self.assertEqual(self.result_steps, self.expected_steps, self.walk_result)
+        touched = [r for r in self.msgs["/step_report"] if r.touched_down]
+        self.assertEqual(len(touched), self.result_steps)
+
+    def test_tf_tree_complete(self):
+        edges = {}
+        for m in self.msgs["/tf"]:
+            for t in m.transforms:
+                edges[t.child_frame_id] = t.header.frame_id
+        self.assertEqual(edges.get("pelvis"), "world")
+        for link in self.urdf_links:
+            frame, hops = link, 0
+            while frame != "world":
+                self.assertIn(frame, edges, "link %s is not connected to world" % link)
+                frame = edges[frame]
+                hops += 1
+                self.assertLess(hops, 100)
+        # Every TF message carries every link (one sendTransform per tick).
+        for m in self.msgs["/tf"]:
+            self.assertEqual(len(m.transforms), len(self.urdf_links))
+
+    def test_markers_in_world(self):
+        namespaces = set()
+        for arr in self.msgs["/markers"]:
+            for mk in arr.markers:
+                self.assertEqual(mk.header.frame_id, "world", mk.ns)
+                namespaces.add(mk.ns)
+        for ns in ("footholds_planned", "footholds_executed", "com_path", "swing_path"):
+            self.assertIn(ns, namespaces)
+        last = {mk.ns: mk for mk in self.msgs["/markers"][-1].markers}
+        touched = [r for r in self.msgs["/step_report"] if r.touched_down]
+        self.assertEqual(len(last["footholds_executed"].points), len(touched))
+        for p, r in zip(last["footholds_executed"].points, touched):
+            self.assertAlmostEqual(p.x, r.executed.x, places=9)
+            self.assertAlmostEqual(p.y, r.executed.y, places=9)
+        for p, r in zip(last["footholds_planned"].points, touched):
+            self.assertAlmostEqual(p.x, r.planned.x, places=9)
+            self.assertAlmostEqual(p.y, r.planned.y, places=9)
+
+    def test_step_reports_consistent_with_simulation(self):
+        reports = [r for r in self.msgs["/step_report"] if r.touched_down]
+        self.assertGreater(len(reports), 0)
+        tf_msgs = self.msgs["/tf"]
+        tf_times = np.array([m.transforms[0].header.stamp.to_sec() for m in tf_msgs])
+        prev_t = 0.0
+        for k, r in enumerate(reports):
+            self.assertEqual(r.index, k + 1)
+            self.assertEqual(r.header.frame_id, "world")
+            self.assertEqual(r.mode, "baseline")
+            if k > 0:
+                self.assertNotEqual(r.swing_side, reports[k - 1].swing_side)
+            self.assertGreater(r.touchdown_time, r.plan_time)
+            self.assertGreater(r.touchdown_time, prev_t)
+            prev_t = r.touchdown_time
+            self.assertAlmostEqual(r.header.stamp.to_sec(), r.touchdown_time, places=6)
+            err = math.hypot(r.executed.x - r.planned.x, r.executed.y - r.planned.y)
+            self.assertAlmostEqual(r.touchdown_error, err, places=9)
+            # The executed foothold is where the recorded TF puts the swing sole at touchdown
+            # (TF at 100 Hz: the nearest sample is at most 5 ms away; the sole has landed).
+            i = int(np.argmin(np.abs(tf_times - r.touchdown_time)))
+            self.assertLessEqual(abs(tf_times[i] - r.touchdown_time), 0.0051)
+            edges = {t.child_frame_id: (t.header.frame_id, to_matrix(t.transform))
+                     for t in tf_msgs[i].transforms}
+            sole = "l_sole" if r.swing_side == "left" else "r_sole"
+            p = world_pose(sole, edges)[:3, 3]
+            self.assertLess(np.linalg.norm(p - [r.executed.x, r.executed.y, r.executed.z]), 0.01,
+                            "step %d: executed %s vs TF %s" % (r.index, r.executed, p))
+        # The planner node's plans: one per step, alternating sides, valid modes.
+        plans = self.msgs["/contact_plan"]
+        self.assertGreaterEqual(len(plans), len(reports))
+        for plan, r in zip(plans, reports):
+            self.assertEqual(plan.header.frame_id, "world")
+            self.assertEqual(plan.foothold_sides[0], r.swing_side)
+            self.assertEqual(len(plan.modes), len(plan.durations))
+            self.assertTrue(all(d > 0 for d in plan.durations))
+
+    def test_joint_states_and_contacts(self):
+        js = self.msgs["/joint_states"][-1]
+        self.assertEqual(len(js.name), len(js.position))
+        self.assertEqual(len(js.name), len(js.effort))
+        self.assertTrue(all(math.isfinite(v) for v in js.position + js.velocity + js.effort))
+        for m in self.msgs["/contact_state"]:
+            self.assertEqual(m.header.frame_id, "world")
+            self.assertEqual(len(m.frames), 2)
+            self.assertIn(m.contact_mode, ("DS", "SS-L", "SS-R"))
+        # In double support at the end, both soles carry the weight (measured normal forces).
+        last = self.msgs["/contact_state"][-1]
+        if not self.fell and last.contact_mode == "DS":
+            fz = sum(w.force.z for w in last.measured)
+            self.assertGreater(fz, 100.0)
+
+    def test_rosbag_info(self):
+        out = subprocess.run(["rosbag", "info", self.bag_path], capture_output=True, text=True,
+                             timeout=60)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        for t in TOPICS:
+            self.assertIn(t, out.stdout)
+
+    def test_rosbags_independent_reader(self):
+        repo = os.environ.get("REACH_REPO") or os.path.abspath(
+            os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
+        python = os.path.join(repo, ".venv", "bin", "python")
+        if not os.path.exists(python):
+            self.skipTest("project venv (with rosbags) not found at %s" % python)
+        out = subprocess.run([python, "-c", ROSBAGS_SCRIPT, self.bag_path], capture_output=True,
+                             text=True, timeout=120)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        data = json.loads(out.stdout)
+        for t in TOPICS:
+            self.assertEqual(data["counts"].get(t), len(self.msgs[t]), t)
+        ours = [[int(r.index), r.swing_side, r.executed.x, r.executed.y, r.planned.x,
+                 r.planned.y, r.touchdown_time] for r in self.msgs["/step_report"]]
+        self.assertEqual(data["steps"], ours)
+
+
+if __name__ == "__main__":
+    rostest.rosrun(PKG, "walk_bag", WalkBagTest, sys.argv)

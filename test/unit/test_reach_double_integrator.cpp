@@ -1,0 +1,243 @@
+// Reachable sets of a case with a known answer: a one-joint double integrator (a slider of mass
+// m on a horizontal prismatic joint, |force| <= F, no contacts). The method propagates the
+// discrete-time system it defines (semi-implicit Euler forward, eq. 20 backward), so the exact
+// reachable set after N steps is the image of the input box [-A, A]^N (A = F / m) under a
+// linear map: a 2-D zonotope in (position, velocity). The test builds that zonotope by
+// simulating the recurrences with unit inputs (independently of the library), checks that
+// no sample lies outside it, and that the sampled position extent reaches >= 90% of the exact
+// one at t = 20, 50, 100 ms, forward and backward; also 1-vs-2-thread determinism and errors.
+#include <omp.h>
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/reach/reachability_analyzer.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+constexpr double kMass = 2.0;    // [kg]
+constexpr double kForce = 10.0;  // [N]
+constexpr double kA = kForce / kMass;
+constexpr double kDt = 1e-3;
+
+const char* kUrdf = R"(<robot name="double_integrator">
+  <link name="world"/>
+  <link name="slider">
+    <inertial><origin xyz="0 0 0"/><mass value="2.0"/>
+      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="x" type="prismatic">
+    <parent link="world"/><child link="slider"/><axis xyz="1 0 0"/>
+    <limit lower="-50" upper="50" effort="10" velocity="50"/>
+  </joint>
+</robot>)";
+
+std::shared_ptr<const RobotModel> slider() {
+  ModelOptions o;
+  o.base = ModelOptions::Base::kFixed;
+  static const auto m = RobotModel::fromUrdfString(kUrdf, o, "double_integrator");
+  return m;
+}
+
+ReachConfig diConfig() {
+  ReachConfig c;
+  c.dt = kDt;
+  c.horizon = 0.1;
+  c.window_start = 0.0;  // backward all the way to t_0
+  c.window_end = 0.1;    // forward all the way to t_f
+  c.initial_samples = 400;
+  c.children_per_parent = 6;
+  c.backward_children_per_parent = 6;
+  c.max_boundary = 24;
+  c.interior_samples = 8;
+  c.angular_bins = 8;
+  c.output_frame = "slider";
+  c.output_axes = "x";
+  c.backward_joint_accel = kA;  // draws of (17) exactly the input bound
+  c.seed = 7;
+  c.threads = 1;
+  return c;
+}
+
+ReachProblem diProblem() {
+  ReachProblem p;
+  p.mode = ContactMode{false, false};
+  p.q0 = Eigen::VectorXd::Constant(1, 0.1);
+  p.qd0 = Eigen::VectorXd::Constant(1, 0.3);
+  p.qf = Eigen::VectorXd::Constant(1, 0.2);
+  p.qdf = Eigen::VectorXd::Constant(1, -0.2);
+  return p;
+}
+
+/// The exact reachable set after N steps of a linear recurrence x+ = step(x, a), |a| <= A:
+/// centre and generators of the zonotope, found by simulating with unit inputs.
+struct Zonotope {
+  Eigen::Vector2d centre;
+  std::vector<Eigen::Vector2d> generators;
+  /// Position extent (max - min of the first coordinate).
+  double positionExtent() const {
+    double w = 0.0;
+    for (const auto& g : generators) w += 2.0 * std::abs(g.x());
+    return w;
+  }
+  /// Membership: |n . (z - c)| <= sum |n . g| for every edge normal n.
+  bool contains(const Eigen::Vector2d& z, double tol) const {
+    for (const auto& g : generators) {
+      if (g.norm() == 0.0) continue;
+      const Eigen::Vector2d n = Eigen::Vector2d(-g.y(), g.x()).normalized();
+      double h = 0.0;
+      for (const auto& h_g : generators) h += std::abs(n.dot(h_g));
+      if (std::abs(n.dot(z - centre)) > h + tol) return false;
+    }
+    return true;
+  }
+};
+
+template <class Step>
+Zonotope exactSet(Eigen::Vector2d x0, int N, Step step) {
+  Zonotope z;
+  auto run = [&](int impulse) {
+    Eigen::Vector2d x = x0;
+    for (int k = 0; k < N; ++k) x = step(x, k == impulse ? kA : 0.0);
+    return x;
+  };
+  z.centre = run(-1);
+  for (int k = 0; k < N; ++k) z.generators.push_back(run(k) - z.centre);
+  return z;
+}
+
+// Semi-implicit forward step (16) and the backward step (20) of the double integrator.
+Eigen::Vector2d forwardStep(const Eigen::Vector2d& x, double a) {
+  const double v = x.y() + kDt * a;
+  return {x.x() + kDt * v, v};
+}
+Eigen::Vector2d backwardStep(const Eigen::Vector2d& x, double a) {
+  return {x.x() - kDt * x.y(), x.y() - kDt * a};
+}
+
+}  // namespace
+
+TEST(ReachDoubleIntegrator, ForwardAndBackwardSetsAreSoundAndCover) {
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), diConfig());
+  const ReachProblem p = diProblem();
+  const ReachResult r = an.check(p);
+  for (bool forward : {true, false}) {
+    const auto& slices = forward ? r.forward : r.backward;
+    for (int ms : {20, 50, 100}) {
+      const int N = ms;  // steps from the root
+      ASSERT_LT(N, static_cast<int>(slices.size()));
+      const SampleSlice& s = slices[N];
+      ASSERT_GT(s.size(), 0);
+      const Zonotope z = forward ? exactSet({p.q0[0], p.qd0[0]}, N, forwardStep)
+                                 : exactSet({p.qf[0], p.qdf[0]}, N, backwardStep);
+      double lo = HUGE_VAL, hi = -HUGE_VAL;
+      int outside = 0;
+      for (int i = 0; i < s.size(); ++i) {
+        const Eigen::VectorXd q = an.sampleConfiguration(r, forward, N, i);
+        const Eigen::Vector2d x(q[0], s.qd(0, i));
+        EXPECT_DOUBLE_EQ(s.output(0, i), q[0]);  // output = slider position
+        if (!z.contains(x, 1e-12)) ++outside;
+        lo = std::min(lo, x.x());
+        hi = std::max(hi, x.x());
+      }
+      EXPECT_EQ(outside, 0) << (forward ? "forward" : "backward") << " t = " << ms << " ms";
+      const double exact = z.positionExtent();
+      const double t = N * kDt;
+      const double continuous = kA * t * t;  // width of the continuous-time position range
+      std::cout << (forward ? "forward " : "backward") << " t = " << ms << " ms: extent "
+                << hi - lo << " m, exact (discrete) " << exact << " m (ratio "
+                << (hi - lo) / exact << "), continuous " << continuous << " m, samples "
+                << s.size() << "\n";
+      EXPECT_GE(hi - lo, 0.9 * exact) << (forward ? "forward" : "backward") << " t = " << ms;
+      EXPECT_LE(hi - lo, exact * (1.0 + 1e-9));
+    }
+  }
+  // The recorded force of every sample satisfies eq. (1) (m qdd = u) and the bound.
+  for (bool forward : {true, false}) {
+    const auto& slices = forward ? r.forward : r.backward;
+    for (std::size_t j = 1; j < slices.size(); ++j)
+      for (int i = 0; i < slices[j].size(); ++i) {
+        const int par = slices[j].parent[i];
+        const double qdd = forward ? (slices[j].qd(0, i) - slices[j - 1].qd(0, par)) / kDt
+                                   : (slices[j - 1].qd(0, par) - slices[j].qd(0, i)) / kDt;
+        ASSERT_NEAR(kMass * qdd, slices[j].u(0, i), 1e-6);
+        ASSERT_LE(std::abs(slices[j].u(0, i)), kForce + 1e-9);
+      }
+  }
+}
+
+TEST(ReachDoubleIntegrator, VerdictAndWitness) {
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), diConfig());
+  ReachConfig c = diConfig();
+  c.horizon = 0.06;
+  c.window_start = 0.02;
+  c.window_end = 0.04;
+  ReachProblem p = diProblem();
+  // From 0.1 m at 0.3 m/s, 0.06 s later: near 0.118 m; x_f = (0.12, 0.3) is reachable.
+  p.qf[0] = 0.12;
+  p.qdf[0] = 0.3;
+  const ReachResult ok = an.check(p, c);
+  EXPECT_TRUE(ok.reachable) << ok.reason;
+  ASSERT_TRUE(ok.witness.valid);
+  EXPECT_EQ(ok.witness.q.cols(), 61 + 1);  // 0..t forward, t..t_f backward (t twice)
+  EXPECT_LT(ok.witness.violation.max(), 1e-6);
+  EXPECT_NEAR(ok.witness.q(0, 0), 0.1, 1e-15);
+  EXPECT_NEAR(ok.witness.q(0, ok.witness.q.cols() - 1), 0.12, 1e-15);
+  // 0.2 m farther: |dx| <= A t^2 / 4 ~ 4.5 mm around the coasting path: unreachable.
+  p.qf[0] = 0.32;
+  const ReachResult no = an.check(p, c);
+  EXPECT_FALSE(no.reachable) << no.reason;
+  EXPECT_NE(no.reason.find("unreachable"), std::string::npos);
+}
+
+TEST(ReachDoubleIntegrator, OneAndTwoThreadsGiveIdenticalResults) {
+  ReachConfig c = diConfig();
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
+  c.threads = 1;
+  const ReachResult a = an.check(diProblem(), c);
+  c.threads = 2;
+  const ReachResult b = an.check(diProblem(), c);
+  ASSERT_EQ(a.forward.size(), b.forward.size());
+  for (std::size_t j = 0; j < a.forward.size(); ++j) {
+    EXPECT_EQ(a.forward[j].parent, b.forward[j].parent);
+    EXPECT_TRUE(a.forward[j].qd == b.forward[j].qd);
+    EXPECT_TRUE(a.forward[j].u == b.forward[j].u);
+  }
+  for (std::size_t j = 0; j < a.backward.size(); ++j) {
+    EXPECT_EQ(a.backward[j].parent, b.backward[j].parent);
+    EXPECT_TRUE(a.backward[j].qd == b.backward[j].qd);
+  }
+  EXPECT_EQ(a.reachable, b.reachable);
+  EXPECT_EQ(a.reason, b.reason);
+}
+
+TEST(ReachDoubleIntegrator, BadInputThrows) {
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), diConfig());
+  ReachProblem p = diProblem();
+  p.qd0[0] = 60.0;  // beyond the velocity limit
+  EXPECT_THROW(an.check(p), ReachError);
+  p = diProblem();
+  p.q0[0] = std::nan("");
+  EXPECT_THROW(an.check(p), ReachError);
+  p = diProblem();
+  p.qf.resize(2);
+  EXPECT_THROW(an.check(p), ReachError);
+  ReachConfig c = diConfig();
+  c.initial_samples = 0;
+  EXPECT_THROW(an.check(diProblem(), c), ReachError);
+  c = diConfig();
+  c.window_start = 0.08;
+  c.window_end = 0.05;  // empty window
+  try {
+    an.check(diProblem(), c);
+    FAIL() << "empty window accepted";
+  } catch (const ReachError& e) {
+    EXPECT_NE(std::string(e.what()).find("empty window"), std::string::npos) << e.what();
+  }
+}

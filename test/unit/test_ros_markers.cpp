@@ -1,0 +1,132 @@
+// ROS layer, pure marker builders (no master): frames, namespaces, sizes, point counts and the
+// rejection of bad input.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ros/markers.h"
+
+using namespace reach_trajopt;
+namespace rb = reach_trajopt::ros_bridge;
+using visualization_msgs::Marker;
+
+TEST(RosMarkers, FootholdsAreSoleSizedCubesInTheWorld) {
+  const std::vector<Eigen::Vector3d> planned = {{0.1, 0.2, 0.0}, {0.3, -0.2, 0.0}};
+  const std::vector<Eigen::Vector3d> executed = {{0.11, 0.19, 0.001}};
+  const auto a = rb::footholdMarkers(planned, executed, 0.135, 0.08, ros::Time(2.0));
+  ASSERT_EQ(a.markers.size(), 2u);
+  const Marker& p = a.markers[0];
+  const Marker& e = a.markers[1];
+  EXPECT_EQ(p.ns, rb::kNsFootholdsPlanned);
+  EXPECT_EQ(e.ns, rb::kNsFootholdsExecuted);
+  for (const Marker* m : {&p, &e}) {
+    EXPECT_EQ(m->header.frame_id, "world");
+    EXPECT_EQ(m->header.stamp, ros::Time(2.0));
+    EXPECT_EQ(m->type, Marker::CUBE_LIST);
+    EXPECT_EQ(m->action, Marker::ADD);
+    EXPECT_DOUBLE_EQ(m->scale.x, 0.27);
+    EXPECT_DOUBLE_EQ(m->scale.y, 0.16);
+    EXPECT_GT(m->scale.z, 0.0);
+    EXPECT_EQ(m->pose.orientation.w, 1.0);
+    EXPECT_GT(m->color.a, 0.0f);
+  }
+  ASSERT_EQ(p.points.size(), 2u);
+  EXPECT_EQ(p.points[1].x, 0.3);
+  ASSERT_EQ(e.points.size(), 1u);
+  EXPECT_EQ(e.points[0].z, 0.001);
+  EXPECT_THROW(rb::footholdMarkers(planned, executed, 0.0, 0.08, ros::Time()), ReachError);
+  EXPECT_THROW(rb::footholdMarkers({{std::nan(""), 0, 0}}, {}, 0.1, 0.1, ros::Time()), ReachError);
+}
+
+TEST(RosMarkers, PathIsALineStrip) {
+  std::vector<Eigen::Vector3d> path;
+  for (int i = 0; i < 5; ++i) path.emplace_back(0.1 * i, 0.0, 0.9);
+  const Marker m = rb::pathMarker(path, rb::kNsComPath, 4, 0.01, {1, 0, 0, 1}, ros::Time(1.0));
+  EXPECT_EQ(m.header.frame_id, "world");
+  EXPECT_EQ(m.ns, "com_path");
+  EXPECT_EQ(m.id, 4);
+  EXPECT_EQ(m.type, Marker::LINE_STRIP);
+  EXPECT_EQ(m.scale.x, 0.01);
+  ASSERT_EQ(m.points.size(), 5u);
+  EXPECT_DOUBLE_EQ(m.points[4].x, 0.4);
+  EXPECT_THROW(rb::pathMarker(path, "p", 0, -1.0, {1, 0, 0, 1}, ros::Time()), ReachError);
+  path[2].y() = INFINITY;
+  EXPECT_THROW(rb::pathMarker(path, "p", 0, 0.01, {1, 0, 0, 1}, ros::Time()), ReachError);
+}
+
+namespace {
+reach_trajopt::ReachabilityResult makeResult(int slices) {
+  reach_trajopt::ReachabilityResult r;
+  r.header.frame_id = "world";
+  r.header.stamp = ros::Time(5.0);
+  r.verdict = "reachable";
+  for (int i = 0; i < slices; ++i) {
+    reach_trajopt::ReachabilitySlice s;
+    s.header.frame_id = "world";
+    s.header.stamp = ros::Time(5.0 + 0.001 * i);
+    s.time = 0.001 * i;
+    geometry_msgs::Point p;
+    for (int k = 0; k < 4; ++k) {
+      p.x = std::cos(k * M_PI / 2);
+      p.y = std::sin(k * M_PI / 2);
+      s.forward_outputs.push_back(p);
+      s.forward_boundary.push_back(p);
+      s.backward_boundary.push_back(p);
+    }
+    r.slices.push_back(s);
+  }
+  r.witness_forward.x = 1.0;
+  r.witness_backward.x = 1.0;
+  return r;
+}
+}  // namespace
+
+TEST(RosMarkers, ReachableSetsPerSliceWithClosedBoundaries) {
+  const auto a = rb::reachabilityMarkers(makeResult(3), 20);
+  int forward = 0, fb = 0, bb = 0, witness = 0, backward = 0;
+  for (const Marker& m : a.markers) {
+    EXPECT_EQ(m.header.frame_id, "world");
+    if (m.ns == rb::kNsForwardSet) {
+      ++forward;
+      EXPECT_EQ(m.type, Marker::POINTS);
+      EXPECT_EQ(m.points.size(), 4u);
+      EXPECT_EQ(m.header.stamp, ros::Time(5.0 + 0.001 * m.id));
+    } else if (m.ns == rb::kNsForwardBoundary || m.ns == rb::kNsBackwardBoundary) {
+      (m.ns == rb::kNsForwardBoundary ? fb : bb)++;
+      EXPECT_EQ(m.type, Marker::LINE_STRIP);
+      ASSERT_EQ(m.points.size(), 5u);  // closed: first point repeated
+      EXPECT_EQ(m.points.front().x, m.points.back().x);
+      EXPECT_EQ(m.points.front().y, m.points.back().y);
+    } else if (m.ns == rb::kNsWitness) {
+      ++witness;
+      EXPECT_EQ(m.points.size(), 2u);
+    } else if (m.ns == rb::kNsBackwardSet) {
+      ++backward;
+    }
+  }
+  EXPECT_EQ(forward, 3);
+  EXPECT_EQ(backward, 0);  // no backward samples were sent
+  EXPECT_EQ(fb, 3);
+  EXPECT_EQ(bb, 3);
+  EXPECT_EQ(witness, 1);
+}
+
+TEST(RosMarkers, ReachableSetsAreThinnedToMaxSlicesIncludingTheEnds) {
+  const auto a = rb::reachabilityMarkers(makeResult(101), 5);
+  std::vector<int> ids;
+  for (const Marker& m : a.markers)
+    if (m.ns == rb::kNsForwardSet) ids.push_back(m.id);
+  EXPECT_EQ(ids, (std::vector<int>{0, 25, 50, 75, 100}));
+  reach_trajopt::ReachabilityResult err = makeResult(0);
+  err.verdict = "error";
+  err.header.frame_id.clear();
+  EXPECT_TRUE(rb::reachabilityMarkers(err).markers.empty());
+}
+
+TEST(RosMarkers, DeleteAll) {
+  const Marker m = rb::deleteAllMarker(ros::Time(1.0));
+  EXPECT_EQ(m.action, Marker::DELETEALL);
+  EXPECT_EQ(m.header.frame_id, "world");
+}
