@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/walk/swing_trajectory.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
@@ -60,4 +61,23 @@ TEST(WalkingExperiment, ConfigErrors) {
   EXPECT_THROW(WalkingExperiment("/nonexistent.urdf", WalkConfig{}, TvrConfig{}, ContactConfig{},
                                  WbcConfig{}, SimConfig{}),
                ReachError);
+}
+
+TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
+  const YamlSection file =
+      YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  WalkConfig walk = WalkConfig::fromYaml(file.section("walk"));
+  walk.steps = 20;
+  walk.forward_speed = 0.4;
+  WalkingExperiment experiment(kUrdf, walk, TvrConfig::fromYaml(file.section("planner")),
+                               ContactConfig::fromYaml(file.section("contact")),
+                               WbcConfig::fromYaml(file.section("wbc")), SimConfig{});
+  const WalkResult r = experiment.run();
+  EXPECT_FALSE(r.fell) << r.summaryLine();
+  EXPECT_EQ(r.steps, 20) << r.summaryLine();
+  EXPECT_LT(r.max_touchdown_error, 0.02) << r.summaryLine();
+  ASSERT_FALSE(r.records.empty());
+  // It gets somewhere: the last footholds are ahead of the start by more than 0.3 m.
+  const StepRecord& last = r.records.back();
+  EXPECT_GT(std::max(last.executed.x(), r.records[r.records.size() - 2].executed.x()), 0.3);
 }

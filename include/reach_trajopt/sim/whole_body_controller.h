@@ -36,7 +36,7 @@ struct WbcConfig {
   double w_com = 100.0, kp_com = 120.0, kd_com = 22.0;  ///< CoM height (z)
   /// Horizontal CoM weight. Small: the horizontal CoM moves as the pendulum the TVR planner
   /// assumes and the footsteps stabilize it, rather than the ankles fighting the swing leg.
-  double w_com_xy = 1.0;
+  double w_com_xy = 2.0;
   double w_pelvis = 50.0, kp_pelvis = 300.0, kd_pelvis = 35.0;  ///< pelvis orientation
   double w_swing = 200.0, kp_swing = 900.0, kd_swing = 60.0;    ///< swing sole pose
   double w_posture = 0.03, kp_posture = 60.0, kd_posture = 12.0; ///< actuated joints
