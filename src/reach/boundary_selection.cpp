@@ -94,7 +94,8 @@ std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
     if (ny == 1) {
       std::vector<int> order(n);
       std::iota(order.begin(), order.end(), 0);
-      std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return yh(0, a) < yh(0, b); });
+      std::stable_sort(order.begin(), order.end(),
+                       [&](int a, int b) { return yh(0, a) < yh(0, b); });
       std::vector<int> picks = {order.front(), order.back()};
       const int extra = std::max(rule.angular_bins, 0);
       for (int k = 1; k <= extra; ++k) picks.push_back(order[(k * (n - 1)) / (extra + 1)]);

@@ -78,7 +78,6 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
   model.massMatrix(ws_, M_);
   model.bias(ws_, b_);
   // K = [M, -J^T; J_phi, 0]; right-hand side of the contact rows a_c.
-  const int k = n_ + m_;
   K_.topLeftCorner(n_, n_) = M_;
   r0_.head(n_) = -b_;
   const double beta = cfg.contact_stabilization;
@@ -123,7 +122,6 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
     A_in_.row(r++) = -P_.row(i);
     A_in_.row(r++) = P_.row(i);
   }
-  (void)k;
   parent_ok_ = true;
   return true;
 }

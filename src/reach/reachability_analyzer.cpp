@@ -419,8 +419,10 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
       const SampleSlice& F = res.forward[i];
       const SampleSlice& B = res.backward[i_t - i];
       if (F.size() > 0 && B.size() > 0) {
-        c.backward_inside_forward = OutputHull(F.output).countInside(B.output);
-        c.forward_inside_backward = OutputHull(B.output).countInside(F.output);
+        // Inside a hull up to the sampling resolution (a set touching a face, e.g. x_f's sole
+        // on the ground plane that bounds the forward set, counts as inside).
+        c.backward_inside_forward = OutputHull(F.output).countInside(B.output, c.overlap_tolerance);
+        c.forward_inside_backward = OutputHull(B.output).countInside(F.output, c.overlap_tolerance);
       }
       c.overlap = c.distance.closest <= c.overlap_tolerance || c.backward_inside_forward > 0 ||
                   c.forward_inside_backward > 0;
@@ -468,10 +470,12 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
     // Witness: x_0 -> a (forward chain), b -> x_f (backward chain).
     WitnessPath& w = res.witness;
     std::vector<std::pair<int, int>> fchain, bchain;
-    for (int s = c.forward_slice, i = c.distance.closest_a; s >= 0; i = res.forward[s].parent[i], --s)
+    for (int s = c.forward_slice, i = c.distance.closest_a; s >= 0;
+         i = res.forward[s].parent[i], --s)
       fchain.push_back({s, i});
     std::reverse(fchain.begin(), fchain.end());
-    for (int s = c.backward_slice, i = c.distance.closest_b; s >= 0; i = res.backward[s].parent[i], --s)
+    for (int s = c.backward_slice, i = c.distance.closest_b; s >= 0;
+         i = res.backward[s].parent[i], --s)
       bchain.push_back({s, i});
     const int L = static_cast<int>(fchain.size() + bchain.size());
     const int n = ctx.n;

@@ -71,7 +71,8 @@ Scenario normalStep(const ReachConfig& config) {
   const auto model = biped();
   const ContactConfig contact;
   s.analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, config);
-  s.kinematics = std::make_shared<KinematicFeasibility>(model, KinematicFeasibilityConfig(), contact);
+  s.kinematics =
+      std::make_shared<KinematicFeasibility>(model, KinematicFeasibilityConfig(), contact);
   TvrConfig tc;
   const TvrPlanner planner(tc);
   TvrInput in;

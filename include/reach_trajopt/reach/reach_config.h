@@ -70,7 +70,7 @@ struct ReachConfig {
   double backward_joint_accel = 10.0;  ///< a_max of the actuated coordinates [rad/s^2 or m/s^2]
   double backward_base_accel = 2.0;    ///< a_max of the six floating-base coordinates
   // ---- the test (14), Prop. 1-2 -------------------------------------------------------------
-  double delta = 1e-5;          ///< Prop. 2 threshold on d_H [m] (paper 1e-5), used as min(delta, K)
+  double delta = 1e-5;  ///< Prop. 2 threshold on d_H [m] (paper 1e-5), used as min(delta, K)
   /// The sets overlap at a slice when a sample of one lies inside the other's convex hull, or
   /// a forward and a backward output lie closer than min(K, overlap_gap_max): closer than the
   /// sampling resolution K of Prop. 2 (largest nearest-neighbour gap of the sparser set), but

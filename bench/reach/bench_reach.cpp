@@ -1,0 +1,106 @@
+/// \file bench_reach.cpp
+/// The paper's reachability case (Sec. IV-B): one SS-L -> DS transition of the biped, 1e4
+/// samples at the first step of each direction, dt = 1 ms. Prints wall times of the forward,
+/// backward, boundary and Hausdorff stages and of the whole check, QPs per second, the 1 -> 2
+/// thread speed-up, forward-only (the paper's earlier method: forward over the whole horizon)
+/// versus bidirectional, and the peak resident memory. Median of `repeats` runs.
+///
+///   bench_reach [repeats=3] [initial_samples=10000]
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/reach/footstep_reachability.h"
+#include "reach_trajopt/reach/swing_state.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+double peakRssMiB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
+  const int samples = argc > 2 ? std::max(1, std::atoi(argv[2])) : 10000;
+  const auto model = RobotModel::fromUrdfFile(std::string(REACH_REPO) + "/urdf/biped.urdf");
+  const ContactConfig contact;
+  ReachConfig base;  // the defaults = config/biped.yaml `reach:`
+  base.initial_samples = samples;
+  const KinematicFeasibilityConfig kfc;
+  // Left stance at (0, 0.1); the right sole 3 cm short of its target (0.25, -0.12) and 2 cm up,
+  // moving to stop there at t_f = 0.08 s.
+  FootstepRequest req;
+  req.stance = Side::kLeft;
+  req.stance_foothold.position << 0.0, 0.1, 0.0;
+  req.target.position << 0.25, -0.12, 0.0;
+  const Eigen::Vector3d p0 = req.target.position + Eigen::Vector3d(-0.03, 0.0, 0.02);
+  Eigen::VectorXd guess = Eigen::VectorXd::Zero(model->nq());
+  guess.head<3>() << 0.5 * p0.x(), 0.5 * (0.1 + p0.y()), 1.1;
+  for (const std::string s : {"l_", "r_"}) {
+    guess[model->jointIndex(s + "hip_pitch")] = -0.4;
+    guess[model->jointIndex(s + "knee")] = 0.8;
+    guess[model->jointIndex(s + "ankle_pitch")] = -0.4;
+  }
+  const RobotState x0 = swingState(model, kfc, contact, Side::kLeft, req.stance_foothold, p0, 0.0,
+                                   2.0 * (req.target.position - p0) / base.horizon, guess);
+  req.q0 = x0.q;
+  req.qd0 = x0.qd;
+  const auto analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, base);
+  const FootstepReachability check(analyzer,
+                                   std::make_shared<KinematicFeasibility>(model, kfc, contact));
+
+  struct Case {
+    const char* name;
+    int threads;
+    bool bidirectional;
+  };
+  const Case cases[] = {{"bidirectional", 1, true}, {"bidirectional", 2, true},
+                        {"forward_only", 1, false}, {"forward_only", 2, false}};
+  double total_1 = 0.0;
+  for (const Case& c : cases) {
+    ReachConfig cfg = base;
+    cfg.threads = c.threads;
+    if (!c.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
+    std::vector<double> tot, fw, bw, bd, hd;
+    FootstepResult r;
+    for (int k = 0; k < repeats; ++k) {
+      r = check.check(req, cfg);
+      const ReachTimings& t = r.reach.timings;
+      tot.push_back(t.total);
+      fw.push_back(t.forward);
+      bw.push_back(t.backward);
+      bd.push_back(t.boundary);
+      hd.push_back(t.hausdorff);
+    }
+    const ReachCounts& n = r.reach.counts;
+    const long qps = n.forward_qps + n.backward_qps;
+    const double total = median(tot);
+    if (c.bidirectional && c.threads == 1) total_1 = total;
+    std::printf(
+        "BENCH reach.check mode=%s ours_s=%.4f forward_s=%.4f backward_s=%.4f boundary_s=%.4f "
+        "hausdorff_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld reachable=%d "
+        "peak_rss_mib=%.1f\n",
+        c.name, total, median(fw), median(bw), median(bd), median(hd), samples, c.threads, qps,
+        qps / (median(fw) + median(bw)), n.forward_samples + n.backward_samples,
+        r.reachable ? 1 : 0, peakRssMiB());
+    if (c.bidirectional && c.threads == 2 && total_1 > 0.0)
+      std::printf("BENCH reach.speedup threads=2 ratio=%.2f\n", total_1 / total);
+  }
+  return 0;
+}
