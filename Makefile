@@ -17,4 +17,4 @@ bench: build
 	bash scripts/bench
 
 clean:
-	rm -rf build_ws
+	rm -rf .build_ws build_ws

@@ -14,6 +14,7 @@
 /// (baseline|proposed), ~steps, ~seed, ~forward_speed [m/s], ~push_vx, ~push_vy [m/s],
 /// ~publish_period [s of sim time, 0.01], ~clock_period [s, 0.001], ~marker_period [s, 0.1],
 /// ~wait_for_subscribers (N: wait until every topic has N subscribers, e.g. a recorder; 0),
+/// ~wait_for_com_subscribers (N: wait until com_state has N subscribers, e.g. + the planner),
 /// ~wait_timeout [s wall, 20], ~real_time_factor (0: as fast as possible), ~linger [s wall, 1],
 /// ~exit_when_done (true: exit ~linger seconds after the walk ends, so a launch with
 /// required="true" ends with it; false: stay up, walk_result stays available, until shutdown).
@@ -115,6 +116,7 @@ int main(int argc, char** argv) {
     const double clock_period = param(pnh, "clock_period", 0.001);
     const double marker_period = param(pnh, "marker_period", 0.1);
     const int wait_for_subscribers = param(pnh, "wait_for_subscribers", 0);
+    const int wait_for_com_subscribers = param(pnh, "wait_for_com_subscribers", 0);
     const double wait_timeout = param(pnh, "wait_timeout", 20.0);
     const double real_time_factor = param(pnh, "real_time_factor", 0.0);
     const double linger = param(pnh, "linger", 1.0);
@@ -145,7 +147,7 @@ int main(int argc, char** argv) {
     ros::Publisher result_pub = nh.advertise<std_msgs::String>("walk_result", 1, true);
     tf2_ros::TransformBroadcaster tf_broadcaster;
 
-    if (wait_for_subscribers > 0) {
+    if (wait_for_subscribers > 0 || wait_for_com_subscribers > 0) {
       const std::vector<ros::Publisher*> pubs = {&clock_pub,   &joint_pub,     &com_pub,
                                                  &contact_pub, &wrench_pub[0], &wrench_pub[1],
                                                  &step_pub,    &marker_pub,    &result_pub};
@@ -153,12 +155,11 @@ int main(int argc, char** argv) {
       auto ready = [&]() {
         for (const ros::Publisher* p : pubs)
           if (static_cast<int>(p->getNumSubscribers()) < wait_for_subscribers) return false;
-        return true;
+        return static_cast<int>(com_pub.getNumSubscribers()) >= wait_for_com_subscribers;
       };
       while (ros::ok() && !ready() && ros::WallTime::now() < deadline)
         ros::WallDuration(0.05).sleep();
-      if (!ready()) ROS_WARN("sim_node: starting without %d subscriber(s) on every topic",
-                             wait_for_subscribers);
+      if (!ready()) ROS_WARN("sim_node: starting before every subscriber connected");
       ros::WallDuration(0.5).sleep();  // let /tf's subscribers connect as well
     }
     ROS_INFO("sim_node: %s walk of %d steps, seed %u, robot '%s'",

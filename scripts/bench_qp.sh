@@ -2,7 +2,7 @@
 # Builds bench/qp (the bundled QP against eiquadprog's C++ from the venv wheel, in its own CMake
 # project so the product never links eiquadprog) and prints its BENCH lines.
 #   scripts/bench_qp.sh [scale]   scale multiplies the number of problems (default 1)
-# Build directory: $REACH_WS/bench_qp (REACH_WS defaults to build_ws, as in scripts/env.sh).
+# Build directory: $REACH_WS/bench_qp (REACH_WS defaults to .build_ws, as in scripts/env.sh).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 prefix="$VENV/lib/python3.11/site-packages/cmeel.prefix"

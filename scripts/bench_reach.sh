@@ -2,7 +2,7 @@
 # Builds bench/reach against the core library of the catkin workspace (run scripts/build first)
 # and prints its BENCH lines: the paper's reachability case (1e4 samples at the first step).
 #   scripts/bench_reach.sh [repeats] [initial_samples]
-# Build directory: $REACH_WS/bench_reach (REACH_WS defaults to build_ws, as in scripts/env.sh).
+# Build directory: $REACH_WS/bench_reach (REACH_WS defaults to .build_ws, as in scripts/env.sh).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 if [ ! -e "$WS/devel/lib/libreach_trajopt_core.so" ]; then

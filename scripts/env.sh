@@ -1,7 +1,7 @@
 # Sourced by the scripts: Debian's Python and ROS tools first on PATH (a pyenv python3 may
 # shadow them), the catkin workspace's paths, and where things are.
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-WS="${REACH_WS:-$REPO/build_ws}"  # REACH_WS: another workspace, e.g. for a parallel build
+WS="${REACH_WS:-$REPO/.build_ws}"  # REACH_WS: another workspace, e.g. for a parallel build
 VENV="$REPO/.venv"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
 export ROS_HOME="${ROS_HOME:-$WS/ros_home}"

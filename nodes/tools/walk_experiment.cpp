@@ -59,14 +59,24 @@ int main(int argc, char** argv) {
                                                   std::stod(push.substr(comma + 1)));
     }
     walk.validate();
-    WalkingExperiment experiment(urdf, walk, tvr, contact, wbc, sim);
+    ProposedStepConfig proposed;
+    if (file.has("kinematic_feasibility"))
+      proposed.kinematics =
+          KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));
+    if (file.has("reach")) proposed.reach = ReachConfig::fromYaml(file.section("reach"));
+    if (file.has("ocp")) proposed.ocp = TransitionOcpConfig::fromYaml(file.section("ocp"));
+    WalkingExperiment experiment(urdf, walk, tvr, contact, wbc, sim, &proposed);
     const WalkResult r = experiment.run({}, [](const StepRecord& s) {
       std::printf("step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
-                  "executed=(%.3f, %.3f) err=%.4f m\n",
+                  "executed=(%.3f, %.3f) err=%.4f m verdict=%s d_H=%.4g check_s=%.3f "
+                  "ocp_s=%.3f ocp=%s%s%s\n",
                   s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(),
                   s.planned_tvr.y(), s.planned.x(), s.planned.y(),
                   s.offset_clipped ? " clipped" : "", s.executed.x(), s.executed.y(),
-                  s.touchdown_error);
+                  s.touchdown_error, s.verdict.c_str(), s.hausdorff_distance, s.check_time_s,
+                  s.ocp_time_s, s.ocp_status.c_str(), s.reason.empty() ? "" : " reason: ",
+                  s.reason.c_str());
+      std::fflush(stdout);
     });
     if (!records_path.empty()) {
       std::ofstream out(records_path);

@@ -52,6 +52,7 @@ void TransitionOcpConfig::validate() const {
   if (max_evaluations < 1) throw ReachError("TransitionOcpConfig: max_evaluations must be >= 1");
   requirePositive("time_limit", time_limit);
   requirePositive("ftol_rel", ftol_rel);
+  requirePositive("relaxed_ftol_rel", relaxed_ftol_rel);
   requirePositive("xtol_rel", xtol_rel);
   requirePositive("fd_step", fd_step);
   requireNonNegative("fit_regularization", fit_regularization);
@@ -61,7 +62,7 @@ TransitionOcpConfig TransitionOcpConfig::fromYaml(const YamlSection& s) {
   s.requireOnlyKeys({"segments", "check_interval", "output_dt", "w_torque", "w_wrench",
                      "w_position", "w_velocity", "w_eps", "terminal_pelvis_height", "cone_margin", "torque_margin",
                      "ground_clearance", "tolerance", "input_tolerance", "max_refinements",
-                     "max_evaluations", "time_limit", "ftol_rel", "xtol_rel", "fd_step",
+                     "max_evaluations", "time_limit", "ftol_rel", "relaxed_ftol_rel", "xtol_rel", "fd_step",
                      "central_differences", "fit_regularization"});
   TransitionOcpConfig c;
   s.read("segments", c.segments);
@@ -82,6 +83,7 @@ TransitionOcpConfig TransitionOcpConfig::fromYaml(const YamlSection& s) {
   s.read("max_evaluations", c.max_evaluations);
   s.read("time_limit", c.time_limit);
   s.read("ftol_rel", c.ftol_rel);
+  s.read("relaxed_ftol_rel", c.relaxed_ftol_rel);
   s.read("xtol_rel", c.xtol_rel);
   s.read("fd_step", c.fd_step);
   s.read("central_differences", c.central_differences);

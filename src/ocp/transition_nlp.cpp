@@ -114,6 +114,7 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
 
   input_.resize(dyn_->inputCount());
   signals_.resize(dyn_->signalCount());
+  u_scaled_.resize(nu_);
   jin_.resize(dyn_->signalCount(), dyn_->inputCount());
   jloc_.resize(dyn_->signalCount(), 4 * nu_ + 6);
 }
@@ -319,7 +320,8 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
     const auto qd = signals_.segment(d.qdOffset(), nq_);
 
     // ---- cost (22), scaled ---------------------------------------------------------------
-    const Eigen::VectorXd us = u.cwiseProduct(u_max_inv_);
+    u_scaled_ = u.cwiseProduct(u_max_inv_);
+    const Eigen::VectorXd& us = u_scaled_;
     const double c_u = config_.w_torque * us.squaredNorm();
     const double c_l = config_.w_wrench * lam.squaredNorm() / (W * W);
     const double c_q = config_.w_position * (q - qf).squaredNorm();
@@ -402,25 +404,30 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
 
     // ---- equalities: new-mode contact at t_f ------------------------------------------------
     int erow = 0;
-    auto addEquality = [&](int signal_offset) {
-      out.equality.segment<6>(erow) = signals_.segment<6>(signal_offset);
+    // Rows scaled to metres by the knot spacing h (phidot h, phiddot h^2): a control point
+    // moves q by O(1), qd by O(1/h) and qdd by O(1/h^2), so unscaled acceleration rows would be
+    // ~100x more sensitive than the others and SLSQP would stall short of feasibility on them.
+    const double h = basis_.knotSpacing();
+    auto addEquality = [&](int signal_offset, double scale) {
+      out.equality.segment<6>(erow) = scale * signals_.segment<6>(signal_offset);
       if (gradients) {
         for (int r = 0; r < 6; ++r) {
-          scatter(out.equality_jacobian.row(erow + r), jloc_.row(signal_offset + r), true);
+          grow = scale * jloc_.row(signal_offset + r);
+          scatter(out.equality_jacobian.row(erow + r), grow, true);
         }
       }
       erow += 6;
     };
     if (relaxed_) {
-      addEquality(d.phi2Offset());
+      addEquality(d.phi2Offset(), 1.0);
       out.equality.head<2>() -= x.segment<2>(eps_index_);
       if (gradients) {
         out.equality_jacobian(0, eps_index_) -= 1.0;
         out.equality_jacobian(1, eps_index_ + 1) -= 1.0;
       }
-      addEquality(d.phidot2Offset());
+      addEquality(d.phidot2Offset(), h);
     }
-    addEquality(d.phiddot2Offset());
+    addEquality(d.phiddot2Offset(), h * h);
     if (pelvis_posture_) {  // base z, pitch, roll at t_f
       const int rows[3] = {2, 4, 5};
       for (int r : rows) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -118,7 +119,7 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, doub
                                std::vector<double>(nlp.equalityCount(), 1e-10));
   opt.add_inequality_mconstraint(&NloptBridge::inequality, &bridge,
                                  std::vector<double>(nlp.inequalityCount(), 1e-10));
-  opt.set_ftol_rel(config.ftol_rel);
+  opt.set_ftol_rel(nlp.relaxed() ? config.relaxed_ftol_rel : config.ftol_rel);
   opt.set_xtol_rel(config.xtol_rel);
   opt.set_maxeval(config.max_evaluations);
   opt.set_maxtime(max_time);
@@ -301,6 +302,7 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
   Eigen::VectorXd x = nlp.initialGuess();
   TransitionResult res;
   std::string error;
+  double previous = std::numeric_limits<double>::infinity();
   for (int round = 0;; ++round) {
     const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
     if (remaining <= 0.0) {
@@ -317,7 +319,6 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     const TransitionCheck check =
         checkTransition(*model_, contact_, request, res, 0.5 * config_.tolerance);
     res.violation = check.violation;
-    if (getenv("OCP_DEBUG")) fprintf(stderr, "round %d nlopt %s evals %d max viol %g %s times %zu slices %zu\n", round, res.nlopt_status.c_str(), res.iterations, res.violation.max(), worstFamily(res.violation).c_str(), check.violating_times.size(), check.violating_slices.size()); if (getenv("OCP_DEBUG")) for (double t : check.violating_times) fprintf(stderr, "  t=%g\n", t);
     if (!error.empty()) {
       res.status = OcpStatus::kFailed;
       res.reason = "NLP evaluation failed: " + error;
@@ -341,7 +342,10 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     // its quasi-Newton matrix.
     if (!check.violating_times.empty() || !check.violating_slices.empty()) {
       nlp.addSamples(check.violating_times, check.violating_slices);
+    } else if (res.violation.max() > 0.5 * previous) {
+      break;  // a restart that did not halve the violation: give up
     }
+    previous = res.violation.max();
   }
   NlpValues values;
   nlp.evaluate(x, false, values);

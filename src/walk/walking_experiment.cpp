@@ -107,6 +107,7 @@ std::string WalkResult::summaryLine() const {
 // ---- The loop ---------------------------------------------------------------------------------
 
 struct WalkingExperiment::Impl {
+  std::unique_ptr<ProposedStepPlanner> proposed;
   WalkConfig walk;
   TvrConfig tvr_config;
   ContactConfig contact;
@@ -117,17 +118,22 @@ struct WalkingExperiment::Impl {
 
 WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk,
                                      const TvrConfig& tvr, const ContactConfig& contact,
-                                     const WbcConfig& wbc, const SimConfig& sim)
+                                     const WbcConfig& wbc, const SimConfig& sim,
+                                     const ProposedStepConfig* proposed)
     : model_(RobotModel::fromUrdfFile(urdf_path)), impl_(std::make_unique<Impl>()) {
   walk.validate();
   tvr.validate();
   contact.validate();
   wbc.validate();
   sim.validate();
-  if (walk.mode == WalkConfig::Mode::kProposed)
-    throw ReachError(
-        "walk mode 'proposed' needs the reachability check and the transition OCP, which this "
-        "build does not have yet; run mode 'baseline'");
+  if (walk.mode == WalkConfig::Mode::kProposed) {
+    const ProposedStepConfig defaults;
+    const ProposedStepConfig& c = proposed ? *proposed : defaults;
+    impl_->proposed =
+        std::make_unique<ProposedStepPlanner>(model_, contact, c.kinematics, c.reach, c.ocp);
+    if (impl_->proposed->horizon() >= walk.single_support_duration)
+      throw ReachError("walk: the reachability horizon must be shorter than the swing");
+  }
   impl_->walk = walk;
   impl_->tvr_config = tvr;
   impl_->contact = contact;
@@ -207,6 +213,12 @@ WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on
   Eigen::Vector2d feet_mid = Eigen::Vector2d::Zero();
   std::unique_ptr<SwingTrajectory> swing_traj;
   StepRecord current;
+  // Proposed mode: the OCP trajectory being tracked (empty when none) and when it started.
+  bool checked = false;
+  TransitionResult tracked;
+  double tracked_start = 0.0;
+  Workspace ws_traj(m);
+  Matrix6Xd J_traj(6, m.nq());
 
   WalkResult result;
   result.mode = wc.mode;
@@ -257,6 +269,8 @@ WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on
                                                    wc.swing_height, wc.touchdown_depth);
     com_ref = current.com_at_plan;
     pivot_from = pivot_to = current.stance;
+    checked = false;
+    tracked = TransitionResult();
   };
 
   const int max_ticks = static_cast<int>(std::ceil(wc.max_sim_time / dt));
@@ -284,6 +298,36 @@ WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on
       if (ts < wc.replan_fraction * wc.single_support_duration) {
         planStep(t, com, vcom, ts);
         swing_traj->retarget(target3());
+      }
+      if (impl_->proposed && !checked &&
+          ts >= wc.single_support_duration - impl_->proposed->horizon()) {
+        // The simulation waits (in sim time) for the check and the OCP.
+        checked = true;
+        const Side stance = opposite(swing);
+        try {
+          const ProposedStep step = impl_->proposed->plan(
+              stance, m.framePose(ws, sole[static_cast<int>(stance)]), target3(), q, qd);
+          current.verdict = step.verdict;
+          current.hausdorff_distance = step.hausdorff_distance;
+          current.check_time_s = step.check_time_s;
+          current.ocp_time_s = step.ocp_time_s;
+          current.ocp_status = ocpStatusName(step.trajectory.status);
+          current.reason = step.reason;
+          current.planned = xy(step.foothold);
+          if (step.usable()) {
+            tracked = step.trajectory;
+            tracked_start = t;
+          } else {
+            swing_traj->retarget(
+                Eigen::Vector3d(step.foothold.x(), step.foothold.y(), ground_z));
+          }
+        } catch (const ReachError& e) {
+          // The measured state is outside what the check accepts (e.g. a joint beyond its
+          // velocity limit while the robot is already falling): the step goes on unchecked.
+          current.verdict = "check_error";
+          current.reason = e.what();
+        }
+        m.update(ws, q, qd);  // plan() used its own workspace; keep ours current
       }
       const SoleContact& sc = world->soleContacts()[static_cast<int>(swing)];
       if (ts > 0.5 * wc.single_support_duration && sc.in_contact &&
@@ -335,7 +379,34 @@ WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on
     }
     ref.com_position = Eigen::Vector3d(com_ref.p.x(), com_ref.p.y(), com0.z());
     ref.com_velocity = Eigen::Vector3d(com_ref.pd.x(), com_ref.pd.y(), 0.0);
-    if (phase == Phase::kSingle) {
+    ref.q_ff.resize(0);
+    ref.qd_ff.resize(0);
+    ref.qdd_ff.resize(0);
+    if (phase == Phase::kSingle && tracked.time.size() > 0) {
+      // Track the OCP trajectory: swing sole from its configurations, joints as feed-forward.
+      const int last = static_cast<int>(tracked.time.size()) - 1;
+      const double tt = t - tracked_start;
+      const int k = std::min(last, static_cast<int>(std::lround(tt / tracked.dt)));
+      m.update(ws_traj, tracked.q.col(k), tracked.qd.col(k));
+      const FrameId id = sole[static_cast<int>(swing)];
+      m.frameJacobian(ws_traj, id, J_traj);
+      const Eigen::Isometry3d T = m.framePose(ws_traj, id);
+      ref.swing_position = T.translation();
+      ref.swing_rotation = T.linear();
+      ref.swing_velocity = (J_traj * tracked.qd.col(k)).head<3>();
+      ref.swing_acceleration =
+          (J_traj * tracked.qdd.col(k) + m.frameJdotQd(ws_traj, id)).head<3>();
+      if (tt > tracked.time[last]) {
+        // Past the horizon without touchdown: keep descending slowly.
+        ref.swing_position.z() -= 0.2 * (tt - tracked.time[last]);
+        ref.swing_velocity = Eigen::Vector3d(0, 0, -0.2);
+        ref.swing_acceleration.setZero();
+      } else {
+        ref.q_ff = tracked.q.col(k);
+        ref.qd_ff = tracked.qd.col(k);
+        ref.qdd_ff = tracked.qdd.col(k);
+      }
+    } else if (phase == Phase::kSingle) {
       const SwingSample sw = swing_traj->sample(t - phase_start);
       ref.swing_position = sw.position;
       ref.swing_velocity = sw.velocity;

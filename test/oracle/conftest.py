@@ -3,7 +3,7 @@
 Where things are:
   REACH_REPO  repository root (default: two levels above this file)
   REACH_BIN   directory of the built executables (default: $REACH_WS/devel/lib/reach_trajopt,
-              REACH_WS defaulting to <repo>/build_ws, as in scripts/env.sh)
+              REACH_WS defaulting to <repo>/.build_ws, as in scripts/env.sh)
   reference robots: the example-robot-data wheel installed in the running interpreter's
               site-packages (cmeel.prefix/share/example-robot-data/robots/).
 
@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 
 REPO = Path(os.environ.get("REACH_REPO", Path(__file__).resolve().parents[2])).resolve()
-_WS = Path(os.environ.get("REACH_WS", REPO / "build_ws"))
+_WS = Path(os.environ.get("REACH_WS", REPO / ".build_ws"))
 BIN = Path(os.environ.get("REACH_BIN", _WS / "devel" / "lib" / "reach_trajopt"))
 SITE_PACKAGES = Path(sysconfig.get_paths()["purelib"])
 CMEEL_PREFIX = SITE_PACKAGES / "cmeel.prefix"

@@ -81,3 +81,34 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
   const StepRecord& last = r.records.back();
   EXPECT_GT(std::max(last.executed.x(), r.records[r.records.size() - 2].executed.x()), 0.3);
 }
+
+TEST(WalkingExperiment, ProposedModeChecksEveryStep) {
+  // The proposed pipeline end to end on the shipped configuration: every step is checked
+  // (kinematics, then reachability) before touchdown, and the robot keeps walking in place.
+  const YamlSection file =
+      YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  WalkConfig walk = WalkConfig::fromYaml(file.section("walk"));
+  walk.mode = WalkConfig::Mode::kProposed;
+  walk.steps = 4;
+  ProposedStepConfig proposed;
+  proposed.kinematics =
+      KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));
+  proposed.reach = ReachConfig::fromYaml(file.section("reach"));
+  proposed.reach.initial_samples = 2000;  // a quicker check than the paper's 1e4
+  proposed.ocp = TransitionOcpConfig::fromYaml(file.section("ocp"));
+  WalkingExperiment experiment(kUrdf, walk, TvrConfig::fromYaml(file.section("planner")),
+                               ContactConfig::fromYaml(file.section("contact")),
+                               WbcConfig::fromYaml(file.section("wbc")), SimConfig{}, &proposed);
+  const WalkResult r = experiment.run();
+  EXPECT_FALSE(r.fell) << r.summaryLine();
+  ASSERT_EQ(r.steps, 4) << r.summaryLine();
+  for (const StepRecord& s : r.records) {
+    EXPECT_TRUE(s.verdict == "reachable" || s.verdict == "unreachable" ||
+                s.verdict == "kinematically_infeasible")
+        << s.verdict << ": " << s.reason;
+    EXPECT_TRUE(s.ocp_status == "converged" || s.ocp_status == "relaxed" ||
+                s.ocp_status == "failed");
+    if (s.verdict != "kinematically_infeasible") EXPECT_GT(s.check_time_s, 0.0);
+    EXPECT_LT(s.touchdown_error, 0.03) << "step " << s.index;
+  }
+}

@@ -32,7 +32,7 @@ struct TransitionOcpConfig {
   double w_wrench = 0.1;            ///< weight of |lambda / (m g)|^2
   double w_position = 0.1;          ///< weight of |q - q_f|^2 [1/rad^2, 1/m^2]
   double w_velocity = 0.001;        ///< weight of |qd - qd_f|^2 [s^2/rad^2]
-  double w_eps = 1.0e4;             ///< weight of |eps|^2 in the relaxed problem [1/m^2]
+  double w_eps = 1.0e3;             ///< weight of |eps|^2 in the relaxed problem [1/m^2]
   /// Relaxed problem only: at t_f the floating base (the URDF root, the pelvis) stands upright
   /// (roll = pitch = 0) at this height above the mean sole height [m], the posture of the
   /// kinematic feasibility check (Sec. III-B), so the landing configuration is an IK solution
@@ -46,7 +46,10 @@ struct TransitionOcpConfig {
   int max_refinements = 3;          ///< re-solves (violating samples added, or a restart)
   int max_evaluations = 400;        ///< NLopt maxeval per solve
   double time_limit = 10.0;         ///< wall-clock limit for the whole request [s]
-  double ftol_rel = 1.0e-6;         ///< NLopt relative cost tolerance
+  double ftol_rel = 1.0e-6;         ///< NLopt relative cost tolerance (strict problem)
+  /// Relaxed problem: its cost is dominated by w_eps |eps|^2, so a relative cost test would stop
+  /// SLSQP before the equalities converge; it uses this tighter value and stops on xtol_rel.
+  double relaxed_ftol_rel = 1.0e-14;
   double xtol_rel = 1.0e-7;         ///< NLopt relative variable tolerance
   double fd_step = 1.0e-6;          ///< finite-difference step in q [rad, m]
   bool central_differences = false;  ///< see file comment

@@ -27,7 +27,9 @@
 ///     phi_2 - [eps; 0 0 0 0] = 0, phidot_2 = 0, phiddot_2 = 0 (18 rows), and, unless disabled,
 ///     the base upright at the nominal height (3 rows: TransitionOcpConfig::
 ///     terminal_pelvis_height), so the landing is a kinematically feasible stance (Sec. III-B).
-/// Variables: 12 (N - 1) + 6 (strict) or 12 (N + 1) + 8 (relaxed); N = 6 segments gives 66 / 92.
+///     The phidot_2 and phiddot_2 rows are multiplied by h and h^2 (h the knot spacing) so all
+///     equality rows are in metres and equally sensitive to the control points.
+/// Variables: 12 (N - 1) + 6 (strict) or 12 (N + 1) + 8 (relaxed); N = 4 segments gives 42 / 68.
 ///
 /// Gradients: per sample, the signals' Jacobian with respect to (q_a, qd_a, qdd_a, lambda_2)
 /// (stance_reduced_dynamics.h: analytic / exact / finite differences) chained with the spline
@@ -150,7 +152,7 @@ class TransitionNlp {
   std::vector<Eigen::VectorXd> slice_b_;
   int inequality_count_ = 0;
   // Scratch for evaluate().
-  Eigen::VectorXd input_, signals_;
+  Eigen::VectorXd input_, signals_, u_scaled_;
   Eigen::MatrixXd jin_, jloc_;
 };
 

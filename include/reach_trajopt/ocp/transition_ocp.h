@@ -9,9 +9,12 @@
 /// The transcription (joint B-splines, exact stance contact, torques and stance wrenches by
 /// inverse dynamics) is explained in transition_nlp.h.
 ///
-/// Relaxation for an unreachable foothold (Sec. III-D): x(t_f) = x_f is dropped and the new
-/// contact becomes phi_2 - eps = 0 with eps = [eps_x, eps_y, 0, 0, 0, 0] and cost w_eps |eps|^2:
-/// the swing sole lands at the closest reachable point, and the result is flagged relaxed.
+/// Relaxation for an unreachable foothold (DESIGN.md Sec. 3): x(t_f) = x_f is dropped and the
+/// new contact becomes phi_2 - eps = 0 with eps = [eps_x, eps_y, 0, 0, 0, 0] and cost
+/// w_eps |eps|^2: the swing sole lands at the closest point allowed by the dynamics, the limits
+/// and the reachable-set hulls, and the result is flagged relaxed. By default the landing also
+/// keeps the Sec. III-B posture (base upright at terminal_pelvis_height), so it is a
+/// kinematically feasible stance; without that the robot may crouch to reach farther.
 ///
 /// Procedure: validate the request; warm start by the SPQR fit of the seed path; SLSQP; sample
 /// the result at output_dt and re-check every constraint family with the full model

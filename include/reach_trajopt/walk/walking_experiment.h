@@ -5,6 +5,9 @@
 /// contact from the simulated CoM state (predicted to touchdown with the LIPM, eq. 9-10); the
 /// swing sole is taken there and the whole-body controller tracks the LIPM CoM reference about
 /// the stance sole. Baseline mode: heuristic bounds on, interpolated swing trajectory.
+/// Proposed mode: bounds off; `ProposedStepPlanner::horizon()` before the nominal touchdown the
+/// foothold is checked from the measured state and the OCP's trajectory (relaxed to the closest
+/// reachable foothold when unreachable) is tracked to touchdown with its feed-forward.
 /// A run ends after the requested number of steps, or at a fall (pelvis below a height, or a
 /// link other than the feet touching the ground), with a per-step record.
 
@@ -21,6 +24,7 @@
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/sim/sim_config.h"
 #include "reach_trajopt/sim/whole_body_controller.h"
+#include "reach_trajopt/walk/proposed_step.h"
 
 namespace reach_trajopt {
 
@@ -74,6 +78,8 @@ struct StepRecord {
   double hausdorff_distance = -1.0;   ///< [m], -1 when not computed
   double check_time_s = 0.0;          ///< reachability check wall time
   double ocp_time_s = 0.0;            ///< OCP wall time
+  std::string ocp_status = "none";    ///< "converged", "relaxed", "failed" (proposed mode)
+  std::string reason;                 ///< the check's and the OCP's explanations
 };
 
 /// What the loop sees at one control tick (for recorders and the ROS layer).
@@ -104,12 +110,22 @@ struct WalkResult {
   std::string summaryLine() const;
 };
 
+/// Configurations of the proposed mode's per-step pipeline (proposed_step.h).
+struct ProposedStepConfig {
+  KinematicFeasibilityConfig kinematics;
+  ReachConfig reach;
+  TransitionOcpConfig ocp;
+};
+
 /// @brief The walking experiment of Sec. IV: Bullet world + whole-body controller + TVR.
 class WalkingExperiment {
  public:
   /// \throws ReachError on invalid configs or a URDF the simulator cannot load.
+  /// `proposed` configures the reachability check and the OCP; used in the proposed mode
+  /// (defaults when null).
   WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk, const TvrConfig& tvr,
-                    const ContactConfig& contact, const WbcConfig& wbc, const SimConfig& sim);
+                    const ContactConfig& contact, const WbcConfig& wbc, const SimConfig& sim,
+                    const ProposedStepConfig* proposed = nullptr);
   ~WalkingExperiment();
 
   /// Runs one walk from the standing pose. `on_tick` (optional) is called after every

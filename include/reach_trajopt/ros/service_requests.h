@@ -1,0 +1,80 @@
+#pragma once
+/// \file service_requests.h
+/// Pure helpers of the check_reachability and plan_transition services (no node, no master):
+/// validation of a foothold request with a reason for every rejection (non-finite numbers,
+/// wrong sizes, an unknown frame, an empty contact set, a foothold in the air), and the
+/// conversion of the engines' results (ReachResult, TransitionResult) to messages.
+/// Frames (REP 103): every position is in "world"; units SI.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <geometry_msgs/Point.h>
+#include <ros/time.h>
+
+#include "reach_trajopt/ReachabilityResult.h"
+#include "reach_trajopt/TransitionTrajectory.h"
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ocp/transition_result.h"
+#include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/reach/reachability_analyzer.h"
+
+namespace reach_trajopt {
+namespace ros_bridge {
+
+/// A validated request: the robot in single support on `stance` at x_0 = (q, qd), the swing
+/// sole to land flat at `target` after `duration` seconds.
+struct FootholdRequest {
+  Side stance = Side::kLeft;
+  Eigen::VectorXd q, qd;       ///< x_0, size n_q each [m, rad; m/s, rad/s]
+  FlatContact stance_contact;  ///< the stance sole at x_0 (position [m], yaw [rad])
+  FlatContact target;          ///< the requested foothold, heading of the stance sole
+  double duration = 0.0;       ///< [s] > 0
+};
+
+/// Limits of what a request may ask.
+struct FootholdRequestLimits {
+  double ground_tolerance = 0.02;  ///< |foothold z - stance sole z| allowed [m] (flat ground)
+};
+
+/// Validates a request of either service and fills a FootholdRequest.
+/// \param frame_id          header.frame_id of the request: "" or "world"
+/// \param contact_mode      "SS-L" | "SS-R" (the current mode during the swing)
+/// \param q, qd             x_0 (size n_q each), or both empty: `standing_q` with qd = 0
+/// \param duration          [s]; 0 takes `default_duration`
+/// \throws ReachError with the reason: unknown frame, unknown or empty contact set (flight),
+///         double support, wrong sizes, non-finite numbers, a non-positive duration, a foothold
+///         above (or below) the ground.
+FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
+                                     const std::string& frame_id, const std::string& contact_mode,
+                                     const std::vector<double>& q, const std::vector<double>& qd,
+                                     const geometry_msgs::Point& foothold, double duration,
+                                     double default_duration, const Eigen::VectorXd& standing_q,
+                                     const FootholdRequestLimits& limits = {});
+
+/// A ReachabilityResult message from a check (verdict "reachable" | "unreachable").
+/// Per window slice: d_H, counts, boundaries; output samples when `samples` (at most
+/// `max_points` per set and slice, evenly thinned). Stamped t_0, frame "world".
+reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& result,
+                                                          const FootholdRequest& request,
+                                                          const std::string& swing_frame,
+                                                          double delta, const ros::Time& t0,
+                                                          bool samples, int max_points = 500);
+
+/// A ReachabilityResult message for a rejected or failed check (verdict "error" or the given
+/// verdict, e.g. "unreachable" for a kinematically infeasible foothold) with its reason.
+reach_trajopt::ReachabilityResult reachabilityVerdictMsg(const std::string& verdict,
+                                                         const std::string& message,
+                                                         const ros::Time& t0);
+
+/// A TransitionTrajectory message from an OCP result (row-major N x n matrices).
+/// \param lambda_frames  names of the 12 rows of result.lambda in blocks of 6 (left, right)
+reach_trajopt::TransitionTrajectory toTransitionTrajectoryMsg(
+    const TransitionResult& result, const RobotModel& model,
+    const std::vector<std::string>& lambda_frames, const ros::Time& t0);
+
+}  // namespace ros_bridge
+}  // namespace reach_trajopt

@@ -1,0 +1,242 @@
+/// \file plan_transition.cpp
+/// Solves one transition OCP (eq. 22-23) from a JSON request and prints the trajectory as JSON:
+///   plan_transition [request.json | -] [--urdf urdf/biped.urdf] [--config config/biped.yaml]
+///                   [--stride k]
+/// Request (SI units, radians; q vectors of size n_q in the model's order):
+///   {"stance": "left"|"right", "stance_pose": {"position": [x,y,z], "yaw": 0},
+///    "swing_target": {"position": [x,y,z], "yaw": 0}, "horizon": 0.3,
+///    "q0": [...], "qd0": [...],                    x_0 (qd0 defaults to zeros)
+///    "qf": [...], "qdf": [...],                    x_f; omitted: the Sec. III-B IK solution
+///    "relaxation": "auto"|"strict"|"relaxed",
+///    "slices": [{"time": t, "A": [[ax, ay], ...], "b": [...]}, ...],   optional hulls
+///    "seed": {"time": [...], "q": [[...], ...]}}                      optional warm start
+/// Output: {"status": "converged"|"relaxed"|"failed", "reason", "nlopt_status", "relaxed",
+///   "eps", "landing_position", "dt", "time", "q", "qd", "qdd", "u", "lambda" (one row per
+///   sample; lambda = [left f, tau; right f, tau] world), "violation": {family: value},
+///   "cost", "iterations", "solves", "variables", "constraints", "solve_time"}.
+/// --stride k keeps every k-th sample (and the last) in the output arrays.
+/// Bad input (unreadable JSON, wrong sizes, NaN, x_0 off its contact, ...): {"status": "error",
+/// "reason": ...} on stdout and exit status 2. A failed solve is exit status 1.
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ocp/ocp_config.h"
+#include "reach_trajopt/ocp/transition_ocp.h"
+#include "reach_trajopt/planner/kinematic_feasibility.h"
+
+using reach_trajopt::ReachError;
+using json = nlohmann::json;
+
+namespace {
+
+Eigen::VectorXd vec(const json& j, const std::string& key) {
+  if (!j.is_array()) throw ReachError("request: '" + key + "' must be an array of numbers");
+  Eigen::VectorXd v(j.size());
+  for (size_t i = 0; i < j.size(); ++i) {
+    if (!j[i].is_number()) throw ReachError("request: '" + key + "' must hold numbers");
+    v[i] = j[i].get<double>();
+  }
+  return v;
+}
+
+reach_trajopt::FlatContact contact(const json& j, const std::string& key) {
+  if (!j.is_object() || !j.contains("position")) {
+    throw ReachError("request: '" + key + "' needs {\"position\": [x, y, z], \"yaw\": rad}");
+  }
+  reach_trajopt::FlatContact c;
+  const Eigen::VectorXd p = vec(j["position"], key + ".position");
+  reach_trajopt::requireSize(("request: " + key + ".position").c_str(), p.size(), 3);
+  c.position = p;
+  c.yaw = j.value("yaw", 0.0);
+  return c;
+}
+
+/// Sample indices 0, k, 2k, ... and always the last one.
+std::vector<Eigen::Index> strided(Eigen::Index n, int stride) {
+  std::vector<Eigen::Index> idx;
+  for (Eigen::Index c = 0; c < n; c += stride) idx.push_back(c);
+  if (n > 0 && idx.back() != n - 1) idx.push_back(n - 1);
+  return idx;
+}
+
+json matrixRows(const Eigen::MatrixXd& m, int stride) {
+  json rows = json::array();
+  for (Eigen::Index c : strided(m.cols(), stride)) {
+    rows.push_back(std::vector<double>(m.col(c).data(), m.col(c).data() + m.rows()));
+  }
+  return rows;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace reach_trajopt;
+  try {
+    std::string input = "-", urdf = "urdf/biped.urdf", config = "config/biped.yaml";
+    int stride = 1;
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto next = [&]() -> std::string {
+        if (i + 1 >= argc) throw ReachError(a + ": missing value");
+        return argv[++i];
+      };
+      if (a == "--urdf") {
+        urdf = next();
+      } else if (a == "--config") {
+        config = next();
+      } else if (a == "--stride") {
+        stride = std::stoi(next());
+        if (stride < 1) throw ReachError("--stride must be >= 1");
+      } else if (a == "-h" || a == "--help") {
+        std::cout << "usage: plan_transition [request.json | -] [--urdf path] [--config path] "
+                     "[--stride k]\n";
+        return 0;
+      } else {
+        input = a;
+      }
+    }
+    json req;
+    try {
+      if (input == "-") {
+        req = json::parse(std::cin);
+      } else {
+        std::ifstream f(input);
+        if (!f) throw ReachError("cannot open request file '" + input + "'");
+        req = json::parse(f);
+      }
+    } catch (const json::exception& e) {
+      throw ReachError(std::string("request is not valid JSON: ") + e.what());
+    }
+
+    const auto model = RobotModel::fromUrdfFile(urdf);
+    ContactConfig contact_cfg;
+    TransitionOcpConfig ocp_cfg;
+    KinematicFeasibilityConfig kf_cfg;
+    if (!config.empty()) {
+      const YamlSection yaml = YamlSection::loadFile(config);
+      if (yaml.has("contact")) contact_cfg = ContactConfig::fromYaml(yaml.section("contact"));
+      if (yaml.has("ocp")) ocp_cfg = TransitionOcpConfig::fromYaml(yaml.section("ocp"));
+      if (yaml.has("kinematic_feasibility")) {
+        kf_cfg = KinematicFeasibilityConfig::fromYaml(yaml.section("kinematic_feasibility"));
+      }
+    }
+
+    TransitionRequest r;
+    try {
+      const std::string stance = req.at("stance").get<std::string>();
+      if (stance != "left" && stance != "right") {
+        throw ReachError("request: stance must be \"left\" or \"right\", got '" + stance + "'");
+      }
+      r.stance = stance == "left" ? Side::kLeft : Side::kRight;
+      const FlatContact stance_c = contact(req.at("stance_pose"), "stance_pose");
+      const FlatContact target_c = contact(req.at("swing_target"), "swing_target");
+      r.stance_pose = stance_c.pose();
+      r.swing_target = target_c.pose();
+      r.horizon = req.at("horizon").get<double>();
+      r.q0 = vec(req.at("q0"), "q0");
+      r.qd0 = req.contains("qd0") ? vec(req["qd0"], "qd0") : Eigen::VectorXd::Zero(model->nq());
+      if (req.contains("qf")) {
+        r.qf = vec(req["qf"], "qf");
+        r.qdf = req.contains("qdf") ? vec(req["qdf"], "qdf") : Eigen::VectorXd::Zero(model->nq());
+      } else {
+        const KinematicFeasibility kf(model, kf_cfg, contact_cfg);
+        const auto ik = kf.check(r.stance, stance_c, target_c);
+        r.qf = ik.q_f;
+        r.qdf = ik.qd_f;
+      }
+      const std::string mode = req.value("relaxation", std::string("auto"));
+      if (mode == "auto") {
+        r.relaxation = RelaxationMode::kAuto;
+      } else if (mode == "strict") {
+        r.relaxation = RelaxationMode::kStrict;
+      } else if (mode == "relaxed") {
+        r.relaxation = RelaxationMode::kRelaxed;
+      } else {
+        throw ReachError("request: relaxation must be auto, strict or relaxed, got '" + mode +
+                         "'");
+      }
+      for (const json& s : req.value("slices", json::array())) {
+        ReachableSlice slice;
+        slice.time = s.at("time").get<double>();
+        const json& A = s.at("A");
+        slice.A.resize(A.size(), 2);
+        for (size_t k = 0; k < A.size(); ++k) {
+          const Eigen::VectorXd row = vec(A[k], "slices.A");
+          requireSize("request: slices.A row", row.size(), 2);
+          slice.A.row(k) = row.transpose();
+        }
+        slice.b = vec(s.at("b"), "slices.b");
+        r.slices.push_back(slice);
+      }
+      if (req.contains("seed")) {
+        const json& s = req["seed"];
+        r.seed.time = vec(s.at("time"), "seed.time");
+        const json& q = s.at("q");
+        r.seed.q.resize(model->nq(), q.size());
+        for (size_t k = 0; k < q.size(); ++k) {
+          const Eigen::VectorXd col = vec(q[k], "seed.q");
+          requireSize("request: seed.q row", col.size(), model->nq());
+          r.seed.q.col(k) = col;
+        }
+      }
+    } catch (const json::exception& e) {
+      throw ReachError(std::string("request: ") + e.what());
+    }
+
+    const TransitionOcp ocp(model, ocp_cfg, contact_cfg);
+    const TransitionResult res = ocp.solve(r);
+    const ConstraintViolations& v = res.violation;
+    json out;
+    out["status"] = ocpStatusName(res.status);
+    out["reason"] = res.reason;
+    out["nlopt_status"] = res.nlopt_status;
+    out["relaxed"] = res.relaxed;
+    out["eps"] = {res.eps.x(), res.eps.y()};
+    out["landing_position"] = {res.landing_position.x(), res.landing_position.y(),
+                               res.landing_position.z()};
+    out["dt"] = res.dt;
+    json times = json::array();
+    for (Eigen::Index k : strided(res.time.size(), stride)) times.push_back(res.time[k]);
+    out["time"] = times;
+    out["q"] = matrixRows(res.q, stride);
+    out["qd"] = matrixRows(res.qd, stride);
+    out["qdd"] = matrixRows(res.qdd, stride);
+    out["u"] = matrixRows(res.u, stride);
+    out["lambda"] = matrixRows(res.lambda, stride);
+    out["violation"] = {{"dynamics", v.dynamics},
+                        {"stance_contact", v.stance_contact},
+                        {"stance_cone", v.stance_cone},
+                        {"new_contact", v.new_contact},
+                        {"new_cone", v.new_cone},
+                        {"torque", v.torque},
+                        {"joint_limits", v.joint_limits},
+                        {"velocity_limits", v.velocity_limits},
+                        {"reachable_set", v.reachable_set},
+                        {"initial_state", v.initial_state},
+                        {"final_state", v.final_state},
+                        {"max", v.max()}};
+    out["cost"] = res.cost;
+    out["iterations"] = res.iterations;
+    out["solves"] = res.solves;
+    out["variables"] = res.variables;
+    out["constraints"] = res.constraints;
+    out["solve_time"] = res.solve_time;
+    std::cout << out.dump() << "\n";
+    return res.status == OcpStatus::kFailed ? 1 : 0;
+  } catch (const std::exception& e) {
+    json out = {{"status", "error"}, {"reason", e.what()}};
+    std::cout << out.dump() << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,364 @@
+// The transition OCP of eq. (22)-(23) on the shipped biped.
+//  - A reachable footstep: converged; the 1 ms output re-checked here with the full model
+//    (eq. 1 with M, b and the sole Jacobians; eq. 5 for the stance sole; the cone of eq. 8 in
+//    the sole frame; torque limits) violates nothing by more than 1e-4 (units below), ends at
+//    x_f and stays inside the reachable-set hulls.
+//  - A footstep 0.3 m beyond the reachable set's edge (the edge given as the t_f hull, set at a
+//    foothold the strict OCP reaches): relaxed, lands on the edge, |eps| within 20% of 0.3 m,
+//    and the landing is kinematically feasible (Sec. III-B check).
+//  - A footstep 0.3 m beyond the leg's kinematic reach: relaxed, the landing is kinematically
+//    feasible, so |eps| is at least the distance to the kinematic edge.
+//  - Warm start from a seed path, time limit, bad input.
+// Units of the 1e-4 bound: contacts in m, rad, m/s, rad/s, m/s^2, rad/s^2; eq. (1) residual
+// divided by the effort limit (actuated rows) or the weight m g (base rows); cone rows and the
+// torque excess divided by m g and u_max.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ocp/stance_reduced_dynamics.h"
+#include "reach_trajopt/ocp/transition_ocp.h"
+#include "reach_trajopt/planner/kinematic_feasibility.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+constexpr double kTol = 1e-4;
+
+std::shared_ptr<const RobotModel> biped() {
+  static const auto model =
+      RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
+  return model;
+}
+
+FlatContact contactAt(double x, double y) {
+  FlatContact c;
+  c.position << x, y, 0.0;
+  return c;
+}
+
+/// IK start: upright, knees slightly bent, pelvis above the stance (left) foot side.
+Eigen::VectorXd ikGuess(const RobotModel& m) {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
+  q[1] = 0.09;
+  q[2] = 1.05;
+  for (const std::string side : {"l_", "r_"}) {
+    q[m.jointIndex(side + "hip_pitch")] = -0.3;
+    q[m.jointIndex(side + "knee")] = 0.6;
+    q[m.jointIndex(side + "ankle_pitch")] = -0.3;
+  }
+  return q;
+}
+
+/// SS-L: left sole at (0, 0.1), right sole to (target_x, -0.1). x_0: the IK stance for a
+/// 0.25 m step with the right leg folded (swing sole about 0.1 m up, 0.2 m behind), at rest.
+TransitionRequest stepRequest(double target_x, double horizon = 0.3) {
+  const auto m = biped();
+  const KinematicFeasibility kf(m);
+  const FlatContact left = contactAt(0.0, 0.1);
+  const auto start = kf.check(Side::kLeft, left, contactAt(0.25, -0.1), ikGuess(*m));
+  EXPECT_TRUE(start.feasible) << start.reason;
+  const FlatContact right = contactAt(target_x, -0.1);
+  const auto final = kf.check(Side::kLeft, left, right, ikGuess(*m));
+  TransitionRequest r;
+  r.stance = Side::kLeft;
+  r.stance_pose = left.pose();
+  r.swing_target = right.pose();
+  r.horizon = horizon;
+  r.qf = final.q_f;
+  r.qdf = final.qd_f;
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
+                          r.swing_target, 0.0);
+  StanceReducedDynamics::Scratch s(d);
+  Eigen::VectorXd qa = start.q_f.tail(m->nu());
+  qa[m->jointIndex("r_knee") - 6] += 0.5;
+  qa[m->jointIndex("r_ankle_pitch") - 6] -= 0.25;
+  r.q0.resize(m->nq());
+  d.configuration(s, qa, r.q0);
+  r.qd0 = Eigen::VectorXd::Zero(m->nq());
+  return r;
+}
+
+/// Independent re-check of every 1 ms sample with the full model (see file comment).
+void expectFeasibleTrajectory(const TransitionRequest& req, const TransitionResult& res) {
+  const RobotModel& m = *biped();
+  const int nq = m.nq(), nu = m.nu(), n = static_cast<int>(res.time.size());
+  ASSERT_GE(n, 2);
+  ASSERT_EQ(res.q.cols(), n);
+  EXPECT_NEAR(res.time[n - 1], req.horizon, 1e-12);
+  for (int k = 1; k < n; ++k) EXPECT_LE(res.time[k] - res.time[k - 1], 0.001 + 1e-12);
+  const ContactWrenchCone cone(ContactConfig{});
+  const double W = m.totalMass() * m.gravity().norm();
+  const Eigen::VectorXd u_max = m.effortLimits();
+  const FrameId fl = m.frameId("l_sole"), fr = m.frameId("r_sole");
+  Eigen::Isometry3d landing = req.swing_target;
+  landing.translation().head<2>() += res.eps;
+  Workspace ws(m);
+  Eigen::MatrixXd M(nq, nq);
+  Eigen::VectorXd b(nq);
+  Matrix6Xd Jl(6, nq), Jr(6, nq);
+  double dyn = 0, contact = 0, cone_v = 0, torque = 0, swing_wrench = 0, accel = 0;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::VectorXd q = res.q.col(k), qd = res.qd.col(k), qdd = res.qdd.col(k);
+    m.update(ws, q, qd);
+    m.massMatrix(ws, M);
+    m.bias(ws, b);
+    m.frameJacobian(ws, fl, Jl);
+    m.frameJacobian(ws, fr, Jr);
+    const Vector6d ll = res.lambda.col(k).head<6>(), lr = res.lambda.col(k).tail<6>();
+    Eigen::VectorXd r = M * qdd + b - Jl.transpose() * ll - Jr.transpose() * lr;
+    r.tail(nu) -= res.u.col(k);
+    dyn = std::max({dyn, r.head<6>().cwiseAbs().maxCoeff() / W,
+                    r.tail(nu).cwiseAbs().cwiseQuotient(u_max).maxCoeff()});
+    // Stance sole (left) fixed: position, rotation, velocity, acceleration.
+    const Eigen::Isometry3d P = m.framePose(ws, fl);
+    const double angle =
+        Eigen::AngleAxisd(Eigen::Matrix3d(P.linear() * req.stance_pose.linear().transpose()))
+            .angle();
+    const Vector6d v = m.frameVelocity(ws, fl);
+    const Vector6d a = Jl * qdd + m.frameJdotQd(ws, fl);
+    contact = std::max({contact, (P.translation() - req.stance_pose.translation()).norm(), angle,
+                        v.cwiseAbs().maxCoeff(), a.cwiseAbs().maxCoeff()});
+    // Cone (7) in the sole frame.
+    const Eigen::Matrix3d Rt = P.linear().transpose();
+    ContactWrenchCone::Wrench w;
+    w << Rt * ll.head<3>(), Rt * ll.tail<3>();
+    cone_v = std::max(cone_v, -cone.margin(w) / W);
+    torque = std::max(torque, (res.u.col(k).cwiseAbs() - u_max).cwiseQuotient(u_max).maxCoeff());
+    if (k + 1 < n) {
+      swing_wrench = std::max(swing_wrench, lr.cwiseAbs().maxCoeff());
+    } else {  // t_f: new contact (phi, phidot, phiddot = 0) and its cone
+      const Eigen::Isometry3d S = m.framePose(ws, fr);
+      const double ang =
+          Eigen::AngleAxisd(Eigen::Matrix3d(S.linear() * landing.linear().transpose())).angle();
+      const Vector6d vs = m.frameVelocity(ws, fr);
+      const Vector6d as = Jr * qdd + m.frameJdotQd(ws, fr);
+      contact = std::max({contact, (S.translation() - landing.translation()).norm(), ang,
+                          vs.cwiseAbs().maxCoeff(), as.cwiseAbs().maxCoeff()});
+      const Eigen::Matrix3d St = S.linear().transpose();
+      w << St * lr.head<3>(), St * lr.tail<3>();
+      cone_v = std::max(cone_v, -cone.margin(w) / W);
+    }
+    // qdd is the derivative of qd (central differences; qd is piecewise quadratic).
+    if (k > 0 && k + 1 < n) {
+      const Eigen::VectorXd fd = (res.qd.col(k + 1) - res.qd.col(k - 1)) /
+                                 (res.time[k + 1] - res.time[k - 1]);
+      accel = std::max(accel, (fd - qdd).cwiseAbs().maxCoeff() /
+                                  std::max(1.0, qdd.cwiseAbs().maxCoeff()));
+    }
+  }
+  EXPECT_LT(dyn, kTol);
+  EXPECT_LT(contact, kTol);
+  EXPECT_LT(cone_v, kTol);
+  EXPECT_LT(torque, kTol);
+  EXPECT_EQ(swing_wrench, 0.0);
+  EXPECT_LT(accel, 0.05);  // a consistency check of the sampling, not a constraint
+  // x(t_0) = x_0.
+  EXPECT_LT((res.q.col(0) - req.q0).cwiseAbs().maxCoeff(), kTol);
+  EXPECT_LT((res.qd.col(0) - req.qd0).cwiseAbs().maxCoeff(), kTol);
+  // Joint limits.
+  for (int k = 0; k < n; ++k) {
+    EXPECT_TRUE((res.q.col(k).array() >= m.positionLowerLimits().array() - kTol).all());
+    EXPECT_TRUE((res.q.col(k).array() <= m.positionUpperLimits().array() + kTol).all());
+  }
+  // The OCP's own report agrees.
+  EXPECT_LT(res.violation.max(), kTol);
+}
+
+/// Swing sole (x, y) at the output sample nearest to t.
+Eigen::Vector2d swingAt(const TransitionResult& res, double t) {
+  const RobotModel& m = *biped();
+  int k = 0;
+  for (int j = 1; j < res.time.size(); ++j) {
+    if (std::abs(res.time[j] - t) < std::abs(res.time[k] - t)) k = j;
+  }
+  Workspace ws(m);
+  m.update(ws, res.q.col(k), res.qd.col(k));
+  return m.framePose(ws, m.frameId("r_sole")).translation().head<2>();
+}
+
+ReachableSlice box(double t, double x_lo, double x_hi, double y_lo, double y_hi) {
+  ReachableSlice s;
+  s.time = t;
+  s.A.resize(4, 2);
+  s.A << 1, 0, -1, 0, 0, 1, 0, -1;
+  s.b.resize(4);
+  s.b << x_hi, -x_lo, y_hi, -y_lo;
+  return s;
+}
+
+}  // namespace
+
+TEST(TransitionOcp, ReachableStepConvergesAndPassesIndependentCheck) {
+  TransitionRequest req = stepRequest(0.25);
+  // Reachable-set hulls: boxes that tighten towards the target, at 50 ms intervals.
+  for (int j = 0; j <= 6; ++j) {
+    const double t = 0.05 * j, s = t / req.horizon;
+    req.slices.push_back(box(t, -0.1, 0.26 + 0.2 * (1 - s), -0.2, -0.05 + 0.05 * s));
+  }
+  const TransitionOcp ocp(biped());
+  const TransitionResult res = ocp.solve(req);
+  ASSERT_EQ(res.status, OcpStatus::kConverged) << res.reason;
+  EXPECT_FALSE(res.relaxed);
+  EXPECT_EQ(res.eps.norm(), 0.0);
+  expectFeasibleTrajectory(req, res);
+  // Ends at x_f.
+  const int n = static_cast<int>(res.time.size());
+  EXPECT_LT((res.q.col(n - 1) - req.qf).cwiseAbs().maxCoeff(), kTol);
+  EXPECT_LT((res.qd.col(n - 1) - req.qdf).cwiseAbs().maxCoeff(), kTol);
+  EXPECT_LT((res.landing_position - req.swing_target.translation()).norm(), kTol);
+  // Inside every hull.
+  for (const ReachableSlice& s : req.slices) {
+    const Eigen::Vector2d y = swingAt(res, s.time);
+    EXPECT_LE((s.A * y - s.b).maxCoeff(), kTol) << "slice at t = " << s.time;
+  }
+  EXPECT_LE(res.variables, 100);
+  std::cout << "[ reachable ] " << res.iterations << " gradient evaluations, " << res.solves
+            << " solves, " << res.solve_time << " s, cost " << res.cost << "\n";
+
+  // Warm start from the solution as a seed path: converges again, no more work than cold.
+  TransitionRequest seeded = req;
+  seeded.seed.time = res.time;
+  seeded.seed.q = res.q;
+  const TransitionResult warm = ocp.solve(seeded);
+  ASSERT_EQ(warm.status, OcpStatus::kConverged) << warm.reason;
+  expectFeasibleTrajectory(seeded, warm);
+  EXPECT_LE(warm.iterations, res.iterations);
+  std::cout << "[ seeded    ] " << warm.iterations << " gradient evaluations\n";
+}
+
+TEST(TransitionOcp, StepBeyondReachableSetIsRelaxedToItsEdge) {
+  // The strict OCP reaches x = 0.25 (previous test); take that as the reachable set's edge at
+  // t_f and ask for a foothold 0.3 m beyond it.
+  const double edge = 0.25, beyond = 0.3;
+  TransitionRequest req = stepRequest(edge + beyond);
+  req.slices.push_back(box(req.horizon, -0.5, edge, -0.4, 0.0));
+  const TransitionOcp ocp(biped());
+  const TransitionResult res = ocp.solve(req);
+  ASSERT_EQ(res.status, OcpStatus::kRelaxed) << res.reason;
+  EXPECT_TRUE(res.relaxed);
+  expectFeasibleTrajectory(req, res);
+  EXPECT_NEAR(res.eps.norm(), beyond, 0.2 * beyond);
+  EXPECT_LE(res.landing_position.x(), edge + kTol);
+  EXPECT_NEAR((res.landing_position.head<2>() - req.swing_target.translation().head<2>()).norm(),
+              res.eps.norm(), kTol);
+  // The landing is a kinematically feasible stance (Sec. III-B).
+  const KinematicFeasibility kf(biped());
+  const auto ik = kf.check(Side::kLeft, contactAt(0.0, 0.1),
+                           contactAt(res.landing_position.x(), res.landing_position.y()),
+                           ikGuess(*biped()));
+  EXPECT_TRUE(ik.feasible) << ik.reason;
+  std::cout << "[ relaxed   ] eps = " << res.eps.transpose() << ", " << res.solve_time << " s\n";
+}
+
+TEST(TransitionOcp, StepBeyondLegReachLandsOnFeasibleFoothold) {
+  // The kinematic edge along x by bisection of the Sec. III-B check, then 0.3 m beyond it.
+  const auto m = biped();
+  const KinematicFeasibility kf(m);
+  double lo = 0.25, hi = 1.5;
+  for (int i = 0; i < 25; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (kf.check(Side::kLeft, contactAt(0.0, 0.1), contactAt(mid, -0.1), ikGuess(*m)).feasible ? lo
+                                                                                            : hi) =
+        mid;
+  }
+  const double beyond = 0.3;
+  TransitionRequest req = stepRequest(lo + beyond);
+  TransitionOcpConfig cfg;
+  cfg.time_limit = 60.0;  // a shared, loaded test machine: this test is not about speed
+  const TransitionOcp ocp(m, cfg);
+  ASSERT_FALSE(ocp.finalStateOnContacts(req));  // x_f is the IK's failed iterate
+  const TransitionResult res = ocp.solve(req);  // kAuto: straight to the relaxed problem
+  ASSERT_EQ(res.status, OcpStatus::kRelaxed) << res.reason;
+  expectFeasibleTrajectory(req, res);
+  const auto ik = kf.check(Side::kLeft, contactAt(0.0, 0.1),
+                           contactAt(res.landing_position.x(), res.landing_position.y()),
+                           ikGuess(*m));
+  EXPECT_TRUE(ik.feasible) << ik.reason;
+  EXPECT_GE(res.eps.norm(), beyond - kTol);
+  std::cout << "[ beyond IK ] edge " << lo << " m, landing x " << res.landing_position.x()
+            << " m, |eps| " << res.eps.norm() << " m, " << res.iterations
+            << " gradient evaluations, " << res.solve_time << " s\n";
+}
+
+TEST(TransitionOcp, TimeLimitGivesFailedStatus) {
+  TransitionOcpConfig cfg;
+  cfg.time_limit = 1e-3;
+  const TransitionOcp ocp(biped(), cfg);
+  const TransitionResult res = ocp.solve(stepRequest(0.25));
+  EXPECT_EQ(res.status, OcpStatus::kFailed);
+  EXPECT_NE(res.reason.find("time limit"), std::string::npos) << res.reason;
+}
+
+TEST(TransitionOcp, InfeasibleTransitionFailsWithReason) {
+  // 0.25 m in 60 ms from rest: far beyond the torque and cone limits.
+  TransitionRequest req = stepRequest(0.25, 0.06);
+  req.relaxation = RelaxationMode::kStrict;
+  TransitionOcpConfig cfg;
+  cfg.max_refinements = 1;
+  const TransitionResult res = TransitionOcp(biped(), cfg).solve(req);
+  EXPECT_EQ(res.status, OcpStatus::kFailed);
+  EXPECT_NE(res.reason.find("violated"), std::string::npos) << res.reason;
+  EXPECT_GT(res.violation.max(), kTol);
+}
+
+TEST(TransitionOcp, BadInputThrows) {
+  const auto m = biped();
+  const TransitionOcp ocp(m);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const TransitionRequest good = stepRequest(0.25);
+  auto expectThrow = [&](TransitionRequest r, const std::string& what) {
+    try {
+      ocp.solve(r);
+      ADD_FAILURE() << "no ReachError for " << what;
+    } catch (const ReachError& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  TransitionRequest r = good;
+  r.q0[7] = nan;
+  expectThrow(r, "q0");
+  r = good;
+  r.qd0.resize(3);
+  expectThrow(r, "qd0");
+  r = good;
+  r.q0[0] += 0.01;  // base moved: the stance sole is 1 cm off its pose
+  expectThrow(r, "off its stance contact");
+  r = good;
+  r.qd0[0] = 0.1;  // base velocity with the stance sole fixed: inconsistent
+  expectThrow(r, "off its stance contact");
+  for (double h : {0.0, -0.2, nan, 1e-5}) {
+    r = good;
+    r.horizon = h;
+    expectThrow(r, "horizon");
+  }
+  r = good;
+  r.slices.push_back(box(0.5, 0, 1, 0, 1));  // after t_f
+  expectThrow(r, "slice 0");
+  r = good;
+  r.slices.push_back(box(0.1, 0, 1, 0, 1));
+  r.slices[0].b.resize(2);
+  expectThrow(r, "slice 0");
+  r = good;
+  r.seed.time = Eigen::VectorXd::LinSpaced(3, 0.0, 0.3);
+  r.seed.q = Eigen::MatrixXd::Zero(m->nq(), 2);
+  expectThrow(r, "seed");
+  r = good;
+  r.swing_target.translation().x() = 0.6;  // x_f no longer on the target
+  r.relaxation = RelaxationMode::kStrict;
+  expectThrow(r, "x_f does not hold both contacts");
+  // Invalid configurations.
+  TransitionOcpConfig cfg;
+  cfg.segments = 1;
+  EXPECT_THROW(TransitionOcp(m, cfg), ReachError);
+  cfg = TransitionOcpConfig();
+  cfg.check_interval = nan;
+  EXPECT_THROW(TransitionOcp(m, cfg), ReachError);
+}
