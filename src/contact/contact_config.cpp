@@ -39,12 +39,7 @@ ContactConfig ContactConfig::fromYaml(const YamlSection& s) {
   s.read("half_width", c.half_width);
   s.read("left_sole_frame", c.left_sole_frame);
   s.read("right_sole_frame", c.right_sole_frame);
-  try {
-    c.validate();
-  } catch (const ReachError& e) {
-    throw ReachError(s.where() + ": " + e.what());
-  }
-  return c;
+  return validatedIn(s, c);
 }
 
 }  // namespace reach_trajopt

@@ -88,12 +88,7 @@ TransitionOcpConfig TransitionOcpConfig::fromYaml(const YamlSection& s) {
   s.read("fd_step", c.fd_step);
   s.read("central_differences", c.central_differences);
   s.read("fit_regularization", c.fit_regularization);
-  try {
-    c.validate();
-  } catch (const ReachError& e) {
-    throw ReachError(s.where() + ": " + e.what());
-  }
-  return c;
+  return validatedIn(s, c);
 }
 
 }  // namespace reach_trajopt

@@ -92,12 +92,7 @@ KinematicFeasibilityConfig KinematicFeasibilityConfig::fromYaml(const YamlSectio
   s.read("min_lateral_offset", c.min_lateral_offset);
   s.read("workspace_radius", c.workspace_radius);
   s.read("workspace_height", c.workspace_height);
-  try {
-    c.validate();
-  } catch (const ReachError& e) {
-    throw ReachError(s.where() + ": " + e.what());
-  }
-  return c;
+  return validatedIn(s, c);
 }
 
 Eigen::Isometry3d FlatContact::pose() const {

@@ -81,12 +81,7 @@ TvrConfig TvrConfig::fromYaml(const YamlSection& s) {
   s.read("foot_offset_y_max", c.foot_offset_y_max);
   s.read("com_speed_min", c.com_speed_min);
   s.read("com_speed_max", c.com_speed_max);
-  try {
-    c.validate();
-  } catch (const ReachError& e) {
-    throw ReachError(s.where() + ": " + e.what());
-  }
-  return c;
+  return validatedIn(s, c);
 }
 
 TvrPlanner::TvrPlanner(const TvrConfig& config)

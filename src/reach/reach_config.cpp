@@ -131,12 +131,7 @@ ReachConfig ReachConfig::fromYaml(const YamlSection& s, const ReachConfig& base)
   s.read("contact_tolerance", c.contact_tolerance);
   s.read("contact_velocity_tolerance", c.contact_velocity_tolerance);
   s.read("limit_tolerance", c.limit_tolerance);
-  try {
-    c.validate();
-  } catch (const ReachError& e) {
-    throw ReachError(s.where() + ": " + e.what());
-  }
-  return c;
+  return validatedIn(s, c);
 }
 
 ReachConfig ReachConfig::fromYaml(const YamlSection& s) { return fromYaml(s, ReachConfig()); }

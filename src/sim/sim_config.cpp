@@ -57,12 +57,7 @@ SimConfig SimConfig::fromYaml(const YamlSection& s) {
   s.read("solver_iterations", c.solver_iterations);
   s.read("collision_margin", c.collision_margin);
   s.read("max_coordinate_velocity", c.max_coordinate_velocity);
-  try {
-    c.validate();
-  } catch (const ReachError& e) {
-    throw ReachError(s.where() + ": " + e.what());
-  }
-  return c;
+  return validatedIn(s, c);
 }
 
 }  // namespace reach_trajopt

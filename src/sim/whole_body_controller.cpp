@@ -47,8 +47,7 @@ WbcConfig WbcConfig::fromYaml(const YamlSection& s) {
   s.read("kd_posture", c.kd_posture);
   s.read("w_qdd", c.w_qdd);
   s.read("w_lambda", c.w_lambda);
-  c.validate();
-  return c;
+  return validatedIn(s, c);
 }
 
 WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model,

@@ -90,8 +90,7 @@ WalkConfig WalkConfig::fromYaml(const YamlSection& s) {
   s.read("seed", seed);
   c.seed = static_cast<unsigned>(seed);
   s.read("max_sim_time", c.max_sim_time);
-  c.validate();
-  return c;
+  return validatedIn(s, c);
 }
 
 std::string WalkResult::summaryLine() const {

@@ -56,4 +56,16 @@ class YamlSection {
   std::shared_ptr<const Impl> impl_;
 };
 
+/// Runs config.validate() and returns the config; a ReachError it throws is re-thrown with the
+/// section's location in front ("config/biped.yaml: planner: ..."). Every fromYaml() ends here.
+template <typename Config>
+Config validatedIn(const YamlSection& section, Config config) {
+  try {
+    config.validate();
+  } catch (const ReachError& e) {
+    throw ReachError(section.where() + ": " + e.what());
+  }
+  return config;
+}
+
 }  // namespace reach_trajopt
