@@ -84,6 +84,8 @@ WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model
   A_in_.resize(2 * ContactWrenchCone::kRows + 2 * model_->nu(), nx);
   b_in_.resize(A_in_.rows());
   out_.u = Eigen::VectorXd::Zero(model_->nu());
+  u_max_ = model_->effortLimits();
+  posture_acc_.resize(model_->nu());
   out_.qdd = Eigen::VectorXd::Zero(n);
 }
 
@@ -144,7 +146,8 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
     const bool ff = ref.q_ff.size() == n;
     const Eigen::VectorXd& q_ref = ff ? ref.q_ff : (ref.posture.size() == n ? ref.posture : posture_);
     const int off = n - nu;
-    Eigen::VectorXd a = c.kp_posture * (q_ref.tail(nu) - q.tail(nu)) - c.kd_posture * qd.tail(nu);
+    Eigen::VectorXd& a = posture_acc_;
+    a.noalias() = c.kp_posture * (q_ref.tail(nu) - q.tail(nu)) - c.kd_posture * qd.tail(nu);
     if (ff && ref.qd_ff.size() == n) a += c.kd_posture * ref.qd_ff.tail(nu);
     if (ff && ref.qdd_ff.size() == n) a += ref.qdd_ff.tail(nu);
     G_.block(off, off, nu, nu).diagonal().array() += c.w_posture;
@@ -181,7 +184,7 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
   }
   b_in_.head(ContactWrenchCone::kRows * nc).setZero();
   const int t0 = ContactWrenchCone::kRows * nc;
-  const Eigen::VectorXd u_max = m.effortLimits();
+  const Eigen::VectorXd& u_max = u_max_;
   Ain.block(t0, 0, nu, n) = -M_.bottomRows(nu);          // u <= u_max
   b_in_.segment(t0, nu) = b_.tail(nu) - u_max;
   Ain.block(t0 + nu, 0, nu, n) = M_.bottomRows(nu);      // u >= -u_max

@@ -114,6 +114,8 @@ class WholeBodyController {
   // Scratch, sized once.
   Eigen::MatrixXd M_, G_, A_eq_, A_in_;
   Eigen::VectorXd b_, g_, b_eq_, b_in_;
+  Eigen::VectorXd u_max_;         ///< effort limits (n_u) [Nm]
+  Eigen::VectorXd posture_acc_;   ///< posture task acceleration (n_u)
   Matrix6Xd J_sole_[2], J_pelvis_;
   Eigen::Matrix3Xd J_com_;
   WbcOutput out_;
