@@ -11,11 +11,7 @@ namespace reach_trajopt {
 namespace {
 
 void requirePositive(const char* name, double v) {
-  if (!std::isfinite(v) || v <= 0.0) {
-    std::ostringstream os;
-    os << "TransitionOcpConfig: " << name << " must be positive and finite, got " << v;
-    throw ReachError(os.str());
-  }
+  requirePositiveFinite("TransitionOcpConfig", name, v);
 }
 
 void requireNonNegative(const char* name, double v) {

@@ -18,11 +18,7 @@ namespace {
 constexpr int kTaskRows = 16;  // left sole 6, right sole 6, pelvis height 1, pelvis rotation 3
 
 void requirePositive(const char* name, double v) {
-  if (!std::isfinite(v) || v <= 0.0) {
-    std::ostringstream os;
-    os << "KinematicFeasibilityConfig: " << name << " must be positive and finite, got " << v;
-    throw ReachError(os.str());
-  }
+  requirePositiveFinite("KinematicFeasibilityConfig", name, v);
 }
 
 /// True when two rectangles (centre, heading, half extents hx, hy) intersect: separating axis
