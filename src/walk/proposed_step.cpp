@@ -78,7 +78,8 @@ ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& sta
   request.target.yaw = yawOf(stance_pose);
   request.q0 = q0;
   request.qd0 = qd0;
-  const FootstepResult check = footsteps_.check(request);
+  out.check = footsteps_.check(request);
+  const FootstepResult& check = out.check;
   out.check_time_s = secondsSince(check_start);
   out.kinematically_feasible = check.kinematically_feasible;
   out.reachable = check.reachable;

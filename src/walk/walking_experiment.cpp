@@ -176,7 +176,8 @@ Eigen::VectorXd pushVelocity(const RobotModel& model, Workspace& ws, const Eigen
 }  // namespace
 
 WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on_tick,
-                                  const std::function<void(const StepRecord&)>& on_step) {
+                                  const std::function<void(const StepRecord&)>& on_step,
+                                  const std::function<void(const StepRecord&, const ProposedStep&)>& on_check) {
   const auto wall_start = std::chrono::steady_clock::now();
   const WalkConfig& wc = impl_->walk;
   const RobotModel& m = *model_;
@@ -313,6 +314,7 @@ WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on
           current.ocp_status = ocpStatusName(step.trajectory.status);
           current.reason = step.reason;
           current.planned = xy(step.foothold);
+          if (on_check) on_check(current, step);
           if (step.usable()) {
             tracked = step.trajectory;
             tracked_start = t;

@@ -32,6 +32,8 @@ struct ProposedStep {
   double check_time_s = 0.0;  ///< kinematic + reachability check wall time
   double ocp_time_s = 0.0;    ///< OCP wall time
   TransitionResult trajectory;  ///< converged, relaxed or failed
+  /// The full check (kinematics, reachable sets, witness) for recorders and the ROS layer.
+  FootstepResult check;
   /// Where the swing sole will land [m]: the OCP's landing when usable, else the nearest
   /// kinematically feasible foothold to the target (the target when it is feasible).
   Eigen::Vector3d foothold = Eigen::Vector3d::Zero();

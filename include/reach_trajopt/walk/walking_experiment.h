@@ -129,9 +129,11 @@ class WalkingExperiment {
   ~WalkingExperiment();
 
   /// Runs one walk from the standing pose. `on_tick` (optional) is called after every
-  /// control tick, `on_step` after every touchdown.
+  /// control tick, `on_step` after every touchdown, `on_check` (proposed mode) after every
+  /// reachability check + OCP with the step so far and the planner's full output.
   WalkResult run(const std::function<void(const WalkTick&)>& on_tick = {},
-                 const std::function<void(const StepRecord&)>& on_step = {});
+                 const std::function<void(const StepRecord&)>& on_step = {},
+                 const std::function<void(const StepRecord&, const ProposedStep&)>& on_check = {});
 
   const RobotModel& model() const { return *model_; }
   std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
