@@ -59,12 +59,7 @@ int main(int argc, char** argv) {
                                                   std::stod(push.substr(comma + 1)));
     }
     walk.validate();
-    ProposedStepConfig proposed;
-    if (file.has("kinematic_feasibility"))
-      proposed.kinematics =
-          KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));
-    if (file.has("reach")) proposed.reach = ReachConfig::fromYaml(file.section("reach"));
-    if (file.has("ocp")) proposed.ocp = TransitionOcpConfig::fromYaml(file.section("ocp"));
+    const ProposedStepConfig proposed = ProposedStepConfig::fromYaml(file);
     WalkingExperiment experiment(urdf, walk, tvr, contact, wbc, sim, &proposed);
     const WalkResult r = experiment.run({}, [](const StepRecord& s) {
       std::printf("step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "

@@ -30,7 +30,9 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
       pelvis_posture_(relaxed && config.terminal_pelvis_height > 0.0),
       pelvis_height_target_(0.5 * (request.stance_pose.translation().z() +
                                    request.swing_target.translation().z()) +
-                            config.terminal_pelvis_height) {
+                            (std::isnan(request.terminal_pelvis_height)
+                                 ? config.terminal_pelvis_height
+                                 : request.terminal_pelvis_height)) {
   const RobotModel& m = *model_;
   const Side swing = opposite(request.stance);
   dyn_ = std::make_unique<StanceReducedDynamics>(
@@ -368,9 +370,12 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
         ++row;
       }
     }
-    // Ground clearance: floor - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality).
+    // Ground clearance: floor(t) - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality);
+    // the floor rises by swing_clearance at mid-horizon so the sole cannot touch down early.
     if (ground_clearance_ && i > 0 && smp.t < basis_.duration()) {
-      out.inequality[row] = ground_floor_ - signals_[d.swingPositionOffset() + 2];
+      const double s_rel = smp.t / basis_.duration();
+      const double floor = ground_floor_ + config_.swing_clearance * 4.0 * s_rel * (1.0 - s_rel);
+      out.inequality[row] = floor - signals_[d.swingPositionOffset() + 2];
       if (gradients) {
         grow = -jloc_.row(d.swingPositionOffset() + 2);
         scatter(out.inequality_jacobian.row(row), grow, final);

@@ -218,6 +218,9 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
   requireFinite("TransitionOcp: qd0", r.qd0);
   requireFinite("TransitionOcp: qf", r.qf);
   requireFinite("TransitionOcp: qdf", r.qdf);
+  if (!std::isnan(r.terminal_pelvis_height) &&
+      !(std::isfinite(r.terminal_pelvis_height) && r.terminal_pelvis_height > 0.0))
+    throw ReachError("TransitionOcp: terminal_pelvis_height must be > 0 (or NaN: the config's)");
   std::ostringstream os;
   if (!std::isfinite(r.horizon) || r.horizon <= 0.0 || r.horizon < config_.output_dt) {
     os << "TransitionOcp: inconsistent horizon " << r.horizon

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include <Eigen/Cholesky>
@@ -15,7 +16,8 @@ namespace reach_trajopt {
 
 namespace {
 
-constexpr int kTaskRows = 16;  // left sole 6, right sole 6, pelvis height 1, pelvis rotation 3
+constexpr int kTaskRows = 18;  // left sole 6, right sole 6, pelvis position 3 (x, y zeroed when
+                                // free), pelvis rotation 3
 
 void requirePositive(const char* name, double v) {
   requirePositiveFinite("KinematicFeasibilityConfig", name, v);
@@ -116,7 +118,9 @@ KinematicFeasibility::KinematicFeasibility(std::shared_ptr<const RobotModel> mod
 
 KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatContact& current,
                                                        const FlatContact& planned,
-                                                       const Eigen::VectorXd& q_init) const {
+                                                       const Eigen::VectorXd& q_init,
+                                                       const std::optional<Eigen::Vector3d>&
+                                                           pelvis_position) const {
   const RobotModel& model = *model_;
   const int n = model.nq();
   requireFinite("KinematicFeasibility: current contact position", current.position);
@@ -124,6 +128,7 @@ KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatCo
   if (!std::isfinite(current.yaw) || !std::isfinite(planned.yaw)) {
     throw ReachError("KinematicFeasibility: non-finite contact yaw");
   }
+  if (pelvis_position) requireFinite("KinematicFeasibility: pelvis position", *pelvis_position);
   if (q_init.size() != 0) {
     requireSize("KinematicFeasibility: q_init", q_init.size(), n);
     requireFinite("KinematicFeasibility: q_init", q_init);
@@ -192,6 +197,7 @@ KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatCo
   pelvis_target.linear() = Eigen::AngleAxisd(yaw_mean, Eigen::Vector3d::UnitZ()).matrix();
   pelvis_target.translation().z() =
       0.5 * (left.position.z() + right.position.z()) + config_.pelvis_height;
+  if (pelvis_position) pelvis_target.translation() = *pelvis_position;
   const ContactConstraint tasks[3] = {ContactConstraint(left_sole_, left.pose()),
                                       ContactConstraint(right_sole_, right.pose()),
                                       ContactConstraint(pelvis_, pelvis_target)};
@@ -220,11 +226,13 @@ KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatCo
         J.middleRows<6>(6 * t) = terms.J_phi;
         task_pos[t] = terms.phi.head<3>().norm();
       } else {
-        e[12] = terms.phi[2];
-        e.tail<3>() = terms.phi.tail<3>();
-        J.row(12) = terms.J_phi.row(2);
-        J.bottomRows<3>() = terms.J_phi.bottomRows<3>();
-        task_pos[t] = std::abs(terms.phi[2]);
+        e.segment<6>(12) = terms.phi;
+        J.middleRows<6>(12) = terms.J_phi;
+        if (!pelvis_position) {  // x, y free: zero rows (the damping keeps JJ^T regular)
+          e.segment<2>(12).setZero();
+          J.middleRows<2>(12).setZero();
+        }
+        task_pos[t] = e.segment<3>(12).norm();
       }
       task_rot[t] = terms.phi.tail<3>().norm();
     }

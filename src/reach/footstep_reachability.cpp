@@ -4,6 +4,7 @@
 #include "reach_trajopt/reach/footstep_reachability.h"
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/planner/double_support_velocity.h"
 
 namespace reach_trajopt {
 
@@ -20,7 +21,8 @@ FootstepResult FootstepReachability::check(const FootstepRequest& request) const
 FootstepResult FootstepReachability::check(const FootstepRequest& r,
                                            const ReachConfig& config) const {
   FootstepResult out;
-  out.kinematics = kinematics_->check(r.stance, r.stance_foothold, r.target, r.q0);
+  out.kinematics = kinematics_->check(r.stance, r.stance_foothold, r.target, r.q0,
+                                       r.touchdown_pelvis_position);
   out.kinematically_feasible = out.kinematics.feasible;
   if (!out.kinematics.feasible) {
     out.reason = "unreachable: the foothold is kinematically infeasible (" +
@@ -32,7 +34,17 @@ FootstepResult FootstepReachability::check(const FootstepRequest& r,
   p.q0 = r.q0;
   p.qd0 = r.qd0;
   p.qf = out.kinematics.q_f;
-  p.qdf = r.qdf.size() ? r.qdf : Eigen::VectorXd::Zero(p.qf.size());
+  if (r.qdf.size()) {
+    p.qdf = r.qdf;
+  } else {
+    const RobotModel& m = analyzer_->model();
+    const ContactConfig& c = analyzer_->contactConfig();
+    p.qdf = doubleSupportVelocity(m, p.qf, m.frameId(c.left_sole_frame),
+                                  m.frameId(c.right_sole_frame),
+                                  Eigen::Vector3d(r.touchdown_com_velocity.x(),
+                                                  r.touchdown_com_velocity.y(), 0.0));
+  }
+  out.qdf = p.qdf;
   p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();
   p.target = r.target.pose();
   out.reach = analyzer_->check(p, config);

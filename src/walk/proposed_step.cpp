@@ -6,6 +6,8 @@
 
 #include <Eigen/QR>
 
+#include "reach_trajopt/planner/double_support_velocity.h"
+
 namespace reach_trajopt {
 namespace {
 
@@ -32,10 +34,15 @@ ProposedStepPlanner::ProposedStepPlanner(std::shared_ptr<const RobotModel> model
 
 ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& stance_pose,
                                        const Eigen::Vector3d& target, const Eigen::VectorXd& q,
-                                       const Eigen::VectorXd& qd) const {
+                                       const Eigen::VectorXd& qd,
+                                       const std::optional<LipmState>& touchdown_com) const {
   const RobotModel& m = *model_;
   m.checkState(q, qd);
   requireFinite("ProposedStepPlanner: target", target);
+  if (touchdown_com) {
+    requireFinite("ProposedStepPlanner: touchdown CoM position", touchdown_com->p);
+    requireFinite("ProposedStepPlanner: touchdown CoM velocity", touchdown_com->pd);
+  }
   // x_0 on the current mode's contact manifold: the simulator's stance sole creeps by
   // micrometres per step, which the check's tolerances (1e-4 m, 1e-3 m/s) would reject.
   // The landed stance sole may also be tilted by a degree or so: the whole robot is rotated
@@ -67,6 +74,16 @@ ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& sta
   const Eigen::VectorXd qd0 =
       qd - J.transpose() * (J * J.transpose()).ldlt().solve(J * qd);
   const Eigen::Isometry3d held = m.framePose(ws, stance_frame);
+  // x_f: where the CoM will have carried the pelvis by touchdown, at its current height.
+  std::optional<Eigen::Vector3d> touchdown_pelvis;
+  Eigen::Vector3d touchdown_com_velocity = Eigen::Vector3d::Zero();
+  if (touchdown_com) {
+    const Eigen::Vector3d com_shift(touchdown_com->p.x() - m.centerOfMass(ws).x(),
+                                    touchdown_com->p.y() - m.centerOfMass(ws).y(), 0.0);
+    touchdown_pelvis =
+        m.framePose(ws, m.frameId(kinematics_->config().pelvis_frame)).translation() + com_shift;
+    touchdown_com_velocity.head<2>() = touchdown_com->pd;
+  }
 
   ProposedStep out;
   const auto check_start = std::chrono::steady_clock::now();
@@ -78,6 +95,8 @@ ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& sta
   request.target.yaw = yawOf(stance_pose);
   request.q0 = q0;
   request.qd0 = qd0;
+  request.touchdown_com_velocity = touchdown_com_velocity.head<2>();
+  request.touchdown_pelvis_position = touchdown_pelvis;
   out.check = footsteps_.check(request);
   const FootstepResult& check = out.check;
   out.check_time_s = secondsSince(check_start);
@@ -91,10 +110,11 @@ ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& sta
                                  ? c.distance.hausdorff
                                  : std::min(out.hausdorff_distance, c.distance.hausdorff);
 
-  // The OCP: strict to the checked foothold when reachable, relaxed otherwise. Its final
-  // state is the IK's q_f when the foothold is kinematically feasible; otherwise the IK is
-  // solved for the closest point of the target's direction the legs can still reach, and the
-  // relaxation decides the landing.
+  // The OCP: strict to the checked foothold when reachable, relaxed (to the closest reachable
+  // foothold) when unreachable. A kinematically infeasible target (e.g. one sole through the
+  // other) has no reachable sets: the closest kinematically feasible foothold (rings of growing
+  // radius around the target) is taken instead, with its IK posture as x_f, strict first and
+  // relaxed if that fails.
   TransitionRequest ocp;
   ocp.stance = stance;
   ocp.stance_pose = held;
@@ -102,38 +122,43 @@ ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& sta
   ocp.horizon = reach_config_.horizon;
   ocp.q0 = q0;
   ocp.qd0 = qd0;
-  ocp.qdf = Eigen::VectorXd::Zero(m.nq());
-  ocp.relaxation = check.reachable ? RelaxationMode::kStrict : RelaxationMode::kRelaxed;
+  if (touchdown_pelvis)  // a relaxed landing stands at the predicted pelvis height
+    ocp.terminal_pelvis_height =
+        touchdown_pelvis->z() - 0.5 * (held.translation().z() + target.z());
   Eigen::Vector3d nearest_feasible = target;
   if (check.kinematically_feasible) {
     ocp.qf = check.kinematics.q_f;
+    ocp.qdf = check.qdf;
+    ocp.relaxation = check.reachable ? RelaxationMode::kStrict : RelaxationMode::kRelaxed;
   } else {
-    // The closest kinematically feasible foothold (rings of growing radius around the target)
-    // gives the relaxed OCP its terminal posture; the relaxation then decides the landing.
     constexpr double kRingStep = 0.02;  // [m]
     constexpr int kRings = 15, kDirections = 12;
     for (int ring = 1; ring <= kRings && ocp.qf.size() == 0; ++ring) {
-      double best = HUGE_VAL;
-      for (int d = 0; d < kDirections; ++d) {
+      for (int d = 0; d < kDirections && ocp.qf.size() == 0; ++d) {
         const double angle = 2.0 * M_PI * d / kDirections;
         FlatContact p = request.target;
         p.position = target + ring * kRingStep * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
         const KinematicFeasibilityResult k =
-            kinematics_->check(stance, request.stance_foothold, p, q0);
-        if (k.feasible && ring * kRingStep < best) {
-          best = ring * kRingStep;
+            kinematics_->check(stance, request.stance_foothold, p, q0, touchdown_pelvis);
+        if (k.feasible) {
           ocp.qf = k.q_f;
           nearest_feasible = p.position;
         }
       }
     }
     if (ocp.qf.size() == 0) {
-      out.reason += "; no kinematically feasible foothold toward the target";
+      out.reason += "; no kinematically feasible foothold within " +
+                    std::to_string(kRings * kRingStep) + " m of the target";
       out.trajectory.status = OcpStatus::kFailed;
-      out.trajectory.reason = "no kinematically feasible foothold toward the target";
+      out.trajectory.reason = "no kinematically feasible foothold near the target";
       out.foothold = target;
       return out;
     }
+    ocp.swing_target.translation() = nearest_feasible;
+    ocp.qdf = doubleSupportVelocity(
+        m, ocp.qf, m.frameId(contact_.left_sole_frame), m.frameId(contact_.right_sole_frame),
+        touchdown_com_velocity);
+    ocp.relaxation = RelaxationMode::kAuto;
   }
   if (check.reach.witness.valid) {
     const WitnessPath& w = check.reach.witness;

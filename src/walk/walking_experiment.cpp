@@ -49,6 +49,9 @@ void WalkConfig::validate() const {
   nonNegative("touchdown_depth", touchdown_depth);
   positive("touchdown_force", touchdown_force);
   nonNegative("late_touchdown", late_touchdown);
+  positive("check_horizon", check_horizon);
+  if (!(check_horizon < single_support_duration))
+    throw ReachError("WalkConfig: check_horizon must be shorter than single_support_duration");
   if (!(replan_fraction >= 0.0 && replan_fraction <= 1.0))
     throw ReachError("WalkConfig: replan_fraction must be in [0, 1]");
   nonNegative("knee_bend", knee_bend);
@@ -61,7 +64,7 @@ void WalkConfig::validate() const {
 WalkConfig WalkConfig::fromYaml(const YamlSection& s) {
   s.requireOnlyKeys({"mode", "steps", "single_support_duration", "double_support_duration",
                      "settle_duration", "swing_height", "touchdown_depth", "touchdown_force",
-                     "late_touchdown", "replan_fraction", "knee_bend", "forward_speed", "initial_com_velocity",
+                     "late_touchdown", "check_horizon", "replan_fraction", "knee_bend", "forward_speed", "initial_com_velocity",
                      "first_swing", "fall_pelvis_height", "seed", "max_sim_time"});
   WalkConfig c;
   std::string mode = modeName(c.mode), first = c.first_swing == Side::kLeft ? "left" : "right";
@@ -75,6 +78,7 @@ WalkConfig WalkConfig::fromYaml(const YamlSection& s) {
   s.read("touchdown_depth", c.touchdown_depth);
   s.read("touchdown_force", c.touchdown_force);
   s.read("late_touchdown", c.late_touchdown);
+  s.read("check_horizon", c.check_horizon);
   s.read("replan_fraction", c.replan_fraction);
   s.read("knee_bend", c.knee_bend);
   s.read("forward_speed", c.forward_speed);
@@ -91,6 +95,15 @@ WalkConfig WalkConfig::fromYaml(const YamlSection& s) {
   c.seed = static_cast<unsigned>(seed);
   s.read("max_sim_time", c.max_sim_time);
   return validatedIn(s, c);
+}
+
+ProposedStepConfig ProposedStepConfig::fromYaml(const YamlSection& root) {
+  ProposedStepConfig c;
+  if (root.has("kinematic_feasibility"))
+    c.kinematics = KinematicFeasibilityConfig::fromYaml(root.section("kinematic_feasibility"));
+  if (root.has("reach")) c.reach = ReachConfig::fromYaml(root.section("reach"));
+  if (root.has("ocp")) c.ocp = TransitionOcpConfig::fromYaml(root.section("ocp"));
+  return c;
 }
 
 std::string WalkResult::summaryLine() const {
@@ -128,10 +141,11 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
   if (walk.mode == WalkConfig::Mode::kProposed) {
     const ProposedStepConfig defaults;
     const ProposedStepConfig& c = proposed ? *proposed : defaults;
+    ReachConfig reach = c.reach;
+    reach.horizon = walk.check_horizon;
+    reach.validate();
     impl_->proposed =
-        std::make_unique<ProposedStepPlanner>(model_, contact, c.kinematics, c.reach, c.ocp);
-    if (impl_->proposed->horizon() >= walk.single_support_duration)
-      throw ReachError("walk: the reachability horizon must be shorter than the swing");
+        std::make_unique<ProposedStepPlanner>(model_, contact, c.kinematics, reach, c.ocp);
   }
   impl_->walk = walk;
   impl_->tvr_config = tvr;
@@ -305,8 +319,14 @@ WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on
         checked = true;
         const Side stance = opposite(swing);
         try {
+          // The CoM velocity at touchdown: the LIPM about the stance sole from the measured
+          // CoM state, over the time left to the nominal touchdown.
+          const LipmState at_touchdown = lipm.propagate(
+              LipmState{xy(com), xy(vcom)}, current.stance,
+              std::max(0.0, wc.single_support_duration - ts));
           const ProposedStep step = impl_->proposed->plan(
-              stance, m.framePose(ws, sole[static_cast<int>(stance)]), target3(), q, qd);
+              stance, m.framePose(ws, sole[static_cast<int>(stance)]), target3(), q, qd,
+              at_touchdown);
           current.verdict = step.verdict;
           current.hausdorff_distance = step.hausdorff_distance;
           current.check_time_s = step.check_time_s;

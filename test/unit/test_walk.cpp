@@ -90,12 +90,8 @@ TEST(WalkingExperiment, ProposedModeChecksEveryStep) {
   WalkConfig walk = WalkConfig::fromYaml(file.section("walk"));
   walk.mode = WalkConfig::Mode::kProposed;
   walk.steps = 4;
-  ProposedStepConfig proposed;
-  proposed.kinematics =
-      KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));
-  proposed.reach = ReachConfig::fromYaml(file.section("reach"));
+  ProposedStepConfig proposed = ProposedStepConfig::fromYaml(file);
   proposed.reach.initial_samples = 2000;  // a quicker check than the paper's 1e4
-  proposed.ocp = TransitionOcpConfig::fromYaml(file.section("ocp"));
   WalkingExperiment experiment(kUrdf, walk, TvrConfig::fromYaml(file.section("planner")),
                                ContactConfig::fromYaml(file.section("contact")),
                                WbcConfig::fromYaml(file.section("wbc")), SimConfig{}, &proposed);

@@ -26,7 +26,7 @@
 ///     points are free, eps = (eps_x, eps_y) are variables, and the equalities are
 ///     phi_2 - [eps; 0 0 0 0] = 0, phidot_2 = 0, phiddot_2 = 0 (18 rows), and, unless disabled,
 ///     the base upright at the nominal height (3 rows: TransitionOcpConfig::
-///     terminal_pelvis_height), so the landing is a kinematically feasible stance (Sec. III-B).
+///     terminal_pelvis_height, or the request's), so the landing is a kinematically feasible stance (Sec. III-B).
 ///     The phidot_2 and phiddot_2 rows are multiplied by h and h^2 (h the knot spacing) so all
 ///     equality rows are in metres and equally sensitive to the control points.
 /// Variables: 12 (N - 1) + 6 (strict) or 12 (N + 1) + 8 (relaxed); N = 4 segments gives 42 / 68.

@@ -5,6 +5,7 @@
 /// sole, and an optional seed path (the reachability witness). These are small plain structs of
 /// their own so the OCP does not depend on the reachability engine's headers.
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -48,6 +49,9 @@ struct TransitionRequest {
   std::vector<ReachableSlice> slices;  ///< optional; empty: no reachable-set constraint
   SeedPath seed;                        ///< optional; empty: cubic Hermite x_0 -> x_f
   RelaxationMode relaxation = RelaxationMode::kAuto;
+  /// Relaxed landing: the base's height above the mean sole height [m] (e.g. the walking
+  /// robot's predicted pelvis height); NaN: TransitionOcpConfig::terminal_pelvis_height.
+  double terminal_pelvis_height = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace reach_trajopt

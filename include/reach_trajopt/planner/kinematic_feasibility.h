@@ -8,12 +8,13 @@
 /// pelvis height, pelvis orientation = upright with the soles' mean heading) are solved by
 /// damped least squares Newton steps with their exact Jacobians; a joint whose update would
 /// cross a limit is clamped to it and the step is re-solved for the other joints. The pelvis
-/// x, y are free. Before the IK, two geometric checks reject placements where one foot would
+/// x, y are free (or, optionally, the whole pelvis position is held). Before the IK, two geometric checks reject placements where one foot would
 /// pass through the other (overlapping sole rectangles, or the swing sole across the stance
 /// sole's centre line). Its solution is the final configuration q_f of the transition (x_f
 /// with qd_f = 0), used by the backward reachable set and the OCP.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -80,12 +81,16 @@ class KinematicFeasibility {
 
   /// Checks the stance sole held at `current` and the swing sole at `planned`.
   /// \param q_init  starting configuration (size n_q); empty: a standing guess between the soles
+  /// \param pelvis_position  world position of the pelvis origin to hold [m] (e.g. where the
+  ///     walking robot's pelvis will be at touchdown); none: x, y free, z at the nominal height
   /// Throws ReachError on non-finite input, a wrong q_init size, or a step outside the
   /// workspace (soles more than workspace_radius apart horizontally or workspace_height
   /// vertically); an unreachable step within it is a result with feasible = false and a reason.
   KinematicFeasibilityResult check(Side stance, const FlatContact& current,
                                    const FlatContact& planned,
-                                   const Eigen::VectorXd& q_init = Eigen::VectorXd()) const;
+                                   const Eigen::VectorXd& q_init = Eigen::VectorXd(),
+                                   const std::optional<Eigen::Vector3d>& pelvis_position =
+                                       std::nullopt) const;
 
   const KinematicFeasibilityConfig& config() const { return config_; }
   const RobotModel& model() const { return *model_; }

@@ -8,6 +8,7 @@
 /// the current state x_0 in single support.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -24,7 +25,13 @@ struct FootstepRequest {
   FlatContact stance_foothold;  ///< where the stance sole is held [m, rad]
   FlatContact target;           ///< the planned next foothold of the swing sole
   Eigen::VectorXd q0, qd0;      ///< x_0 (size n_q)
-  Eigen::VectorXd qdf;          ///< touchdown velocity (empty: zero)
+  /// Touchdown velocity qd_f (size n_q). Empty: the posture q_f moving with the CoM at
+  /// `touchdown_com_velocity` and both soles still (doubleSupportVelocity).
+  Eigen::VectorXd qdf;
+  Eigen::Vector2d touchdown_com_velocity = Eigen::Vector2d::Zero();  ///< [m/s], horizontal
+  /// Where the pelvis origin will be at touchdown [m, world]: held by the kinematic check's IK
+  /// (KinematicFeasibility::check); none: pelvis x, y free at the nominal height.
+  std::optional<Eigen::Vector3d> touchdown_pelvis_position;
 };
 
 /// Outcome: the kinematic stage and, when it passed, the reachability result.
@@ -33,6 +40,7 @@ struct FootstepResult {
   bool kinematically_feasible = false;
   std::string reason;                     ///< why (either stage)
   KinematicFeasibilityResult kinematics;  ///< q_f and the IK residuals
+  Eigen::VectorXd qdf;                    ///< the touchdown velocity used (size n_q)
   ReachResult reach;                      ///< empty unless kinematically feasible
 };
 

@@ -8,6 +8,7 @@
 /// foothold. The walking loop tracks the resulting trajectory with its feed-forward.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -17,6 +18,7 @@
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/planner/lipm.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reach_config.h"
 
@@ -53,10 +55,16 @@ class ProposedStepPlanner {
   /// `stance` (sole held at `stance_pose`) to the swing sole on `target` (flat).
   /// The state is first made consistent with the contact: qd projected onto the null space of
   /// the stance sole Jacobian, q clamped into the joint limits.
+  /// `touchdown_com` is the CoM's horizontal state predicted at touchdown (the LIPM about the
+  /// stance sole): the final state x_f then has the pelvis where the CoM will have carried it
+  /// (the kinematic check holds the pelvis there, at its current height) and moves with the
+  /// CoM at its predicted velocity with both soles still (doubleSupportVelocity). Without it,
+  /// x_f is the Sec. III-B posture (pelvis x, y free, nominal height) at rest.
   /// \throws ReachError on bad input (sizes, NaN, a target outside the workspace).
   ProposedStep plan(Side stance, const Eigen::Isometry3d& stance_pose,
                     const Eigen::Vector3d& target, const Eigen::VectorXd& q,
-                    const Eigen::VectorXd& qd) const;
+                    const Eigen::VectorXd& qd,
+                    const std::optional<LipmState>& touchdown_com = std::nullopt) const;
 
   /// Time from the check to touchdown [s] (the reachability horizon t_f - t_0).
   double horizon() const { return reach_config_.horizon; }

@@ -5,7 +5,7 @@
 /// contact from the simulated CoM state (predicted to touchdown with the LIPM, eq. 9-10); the
 /// swing sole is taken there and the whole-body controller tracks the LIPM CoM reference about
 /// the stance sole. Baseline mode: heuristic bounds on, interpolated swing trajectory.
-/// Proposed mode: bounds off; `ProposedStepPlanner::horizon()` before the nominal touchdown the
+/// Proposed mode: bounds off; `WalkConfig::check_horizon` before the nominal touchdown the
 /// foothold is checked from the measured state and the OCP's trajectory (relaxed to the closest
 /// reachable foothold when unreachable) is tracked to touchdown with its feed-forward.
 /// A run ends after the requested number of steps, or at a fall (pelvis below a height, or a
@@ -44,6 +44,9 @@ struct WalkConfig {
   double touchdown_depth = 0.01;         ///< nominal swing end below the ground (touchdown by contact)
   double touchdown_force = 30.0;         ///< sole normal force that counts as touchdown [N]
   double late_touchdown = 0.15;          ///< time past the nominal swing end before a fall is declared
+  double check_horizon = 0.2;            ///< proposed mode: the check and the OCP start this long
+                                         ///< before the nominal touchdown (their t_f - t_0; it
+                                         ///< replaces ReachConfig::horizon) [s]
   double knee_bend = 0.6;                ///< standing posture [rad]
   double forward_speed = 0.0;            ///< desired CoM speed along x (drives p_des of eq. 11)
   Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
@@ -113,8 +116,11 @@ struct WalkResult {
 /// Configurations of the proposed mode's per-step pipeline (proposed_step.h).
 struct ProposedStepConfig {
   KinematicFeasibilityConfig kinematics;
-  ReachConfig reach;
+  ReachConfig reach;  ///< its horizon is replaced by WalkConfig::check_horizon
   TransitionOcpConfig ocp;
+  /// From a config file's root: its `kinematic_feasibility`, `reach` and `ocp` sections (each
+  /// optional: defaults). \throws ReachError naming a bad key or value.
+  static ProposedStepConfig fromYaml(const YamlSection& root);
 };
 
 /// @brief The walking experiment of Sec. IV: Bullet world + whole-body controller + TVR.

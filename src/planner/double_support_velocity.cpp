@@ -1,0 +1,49 @@
+#include "reach_trajopt/planner/double_support_velocity.h"
+
+#include <string>
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include "reach_trajopt/common/error.h"
+
+namespace reach_trajopt {
+
+Eigen::VectorXd doubleSupportVelocity(const RobotModel& model, const Eigen::VectorXd& q,
+                                      FrameId left_sole, FrameId right_sole,
+                                      const Eigen::Vector3d& com_velocity) {
+  const int n = model.nq(), nu = model.nu();
+  if (n - nu != 6)
+    throw ReachError("doubleSupportVelocity: needs a floating-base model");
+  requireSize("doubleSupportVelocity: q", q.size(), n);
+  requireFinite("doubleSupportVelocity: q", q);
+  requireFinite("doubleSupportVelocity: com_velocity", com_velocity);
+  Workspace ws(model);
+  model.update(ws, q, Eigen::VectorXd::Zero(n));
+  Eigen::MatrixXd J(12, n);
+  Matrix6Xd Js(6, n);
+  model.frameJacobian(ws, left_sole, Js);
+  J.topRows<6>() = Js;
+  model.frameJacobian(ws, right_sole, Js);
+  J.bottomRows<6>() = Js;
+  // Joints: J_a qd_a = -J_b qd_b, the least-norm solution when there are more than 12
+  // actuated joints. It exists unless the legs are singular (a straight knee).
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> legs(J.rightCols(nu));
+  legs.setThreshold(1e-6);
+  if (legs.rank() < 12)
+    throw ReachError("doubleSupportVelocity: the legs are singular at q (a straight knee?)");
+  // Z: qd as a function of the base's linear velocity (angular rates zero).
+  Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(n, 3);
+  Z.topRows<3>().setIdentity();
+  Z.bottomRows(nu) = -legs.solve(J.leftCols<3>());
+  Eigen::Matrix3Xd Jc(3, n);
+  model.centerOfMassJacobian(ws, Jc);
+  const Eigen::Matrix3d JcZ = Jc * Z;
+  const Eigen::Vector3d v_base = JcZ.fullPivLu().solve(com_velocity);
+  Eigen::VectorXd qd = Z * v_base;
+  if (!qd.allFinite())
+    throw ReachError("doubleSupportVelocity: no finite solution at q");
+  return qd;
+}
+
+}  // namespace reach_trajopt
