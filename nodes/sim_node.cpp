@@ -9,26 +9,32 @@
 ///   step_report (StepReport)         one per touchdown (and one for a step ending in a fall)
 ///   markers (visualization_msgs/MarkerArray)  footholds planned/executed, CoM and swing paths
 ///   walk_result (std_msgs/String, latched)    the summary line, published when the run ends
-/// Parameters (private): ~config (YAML with sections contact, planner, walk, wbc; default
-/// config/biped.yaml of the package), ~sim_config (YAML with a sim section, optional), ~mode
+/// In proposed mode, once per checked step (stamped with the sim time of the check, x_0, in
+/// "world"; the topics of reachability_node and transition_ocp_node):
+///   reachability_result (ReachabilityResult)  the check: sets per slice, d_H, witness; or
+///                                              "unreachable" for a kinematically infeasible
+///                                              foothold, with the IK's reason
+///   reachability_markers (visualization_msgs/MarkerArray)  its sets, witness and foothold
+///   transition_trajectory (TransitionTrajectory)  the OCP's trajectory (converged, relaxed or
+///                                              failed) the swing then tracks
+/// Parameters (private): ~config (YAML with sections contact, planner, walk, wbc, and for the
+/// proposed mode kinematic_feasibility, reach, ocp; default config/biped.yaml of the package),
+/// ~sim_config (YAML with a sim section, optional), ~mode
 /// (baseline|proposed), ~steps, ~seed, ~forward_speed [m/s], ~push_vx, ~push_vy [m/s],
 /// ~publish_period [s of sim time, 0.01], ~clock_period [s, 0.001], ~marker_period [s, 0.1],
 /// ~wait_for_subscribers (N: wait until every topic has N subscribers, e.g. a recorder; 0),
 /// ~wait_for_com_subscribers (N: wait until com_state has N subscribers, e.g. + the planner),
 /// ~wait_timeout [s wall, 20], ~real_time_factor (0: as fast as possible), ~linger [s wall, 1],
 /// ~exit_when_done (true: exit ~linger seconds after the walk ends, so a launch with
-/// required="true" ends with it; false: stay up, walk_result stays available, until shutdown).
+/// required="true" ends with it; false: stay up, walk_result stays available, until shutdown),
+/// ~reachability_samples (true: reachability_result carries the output samples of every slice,
+/// at most 500 per set and slice; false: boundaries only; true).
 /// The robot is read from the `robot_description` parameter (URDF text).
 
-#include <unistd.h>
-
-#include <cstdio>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <ros/package.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/JointState.h>
@@ -39,6 +45,8 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/ros/conversions.h"
 #include "reach_trajopt/ros/markers.h"
+#include "reach_trajopt/ros/node_setup.h"
+#include "reach_trajopt/ros/proposed_step_msgs.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
 using namespace reach_trajopt;
@@ -47,27 +55,6 @@ namespace rb = reach_trajopt::ros_bridge;
 namespace {
 
 struct Shutdown {};  // thrown from the tick callback to leave the walking loop on ros shutdown
-
-/// The URDF text of `robot_description` written to a private temporary file (the simulator
-/// loads a file); removed on destruction.
-class TempUrdf {
- public:
-  explicit TempUrdf(const std::string& xml) {
-    char name[] = "/tmp/reach_trajopt_urdf_XXXXXX";
-    const int fd = mkstemp(name);
-    if (fd < 0) throw ReachError("cannot create a temporary URDF file");
-    close(fd);
-    path_ = name;
-    std::ofstream out(path_);
-    out << xml;
-    if (!out) throw ReachError("cannot write the temporary URDF file " + path_);
-  }
-  ~TempUrdf() { std::remove(path_.c_str()); }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
 
 template <typename T>
 T param(const ros::NodeHandle& nh, const std::string& name, const T& fallback) {
@@ -81,12 +68,8 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "sim_node");
   ros::NodeHandle nh, pnh("~");
   try {
-    std::string urdf_xml;
-    if (!nh.getParam("robot_description", urdf_xml) || urdf_xml.empty())
-      throw ReachError("parameter 'robot_description' (URDF text) is not set");
-    const std::string config_path =
-        param<std::string>(pnh, "config", ros::package::getPath("reach_trajopt") +
-                                              "/config/biped.yaml");
+    const std::string urdf_xml = rb::robotDescription(nh);
+    const std::string config_path = rb::configPath(pnh);
     const std::string sim_config_path = param<std::string>(pnh, "sim_config", "");
 
     const YamlSection file = YamlSection::loadFile(config_path);
@@ -99,6 +82,12 @@ int main(int argc, char** argv) {
       const YamlSection sim_file = YamlSection::loadFile(sim_config_path);
       sim = SimConfig::fromYaml(sim_file.section("sim"));
     }
+    ProposedStepConfig proposed;  // the proposed mode's check and OCP
+    if (file.has("kinematic_feasibility"))
+      proposed.kinematics =
+          KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));
+    if (file.has("reach")) proposed.reach = ReachConfig::fromYaml(file.section("reach"));
+    if (file.has("ocp")) proposed.ocp = TransitionOcpConfig::fromYaml(file.section("ocp"));
     std::string mode;
     if (pnh.getParam("mode", mode)) walk.mode = WalkConfig::parseMode(mode);
     int int_value = 0;
@@ -121,11 +110,13 @@ int main(int argc, char** argv) {
     const double real_time_factor = param(pnh, "real_time_factor", 0.0);
     const double linger = param(pnh, "linger", 1.0);
     const bool exit_when_done = param(pnh, "exit_when_done", true);
+    const bool reachability_samples = param(pnh, "reachability_samples", true);
     if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
       throw ReachError("~publish_period, ~clock_period and ~marker_period must be > 0");
 
-    const TempUrdf urdf(urdf_xml);
-    WalkingExperiment experiment(urdf.path(), walk, tvr, contact, wbc, sim);
+    const rb::TempUrdf urdf(urdf_xml);
+    WalkingExperiment experiment(urdf.path(), walk, tvr, contact, wbc, sim, &proposed);
+    const bool proposed_mode = walk.mode == WalkConfig::Mode::kProposed;
     const RobotModel& model = experiment.model();
     Workspace ws(model);
     rb::LinkTransforms link_tf(model);
@@ -145,12 +136,20 @@ int main(int argc, char** argv) {
     ros::Publisher step_pub = nh.advertise<reach_trajopt::StepReport>("step_report", 100);
     ros::Publisher marker_pub = nh.advertise<visualization_msgs::MarkerArray>("markers", 100);
     ros::Publisher result_pub = nh.advertise<std_msgs::String>("walk_result", 1, true);
+    std::vector<ros::Publisher*> pubs = {&clock_pub,   &joint_pub,     &com_pub,
+                                         &contact_pub, &wrench_pub[0], &wrench_pub[1],
+                                         &step_pub,    &marker_pub,    &result_pub};
+    ros::Publisher reach_pub, reach_marker_pub, traj_pub;  // proposed mode only
+    if (proposed_mode) {
+      reach_pub = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
+      reach_marker_pub =
+          nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 100);
+      traj_pub = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
+      pubs.insert(pubs.end(), {&reach_pub, &reach_marker_pub, &traj_pub});
+    }
     tf2_ros::TransformBroadcaster tf_broadcaster;
 
     if (wait_for_subscribers > 0 || wait_for_com_subscribers > 0) {
-      const std::vector<ros::Publisher*> pubs = {&clock_pub,   &joint_pub,     &com_pub,
-                                                 &contact_pub, &wrench_pub[0], &wrench_pub[1],
-                                                 &step_pub,    &marker_pub,    &result_pub};
       const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_timeout);
       auto ready = [&]() {
         for (const ros::Publisher* p : pubs)
@@ -171,6 +170,9 @@ int main(int argc, char** argv) {
     const double half_length = contact.half_length, half_width = contact.half_width;
     double ground_z = 0.0;  // height of the last executed foothold [m]
     double next_publish = publish_period, next_clock = 0.0, next_marker = marker_period;
+    // The last control tick seen: the proposed mode's check runs at the start of the next one.
+    double last_tick_time = 0.0;
+    double sole_z[2] = {0.0, 0.0};  // measured sole heights at that tick [m]
     const ros::WallTime wall_start = ros::WallTime::now();
     const Eigen::VectorXd no_effort;
 
@@ -190,6 +192,10 @@ int main(int argc, char** argv) {
     auto onTick = [&](const WalkTick& tick) {
       if (!ros::ok()) throw Shutdown{};
       const double t = tick.time;
+      last_tick_time = t;
+      if (tick.soles)
+        for (size_t i = 0; i < tick.soles->size() && i < 2; ++i)
+          sole_z[i] = (*tick.soles)[i].sole_pose.translation().z();
       if (t + 1e-9 >= next_clock) {
         rosgraph_msgs::Clock c;
         c.clock = ros::Time(t);
@@ -235,9 +241,24 @@ int main(int argc, char** argv) {
       publishMarkers(ros::Time(r.touchdown_time));
     };
 
+    // The walking loop checks a step at the start of a control tick, before that tick's
+    // on_tick: its sim time is the last tick's plus one time step. The foothold lies on the
+    // ground at the stance sole's height.
+    auto onCheck = [&](const StepRecord& r, const ProposedStep& step) {
+      const ros::Time stamp(last_tick_time + sim.time_step);
+      const Eigen::Vector3d foothold =
+          rb::checkedFoothold(r, sole_z[static_cast<int>(opposite(r.swing))]);
+      const rb::ProposedStepMsgs msgs =
+          rb::toProposedStepMsgs(model, contact, r, step, foothold, proposed.reach.delta, stamp,
+                                 reachability_samples);
+      reach_pub.publish(msgs.reachability);
+      reach_marker_pub.publish(msgs.markers);
+      traj_pub.publish(msgs.trajectory);
+    };
+
     WalkResult result;
     try {
-      result = experiment.run(onTick, onStep);
+      result = experiment.run(onTick, onStep, onCheck);
     } catch (const Shutdown&) {
       ROS_WARN("sim_node: shut down during the walk");
       return 0;

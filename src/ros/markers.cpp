@@ -16,6 +16,8 @@ constexpr Rgba kExecutedColor{0.1f, 0.3f, 0.9f, 0.8f};
 constexpr Rgba kForwardColor{0.9f, 0.4f, 0.1f, 0.8f};
 constexpr Rgba kBackwardColor{0.2f, 0.5f, 0.9f, 0.8f};
 constexpr Rgba kWitnessColor{0.9f, 0.1f, 0.6f, 1.0f};
+constexpr Rgba kReachableColor{0.1f, 0.8f, 0.2f, 1.0f};
+constexpr Rgba kUnreachableColor{0.9f, 0.1f, 0.1f, 1.0f};
 constexpr double kSoleThickness = 0.005;  // [m], drawn height of a sole rectangle
 constexpr double kSamplePointSize = 0.004;  // [m]
 constexpr double kBoundaryWidth = 0.002;    // [m]
@@ -132,11 +134,22 @@ visualization_msgs::MarkerArray reachabilityMarkers(const reach_trajopt::Reachab
       a.markers.push_back(m);
     }
   }
-  if (r.verdict == "reachable" || r.verdict == "unreachable") {
+  const bool checked = r.verdict == "reachable" || r.verdict == "unreachable";
+  // The witness pair exists only when the sets were compared (witness_distance >= 0); a
+  // kinematically infeasible foothold has none, its points would sit at the origin.
+  if (checked && r.witness_distance >= 0.0) {
     auto m = baseMarker(kNsWitness, 0, visualization_msgs::Marker::SPHERE_LIST, frame,
                         r.header.stamp, kWitnessColor);
     m.scale.x = m.scale.y = m.scale.z = 0.02;
     m.points = {r.witness_forward, r.witness_backward};
+    a.markers.push_back(m);
+  }
+  if (checked) {
+    auto m = baseMarker(kNsCheckedFoothold, 0, visualization_msgs::Marker::SPHERE, frame,
+                        r.header.stamp,
+                        r.verdict == "reachable" ? kReachableColor : kUnreachableColor);
+    m.scale.x = m.scale.y = m.scale.z = 0.04;
+    m.pose.position = r.foothold;
     a.markers.push_back(m);
   }
   return a;

@@ -128,15 +128,60 @@ reach_trajopt::ReachabilityResult reachabilityVerdictMsg(const std::string& verd
   return m;
 }
 
+const std::string& swingFrame(const ContactConfig& contact, Side stance) {
+  return stance == Side::kLeft ? contact.right_sole_frame : contact.left_sole_frame;
+}
+
+ReachConfig reachConfigForDuration(const ReachConfig& base, double duration) {
+  ReachConfig config = base;
+  const double s = duration / config.horizon;
+  config.horizon = duration;
+  config.window_start *= s;
+  config.window_end *= s;
+  return config;
+}
+
+ReachProblem toReachProblem(const FootholdRequest& r, const KinematicFeasibilityResult& ik) {
+  ReachProblem p;
+  p.mode = ContactMode::singleSupport(r.stance);
+  p.q0 = r.q;
+  p.qd0 = r.qd;
+  p.qf = ik.q_f;
+  p.qdf = ik.qd_f;
+  p.footholds[static_cast<int>(r.stance)] = r.stance_contact.pose();
+  p.target = r.target.pose();
+  return p;
+}
+
+reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_reason,
+                                                        const std::string& swing_frame,
+                                                        const Eigen::Vector3d& foothold,
+                                                        const ros::Time& t0) {
+  reach_trajopt::ReachabilityResult m = reachabilityVerdictMsg(
+      "unreachable", "kinematically infeasible foothold: " + ik_reason, t0);
+  m.swing_frame = swing_frame;
+  m.foothold = toPointMsg(foothold);
+  return m;
+}
+
 reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
                                                           const FootholdRequest& request,
+                                                          const std::string& swing_frame,
+                                                          double delta, const ros::Time& t0,
+                                                          bool samples, int max_points) {
+  return toReachabilityResultMsg(r, request.target.position, swing_frame, delta, t0, samples,
+                                 max_points);
+}
+
+reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
+                                                          const Eigen::Vector3d& foothold,
                                                           const std::string& swing_frame,
                                                           double delta, const ros::Time& t0,
                                                           bool samples, int max_points) {
   reach_trajopt::ReachabilityResult m =
       reachabilityVerdictMsg(r.reachable ? "reachable" : "unreachable", r.reason, t0);
   m.swing_frame = swing_frame;
-  m.foothold = toPointMsg(request.target.position);
+  m.foothold = toPointMsg(foothold);
   m.delta = delta;
   double best = HUGE_VAL, gap = HUGE_VAL;
   for (const SliceComparison& c : r.window) {

@@ -1,15 +1,22 @@
 #!/usr/bin/python3
-"""rostest checker of walk_bag.test: waits for the walk to end, stops the recorder so the bag is
-closed, then checks the bag with two independent readers (rosbag, and the `rosbags` PyPI package
-of the project venv) and `rosbag info`:
+"""rostest checker of walk_bag.test (baseline) and proposed_walk_bag.test: waits for the walk to
+end, stops the recorder so the bag is closed, then checks the bag with two independent readers
+(rosbag, and the `rosbags` PyPI package of the project venv) and `rosbag info`:
   - every topic of the run is present;
   - the TF tree is complete: every link of robot_description reaches "world";
   - every marker is in the "world" frame, footholds and CoM path are drawn;
   - the step reports are consistent with the simulation: indices 1..N, alternating swing sides,
     increasing touchdown times, header stamps equal to the touchdown times, touchdown_error equal
     to |executed - planned|, the executed foothold equal to the swing sole position given by the
-    recorded TF at touchdown, and the count equal to the one of walk_result.
-Private parameters: ~bag (path), ~steps (expected steps), ~recorder (node name of rosbag record).
+    recorded TF at touchdown, and the count equal to the one of walk_result;
+  - proposed mode: one reachability_result, one reachability_markers array and one
+    transition_trajectory per checked step, in step order, consistent with the step reports
+    (verdict, swing sole, checked foothold = the TVR foothold, d_H, stamp = the sim time of the
+    check: the first control tick reachability horizon before the nominal touchdown), all in
+    "world", trajectory knot times increasing up to the horizon; baseline mode: none of these
+    topics and no step checked.
+Private parameters: ~bag (path), ~steps (expected steps), ~recorder (node name of rosbag record),
+~mode (baseline | proposed, the walk's mode).
 """
 import json
 import math
@@ -21,6 +28,7 @@ import unittest
 import xml.etree.ElementTree as ET
 
 import numpy as np
+import yaml
 import rosbag
 import rosnode
 import rospy
@@ -31,6 +39,10 @@ PKG = "reach_trajopt"
 TOPICS = ["/clock", "/tf", "/joint_states", "/com_state", "/contact_state",
           "/contact_wrench/l_sole", "/contact_wrench/r_sole", "/step_report", "/markers",
           "/walk_result", "/contact_plan"]
+# Published by sim_node once per checked step, in proposed mode only.
+CHECK_TOPICS = ["/reachability_result", "/reachability_markers", "/transition_trajectory"]
+# StepReport verdicts of a step whose check ran (a "check_error" step has no check messages).
+CHECKED_VERDICTS = ("reachable", "unreachable", "kinematically_infeasible")
 
 
 def quat_to_matrix(q):
@@ -85,6 +97,8 @@ class WalkBagTest(unittest.TestCase):
         rospy.init_node("check_walk_bag", anonymous=True)
         cls.bag_path = rospy.get_param("~bag")
         cls.expected_steps = int(rospy.get_param("~steps", 4))
+        cls.mode = rospy.get_param("~mode", "baseline")
+        cls.topics = TOPICS + (CHECK_TOPICS if cls.mode == "proposed" else [])
         recorder = rospy.get_param("~recorder", "/walk_recorder")
         # 1. The walk's end (walk_result is latched), in wall time: sim time runs in bursts.
         result = []
@@ -116,9 +130,18 @@ class WalkBagTest(unittest.TestCase):
                 cls.msgs.setdefault(topic, []).append(msg)
         cls.urdf_links = [l.get("name") for l in
                           ET.fromstring(rospy.get_param("/robot_description")).findall("link")]
+        # The walk's configuration (sim_node's ~config): swing duration, reachability horizon.
+        with open(rospy.get_param("/sim_node/config")) as f:
+            cls.config = yaml.safe_load(f)
+        sim_path = rospy.get_param("/sim_node/sim_config", "")
+        sim = cls.config
+        if sim_path:
+            with open(sim_path) as f:
+                sim = yaml.safe_load(f)
+        cls.dt = float(sim.get("sim", {}).get("time_step", 1e-3))  # control tick [s]
 
     def test_topics_present(self):
-        for t in TOPICS:
+        for t in self.topics:
             self.assertIn(t, self.bag_topics, "topic %s missing from the bag" % t)
             self.assertGreater(len(self.msgs.get(t, [])), 0, t)
         clock = [m.clock.to_sec() for m in self.msgs["/clock"]]
@@ -178,7 +201,7 @@ class WalkBagTest(unittest.TestCase):
         for k, r in enumerate(reports):
             self.assertEqual(r.index, k + 1)
             self.assertEqual(r.header.frame_id, "world")
-            self.assertEqual(r.mode, "baseline")
+            self.assertEqual(r.mode, self.mode)
             if k > 0:
                 self.assertNotEqual(r.swing_side, reports[k - 1].swing_side)
             self.assertGreater(r.touchdown_time, r.plan_time)
@@ -221,11 +244,93 @@ class WalkBagTest(unittest.TestCase):
             fz = sum(w.force.z for w in last.measured)
             self.assertGreater(fz, 100.0)
 
+    def test_checks_match_step_reports(self):
+        if self.mode != "proposed":  # baseline: nothing checked, nothing published about it
+            for t in CHECK_TOPICS:
+                self.assertNotIn(t, self.bag_topics, "%s in a %s walk" % (t, self.mode))
+            for r in self.msgs["/step_report"]:
+                self.assertEqual(r.verdict, "not_checked", "step %d" % r.index)
+            return
+        walk = self.config.get("walk", {})
+        swing = float(walk.get("single_support_duration", 0.22))
+        horizon = float(self.config["reach"]["horizon"])
+        # With replanning during the swing, plan_time is no longer the lift-off.
+        lift_off_is_plan_time = float(walk.get("replan_fraction", 0.0)) == 0.0
+        reports = [r for r in self.msgs["/step_report"] if r.verdict in CHECKED_VERDICTS]
+        results = self.msgs.get("/reachability_result", [])
+        markers = self.msgs.get("/reachability_markers", [])
+        trajectories = self.msgs.get("/transition_trajectory", [])
+        self.assertGreater(len(reports), 0, "no checked step in a proposed walk")
+        self.assertEqual(len(results), len(reports), "one reachability_result per checked step")
+        self.assertEqual(len(markers), len(reports), "one reachability_markers per checked step")
+        self.assertEqual(len(trajectories), len(reports),
+                         "one transition_trajectory per checked step")
+        prev = -1.0
+        for res, rep, arr, traj in zip(results, reports, markers, trajectories):
+            what = "step %d" % rep.index
+            stamp = res.header.stamp.to_sec()
+            # The check runs between planning and touchdown, steps in order.
+            self.assertGreater(stamp, rep.plan_time, what)
+            if rep.touched_down:
+                self.assertLess(stamp, rep.touchdown_time, what)
+            self.assertGreater(stamp, prev, what)
+            prev = stamp
+            if lift_off_is_plan_time:  # the first tick with t - lift-off >= swing - horizon
+                since = stamp - rep.plan_time
+                self.assertGreaterEqual(since, swing - horizon - 1e-6, what)
+                self.assertLessEqual(since, swing - horizon + self.dt + 1e-6, what)
+            self.assertEqual(res.header.frame_id, "world", what)
+            # A kinematically infeasible foothold is "unreachable" with the IK's reason and no
+            # sets, as reachability_node answers it.
+            if rep.verdict == "kinematically_infeasible":
+                self.assertEqual(res.verdict, "unreachable", what)
+                self.assertTrue(res.message.startswith("kinematically infeasible foothold"),
+                                res.message)
+                self.assertEqual(len(res.slices), 0, what)
+            else:
+                self.assertEqual(res.verdict, rep.verdict, what)
+                self.assertGreater(len(res.slices), 0, what)
+                for s in res.slices:
+                    self.assertEqual(s.header.frame_id, "world", what)
+                if rep.hausdorff_distance >= 0 and res.hausdorff_distance >= 0:
+                    self.assertAlmostEqual(res.hausdorff_distance, rep.hausdorff_distance,
+                                           delta=1e-12, msg=what)
+            self.assertEqual(res.swing_frame, "l_sole" if rep.swing_side == "left" else "r_sole")
+            # The checked foothold is the TVR foothold (no bounds in the proposed mode), on the
+            # ground.
+            self.assertAlmostEqual(res.foothold.x, rep.planned_tvr.x, places=9, msg=what)
+            self.assertAlmostEqual(res.foothold.y, rep.planned_tvr.y, places=9, msg=what)
+            if rep.touched_down:
+                self.assertLess(abs(res.foothold.z - rep.executed.z), 0.01, what)
+            # Markers: in "world", from the check on, the checked foothold among them.
+            self.assertGreater(len(arr.markers), 0, what)
+            for mk in arr.markers:
+                self.assertEqual(mk.header.frame_id, "world", "%s %s" % (what, mk.ns))
+                self.assertGreaterEqual(mk.header.stamp.to_sec(), stamp - 1e-9, mk.ns)
+            feet = [mk for mk in arr.markers if mk.ns == "checked_foothold"]
+            self.assertEqual(len(feet), 1, what)
+            self.assertAlmostEqual(feet[0].pose.position.x, res.foothold.x, places=9)
+            self.assertAlmostEqual(feet[0].pose.position.y, res.foothold.y, places=9)
+            # The OCP's trajectory from the same x_0: knot times increasing, row-major sizes.
+            self.assertEqual(traj.header.frame_id, "world", what)
+            self.assertAlmostEqual(traj.header.stamp.to_sec(), stamp, places=9, msg=what)
+            self.assertIn(traj.status, ("converged", "relaxed", "failed"), what)
+            t = list(traj.time)
+            self.assertTrue(all(b > a for a, b in zip(t, t[1:])), "%s: knot times %s" % (what, t))
+            self.assertEqual(len(traj.q), len(t) * len(traj.joint_names), what)
+            self.assertEqual(len(traj.u), len(t) * len(traj.actuated_joint_names), what)
+            if t:  # the OCP ran: knots from x_0 to t_f = t_0 + horizon
+                self.assertEqual(t[0], 0.0, what)
+                self.assertAlmostEqual(t[-1], horizon, places=9, msg=what)
+                self.assertTrue(all(math.isfinite(v) for v in traj.q), what)
+            else:
+                self.assertEqual(traj.status, "failed", what)
+
     def test_rosbag_info(self):
         out = subprocess.run(["rosbag", "info", self.bag_path], capture_output=True, text=True,
                              timeout=60)
         self.assertEqual(out.returncode, 0, out.stderr)
-        for t in TOPICS:
+        for t in self.topics:
             self.assertIn(t, out.stdout)
 
     def test_rosbags_independent_reader(self):
@@ -238,7 +343,7 @@ class WalkBagTest(unittest.TestCase):
                              text=True, timeout=120)
         self.assertEqual(out.returncode, 0, out.stderr)
         data = json.loads(out.stdout)
-        for t in TOPICS:
+        for t in self.topics:
             self.assertEqual(data["counts"].get(t), len(self.msgs[t]), t)
         ours = [[int(r.index), r.swing_side, r.executed.x, r.executed.y, r.planned.x,
                  r.planned.y, r.touchdown_time] for r in self.msgs["/step_report"]]

@@ -2,6 +2,7 @@
 // rejection of bad input.
 
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -123,6 +124,35 @@ TEST(RosMarkers, ReachableSetsAreThinnedToMaxSlicesIncludingTheEnds) {
   err.verdict = "error";
   err.header.frame_id.clear();
   EXPECT_TRUE(rb::reachabilityMarkers(err).markers.empty());
+}
+
+TEST(RosMarkers, CheckedFootholdColouredByVerdictAndNoWitnessWithoutSets) {
+  reach_trajopt::ReachabilityResult r = makeResult(2);
+  r.foothold.x = 0.3;
+  r.foothold.y = -0.2;
+  auto find = [](const visualization_msgs::MarkerArray& a, const std::string& ns) {
+    const Marker* found = nullptr;
+    for (const Marker& m : a.markers)
+      if (m.ns == ns) found = &m;
+    return found ? *found : Marker();
+  };
+  const Marker reachable = find(rb::reachabilityMarkers(r), rb::kNsCheckedFoothold);
+  EXPECT_EQ(reachable.ns, rb::kNsCheckedFoothold);
+  EXPECT_EQ(reachable.type, Marker::SPHERE);
+  EXPECT_EQ(reachable.header.frame_id, "world");
+  EXPECT_EQ(reachable.header.stamp, ros::Time(5.0));
+  EXPECT_EQ(reachable.pose.position.x, 0.3);
+  EXPECT_EQ(reachable.pose.position.y, -0.2);
+  EXPECT_GT(reachable.color.g, reachable.color.r);
+  // A kinematically infeasible foothold: "unreachable", no sets, witness_distance -1.
+  reach_trajopt::ReachabilityResult infeasible = makeResult(0);
+  infeasible.verdict = "unreachable";
+  infeasible.witness_distance = -1.0;
+  infeasible.foothold = r.foothold;
+  const auto a = rb::reachabilityMarkers(infeasible);
+  ASSERT_EQ(a.markers.size(), 1u);
+  EXPECT_EQ(a.markers[0].ns, rb::kNsCheckedFoothold);
+  EXPECT_GT(a.markers[0].color.r, a.markers[0].color.g);
 }
 
 TEST(RosMarkers, DeleteAll) {

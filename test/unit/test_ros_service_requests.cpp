@@ -111,3 +111,106 @@ TEST(RosServiceRequests, TrajectoryMessageIsKnotMajor) {
   EXPECT_DOUBLE_EQ(m.relaxation.y, -0.02);
   EXPECT_NE(m.message.find("FTOL_REACHED"), std::string::npos);
 }
+
+TEST(RosServiceRequests, ReachConfigKeepsTheWindowFractionsOfTheHorizon) {
+  ReachConfig base;
+  base.horizon = 0.08;
+  base.window_start = 0.03;
+  base.window_end = 0.05;
+  const ReachConfig same = rb::reachConfigForDuration(base, 0.08);
+  EXPECT_EQ(same.horizon, base.horizon);  // a request without a duration: bit for bit
+  EXPECT_EQ(same.window_start, base.window_start);
+  EXPECT_EQ(same.window_end, base.window_end);
+  const ReachConfig twice = rb::reachConfigForDuration(base, 0.16);
+  EXPECT_DOUBLE_EQ(twice.horizon, 0.16);
+  EXPECT_DOUBLE_EQ(twice.window_start, 0.06);
+  EXPECT_DOUBLE_EQ(twice.window_end, 0.10);
+  EXPECT_EQ(twice.initial_samples, base.initial_samples);
+}
+
+TEST(RosServiceRequests, ReachProblemHoldsTheStanceSoleAndTargetsTheFoothold) {
+  Fixture f;
+  const rb::FootholdRequest r = f.parse("world", "SS-R", {}, {});
+  KinematicFeasibilityResult ik;
+  ik.feasible = true;
+  ik.q_f = f.standing;
+  ik.q_f[0] += 0.01;
+  ik.qd_f = Eigen::VectorXd::Zero(f.model->nq());
+  const ReachProblem p = rb::toReachProblem(r, ik);
+  EXPECT_EQ(p.mode, ContactMode::singleSupport(Side::kRight));
+  EXPECT_EQ(p.q0, r.q);
+  EXPECT_EQ(p.qd0, r.qd);
+  EXPECT_EQ(p.qf, ik.q_f);
+  EXPECT_EQ(p.qdf, ik.qd_f);
+  EXPECT_FALSE(p.footholds[0].has_value());
+  ASSERT_TRUE(p.footholds[1].has_value());
+  EXPECT_TRUE(p.footholds[1]->isApprox(r.stance_contact.pose()));
+  ASSERT_TRUE(p.target.has_value());
+  EXPECT_EQ(p.target->translation(), Eigen::Vector3d(0.1, -0.2, 0.0));
+  EXPECT_EQ(rb::swingFrame(f.contact, Side::kRight), "l_sole");
+  EXPECT_EQ(rb::swingFrame(f.contact, Side::kLeft), "r_sole");
+}
+
+TEST(RosServiceRequests, InfeasibleFootholdIsUnreachableWithoutSets) {
+  const auto m = rb::infeasibleFootholdMsg("joint limits", "r_sole",
+                                           Eigen::Vector3d(0.9, -0.1, 0.0), ros::Time(3.0));
+  EXPECT_EQ(m.verdict, "unreachable");
+  EXPECT_EQ(m.message, "kinematically infeasible foothold: joint limits");
+  EXPECT_EQ(m.header.frame_id, "world");
+  EXPECT_EQ(m.header.stamp, ros::Time(3.0));
+  EXPECT_EQ(m.swing_frame, "r_sole");
+  EXPECT_EQ(m.foothold.x, 0.9);
+  EXPECT_TRUE(m.slices.empty());
+  EXPECT_EQ(m.hausdorff_distance, -1.0);
+  EXPECT_EQ(m.witness_distance, -1.0);
+}
+
+TEST(RosServiceRequests, ReachabilityMessageFromAResultAndAFoothold) {
+  // Two slices of two samples each; the second has the smaller d_H and is the witness slice.
+  ReachResult r;
+  r.reachable = true;
+  r.reason = "d_H below delta";
+  for (int j = 0; j < 2; ++j) {
+    SampleSlice f, b;
+    f.time = b.time = 0.01 * j;
+    f.parent = b.parent = {-1, -1};
+    f.output = Eigen::MatrixXd::Zero(3, 2);
+    f.output(0, 1) = 1.0;
+    b.output = f.output;
+    b.output(1, 0) = 0.5;
+    f.boundary = b.boundary = {0, 1};
+    r.forward.push_back(f);
+    r.backward.push_back(b);
+    SliceComparison c;
+    c.time = 0.01 * j;
+    c.forward_slice = c.backward_slice = j;
+    c.distance.hausdorff = j == 0 ? 0.5 : 0.25;
+    c.distance.resolution_a = c.distance.resolution_b = 1.0;
+    c.distance.closest = 0.1;
+    c.distance.closest_a = 1;
+    c.distance.closest_b = 0;
+    r.window.push_back(c);
+  }
+  r.best = 1;
+  const Eigen::Vector3d foothold(0.2, -0.25, 0.001);
+  const auto m = rb::toReachabilityResultMsg(r, foothold, "r_sole", 1e-5, ros::Time(4.0), true);
+  EXPECT_EQ(m.verdict, "reachable");
+  EXPECT_EQ(m.message, "d_H below delta");
+  EXPECT_EQ(m.foothold.x, 0.2);
+  EXPECT_EQ(m.foothold.z, 0.001);
+  ASSERT_EQ(m.slices.size(), 2u);
+  EXPECT_NEAR(m.slices[1].header.stamp.toSec(), 4.01, 1e-9);
+  EXPECT_EQ(m.slices[1].forward_outputs.size(), 2u);
+  EXPECT_DOUBLE_EQ(m.hausdorff_distance, 0.25);
+  EXPECT_DOUBLE_EQ(m.witness_time, 0.01);
+  EXPECT_DOUBLE_EQ(m.witness_forward.x, 1.0);
+  EXPECT_DOUBLE_EQ(m.witness_backward.y, 0.5);
+  // The request overload is the same message with the request's target.
+  Fixture f;
+  rb::FootholdRequest q = f.parse("world", "SS-L", {}, {});
+  q.target.position = foothold;
+  const auto m2 = rb::toReachabilityResultMsg(r, q, "r_sole", 1e-5, ros::Time(4.0), false);
+  EXPECT_EQ(m2.foothold, m.foothold);
+  EXPECT_TRUE(m2.slices[1].forward_outputs.empty());
+  EXPECT_EQ(m2.slices[1].forward_boundary, m.slices[1].forward_boundary);
+}

@@ -30,6 +30,7 @@ inline constexpr char kNsBackwardSet[] = "backward_set";
 inline constexpr char kNsForwardBoundary[] = "forward_boundary";
 inline constexpr char kNsBackwardBoundary[] = "backward_boundary";
 inline constexpr char kNsWitness[] = "witness";
+inline constexpr char kNsCheckedFoothold[] = "checked_foothold";
 
 /// Colour of a marker, components in [0, 1].
 struct Rgba {
@@ -52,9 +53,11 @@ visualization_msgs::Marker pathMarker(const std::vector<Eigen::Vector3d>& path,
                                       const Rgba& color, const ros::Time& stamp);
 
 /// @brief The reachable sets of one check (paper Fig. 3(a, b)): per slice, the forward and
-/// backward output samples (POINTS, ids = slice index) and boundaries (closed LINE_STRIP), and
-/// the witness pair (SPHERE_LIST). At most `max_slices` slices are drawn, evenly spread.
-/// Frame and stamp are the result's header (empty frame: "world").
+/// backward output samples (POINTS, ids = slice index) and boundaries (closed LINE_STRIP), the
+/// witness pair (SPHERE_LIST, when the sets were compared: witness_distance >= 0), and the
+/// checked foothold (SPHERE, green reachable, red unreachable). At most `max_slices` slices are
+/// drawn, evenly spread. An "error" result draws nothing. Frame and stamp are the result's
+/// header (empty frame: "world").
 visualization_msgs::MarkerArray reachabilityMarkers(const reach_trajopt::ReachabilityResult& r,
                                                     int max_slices = 20);
 

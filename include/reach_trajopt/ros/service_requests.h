@@ -55,14 +55,43 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
                                      double default_duration, const Eigen::VectorXd& standing_q,
                                      const FootholdRequestLimits& limits = {});
 
+/// The frame of the sole that swings while `stance` is held (the check's output frame).
+const std::string& swingFrame(const ContactConfig& contact, Side stance);
+
+/// The reachability configuration for a swing of `duration` seconds [s, > 0]: the horizon
+/// t_f - t_0 set to `duration`, the overlap window [t_2, t_1] kept at the same fractions of it.
+/// Not validated (the caller may change more fields first).
+ReachConfig reachConfigForDuration(const ReachConfig& base, double duration);
+
+/// The reachability problem (13)-(21) of a validated request whose foothold passed the
+/// kinematic feasibility check `ik` (x_f = (ik.q_f, ik.qd_f)): mode SS(stance), the stance
+/// sole held where it is at x_0, the swing sole to land flat on the target.
+ReachProblem toReachProblem(const FootholdRequest& request,
+                            const KinematicFeasibilityResult& ik);
+
 /// A ReachabilityResult message from a check (verdict "reachable" | "unreachable").
 /// Per window slice: d_H, counts, boundaries; output samples when `samples` (at most
 /// `max_points` per set and slice, evenly thinned). Stamped t_0, frame "world".
+/// \param foothold  the foothold that was checked (sole centre) [m]
+reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& result,
+                                                          const Eigen::Vector3d& foothold,
+                                                          const std::string& swing_frame,
+                                                          double delta, const ros::Time& t0,
+                                                          bool samples, int max_points = 500);
+/// Same, the foothold taken from the request's target.
 reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& result,
                                                           const FootholdRequest& request,
                                                           const std::string& swing_frame,
                                                           double delta, const ros::Time& t0,
                                                           bool samples, int max_points = 500);
+
+/// The verdict on a foothold that failed the kinematic feasibility check (Sec. III-B: no
+/// reachable path toward the next mode exists, so no sets are computed): "unreachable", the
+/// message "kinematically infeasible foothold: <ik_reason>", no slices, d_H = -1.
+reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_reason,
+                                                        const std::string& swing_frame,
+                                                        const Eigen::Vector3d& foothold,
+                                                        const ros::Time& t0);
 
 /// A ReachabilityResult message for a rejected or failed check (verdict "error" or the given
 /// verdict, e.g. "unreachable" for a kinematically infeasible foothold) with its reason.

@@ -1,0 +1,70 @@
+#include "reach_trajopt/ros/node_setup.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include <ros/package.h>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/walk/standing_pose.h"
+#include "reach_trajopt/walk/walking_experiment.h"
+
+namespace reach_trajopt {
+namespace ros_bridge {
+
+std::string robotDescription(const ros::NodeHandle& nh) {
+  std::string urdf;
+  if (!nh.getParam("robot_description", urdf) || urdf.empty())
+    throw ReachError("parameter 'robot_description' (URDF text) is not set");
+  return urdf;
+}
+
+std::string configPath(const ros::NodeHandle& pnh) {
+  std::string path;
+  if (!pnh.getParam("config", path))
+    path = ros::package::getPath("reach_trajopt") + "/config/biped.yaml";
+  return path;
+}
+
+TempUrdf::TempUrdf(const std::string& xml) {
+  char name[] = "/tmp/reach_trajopt_urdf_XXXXXX";
+  const int fd = mkstemp(name);
+  if (fd < 0) throw ReachError("cannot create a temporary URDF file");
+  close(fd);
+  path_ = name;
+  std::ofstream out(path_);
+  out << xml;
+  if (!out) {
+    std::remove(path_.c_str());
+    throw ReachError("cannot write the temporary URDF file " + path_);
+  }
+}
+
+TempUrdf::~TempUrdf() { std::remove(path_.c_str()); }
+
+FootholdServiceSetup FootholdServiceSetup::load(const ros::NodeHandle& nh,
+                                                const ros::NodeHandle& pnh) {
+  const std::string urdf = robotDescription(nh);
+  const std::string config_path = configPath(pnh);
+  FootholdRequestLimits limits;
+  pnh.getParam("ground_tolerance", limits.ground_tolerance);
+  const std::shared_ptr<const RobotModel> model =
+      RobotModel::fromUrdfString(urdf, {}, "robot_description");
+  const YamlSection file = YamlSection::loadFile(config_path);
+  const ContactConfig contact = ContactConfig::fromYaml(file.section("contact"));
+  const ReachConfig reach = ReachConfig::fromYaml(file.section("reach"));
+  const WalkConfig walk =
+      file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
+  FootholdServiceSetup s{file, config_path, model, contact, reach, limits, nullptr, nullptr, {}};
+  s.feasibility = std::make_shared<KinematicFeasibility>(
+      model, KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility")),
+      contact);
+  s.analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, reach);
+  s.standing_q = standingConfiguration(*model, walk.knee_bend, contact.left_sole_frame);
+  return s;
+}
+
+}  // namespace ros_bridge
+}  // namespace reach_trajopt
