@@ -13,7 +13,9 @@ demo: build
 test: build
 	bash scripts/run_tests
 
+# The benchmarks also need their benchmark-only packages (IPOPT): bootstrap --bench.
 bench: build
+	bash scripts/bootstrap --bench
 	bash scripts/bench
 
 clean:
