@@ -370,12 +370,9 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
         ++row;
       }
     }
-    // Ground clearance: floor(t) - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality);
-    // the floor rises by swing_clearance at mid-horizon so the sole cannot touch down early.
+    // Ground clearance: floor - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality).
     if (ground_clearance_ && i > 0 && smp.t < basis_.duration()) {
-      const double s_rel = smp.t / basis_.duration();
-      const double floor = ground_floor_ + config_.swing_clearance * 4.0 * s_rel * (1.0 - s_rel);
-      out.inequality[row] = floor - signals_[d.swingPositionOffset() + 2];
+      out.inequality[row] = ground_floor_ - signals_[d.swingPositionOffset() + 2];
       if (gradients) {
         grow = -jloc_.row(d.swingPositionOffset() + 2);
         scatter(out.inequality_jacobian.row(row), grow, final);

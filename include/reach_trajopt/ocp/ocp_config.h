@@ -41,8 +41,6 @@ struct TransitionOcpConfig {
   double cone_margin = 0.01;        ///< cone rows required >= margin m g inside the NLP
   double torque_margin = 0.01;      ///< |u| <= (1 - margin) u_max inside the NLP
   bool ground_clearance = true;     ///< swing sole z >= min(z_target, z(t_0)) at NLP samples
-  double swing_clearance = 0.0;     ///< with ground_clearance: the floor is raised by
-                                    ///< swing_clearance 4 s (1 - s), s = t / T [m]
   double tolerance = 1.0e-4;        ///< accepted violation, each family (units: see result)
   double input_tolerance = 1.0e-4;  ///< x_0, x_f on their contacts [m, rad, m/s, rad/s]
   int max_refinements = 3;          ///< re-solves (violating samples added, or a restart)
