@@ -82,12 +82,8 @@ int main(int argc, char** argv) {
       const YamlSection sim_file = YamlSection::loadFile(sim_config_path);
       sim = SimConfig::fromYaml(sim_file.section("sim"));
     }
-    ProposedStepConfig proposed;  // the proposed mode's check and OCP
-    if (file.has("kinematic_feasibility"))
-      proposed.kinematics =
-          KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));
-    if (file.has("reach")) proposed.reach = ReachConfig::fromYaml(file.section("reach"));
-    if (file.has("ocp")) proposed.ocp = TransitionOcpConfig::fromYaml(file.section("ocp"));
+    // The proposed mode's check and OCP.
+    const ProposedStepConfig proposed = ProposedStepConfig::fromYaml(file);
     std::string mode;
     if (pnh.getParam("mode", mode)) walk.mode = WalkConfig::parseMode(mode);
     int int_value = 0;

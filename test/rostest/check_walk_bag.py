@@ -130,7 +130,7 @@ class WalkBagTest(unittest.TestCase):
                 cls.msgs.setdefault(topic, []).append(msg)
         cls.urdf_links = [l.get("name") for l in
                           ET.fromstring(rospy.get_param("/robot_description")).findall("link")]
-        # The walk's configuration (sim_node's ~config): swing duration, reachability horizon.
+        # The walk's configuration (sim_node's ~config): swing duration, check horizon.
         with open(rospy.get_param("/sim_node/config")) as f:
             cls.config = yaml.safe_load(f)
         sim_path = rospy.get_param("/sim_node/sim_config", "")
@@ -253,7 +253,8 @@ class WalkBagTest(unittest.TestCase):
             return
         walk = self.config.get("walk", {})
         swing = float(walk.get("single_support_duration", 0.22))
-        horizon = float(self.config["reach"]["horizon"])
+        # The walking check's horizon (WalkConfig::check_horizon replaces reach.horizon).
+        horizon = float(walk.get("check_horizon", 0.2))
         # With replanning during the swing, plan_time is no longer the lift-off.
         lift_off_is_plan_time = float(walk.get("replan_fraction", 0.0)) == 0.0
         reports = [r for r in self.msgs["/step_report"] if r.verdict in CHECKED_VERDICTS]
