@@ -179,3 +179,30 @@ TEST(KinematicFeasibility, ShippedYaml) {
   EXPECT_EQ(c.pelvis_frame, "pelvis");
   EXPECT_NO_THROW(KinematicFeasibility(biped(), c));
 }
+
+TEST(KinematicFeasibility, HeldPelvisPositionIsReachedWithSolesOnTarget) {
+  // The walking check's variant: the pelvis origin held where the CoM will carry it (here 3 cm
+  // ahead of and 2 cm toward the stance sole from the midpoint, 5 cm above the nominal
+  // height). Checked by forward kinematics at q_f.
+  const auto m = biped();
+  const KinematicFeasibility kf(m);
+  const Eigen::Vector3d pelvis(0.08, 0.03, kf.config().pelvis_height + 0.05);
+  const auto r = kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1), Eigen::VectorXd(),
+                          pelvis);
+  ASSERT_TRUE(r.feasible) << r.reason;
+  Workspace ws(*m);
+  m->update(ws, r.q_f, Eigen::VectorXd::Zero(m->nq()));
+  EXPECT_LT((m->framePose(ws, m->frameId("pelvis")).translation() - pelvis).norm(), 1e-5);
+  EXPECT_LT((m->framePose(ws, m->frameId("l_sole")).translation() - Eigen::Vector3d(0, 0.1, 0))
+                .norm(), 1e-5);
+  EXPECT_LT((m->framePose(ws, m->frameId("r_sole")).translation() -
+             Eigen::Vector3d(0.1, -0.1, 0)).norm(), 1e-5);
+  // A pelvis held far from the soles cannot be reached: infeasible with a reason.
+  const auto far = kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1),
+                            Eigen::VectorXd(), Eigen::Vector3d(0.6, 0.0, 1.0));
+  EXPECT_FALSE(far.feasible);
+  EXPECT_NE(far.reason.find("pelvis"), std::string::npos) << far.reason;
+  EXPECT_THROW(kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1), Eigen::VectorXd(),
+                        Eigen::Vector3d(kNaN, 0.0, 1.0)),
+               ReachError);
+}
