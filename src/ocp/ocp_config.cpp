@@ -39,6 +39,7 @@ void TransitionOcpConfig::validate() const {
   if (!std::isfinite(terminal_pelvis_height)) {
     throw ReachError("TransitionOcpConfig: terminal_pelvis_height must be finite");
   }
+  requireNonNegative("swing_clearance", swing_clearance);
   requireNonNegative("cone_margin", cone_margin);
   requireNonNegative("torque_margin", torque_margin);
   if (torque_margin >= 1.0) throw ReachError("TransitionOcpConfig: torque_margin must be < 1");
@@ -57,7 +58,7 @@ void TransitionOcpConfig::validate() const {
 TransitionOcpConfig TransitionOcpConfig::fromYaml(const YamlSection& s) {
   s.requireOnlyKeys({"segments", "check_interval", "output_dt", "w_torque", "w_wrench",
                      "w_position", "w_velocity", "w_eps", "terminal_pelvis_height", "cone_margin", "torque_margin",
-                     "ground_clearance", "tolerance", "input_tolerance", "max_refinements",
+                     "ground_clearance", "swing_clearance", "tolerance", "input_tolerance", "max_refinements",
                      "max_evaluations", "time_limit", "ftol_rel", "relaxed_ftol_rel", "xtol_rel", "fd_step",
                      "central_differences", "fit_regularization"});
   TransitionOcpConfig c;
@@ -73,6 +74,7 @@ TransitionOcpConfig TransitionOcpConfig::fromYaml(const YamlSection& s) {
   s.read("cone_margin", c.cone_margin);
   s.read("torque_margin", c.torque_margin);
   s.read("ground_clearance", c.ground_clearance);
+  s.read("swing_clearance", c.swing_clearance);
   s.read("tolerance", c.tolerance);
   s.read("input_tolerance", c.input_tolerance);
   s.read("max_refinements", c.max_refinements);

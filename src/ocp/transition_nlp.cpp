@@ -211,6 +211,12 @@ Vector6d TransitionNlp::lambdaNew(const Eigen::VectorXd& x) const {
   return weight_ * x.segment<6>(lambda_index_);
 }
 
+double TransitionNlp::groundFloor(double t) const {
+  const double ramp = basis_.duration() / 3.0;
+  const double a = std::min(1.0, std::min(t, basis_.duration() - t) / ramp);
+  return ground_floor_ + config_.swing_clearance * a * a;
+}
+
 Eigen::VectorXd TransitionNlp::initialGuess() const {
   const double T = basis_.duration();
   Eigen::VectorXd times;
@@ -370,9 +376,9 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
         ++row;
       }
     }
-    // Ground clearance: floor - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality).
+    // Ground clearance: floor(t) - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality).
     if (ground_clearance_ && i > 0 && smp.t < basis_.duration()) {
-      out.inequality[row] = ground_floor_ - signals_[d.swingPositionOffset() + 2];
+      out.inequality[row] = groundFloor(smp.t) - signals_[d.swingPositionOffset() + 2];
       if (gradients) {
         grow = -jloc_.row(d.swingPositionOffset() + 2);
         scatter(out.inequality_jacobian.row(row), grow, final);

@@ -40,7 +40,11 @@ struct TransitionOcpConfig {
   double terminal_pelvis_height = 1.05;
   double cone_margin = 0.01;        ///< cone rows required >= margin m g inside the NLP
   double torque_margin = 0.01;      ///< |u| <= (1 - margin) u_max inside the NLP
-  bool ground_clearance = true;     ///< swing sole z >= min(z_target, z(t_0)) at NLP samples
+  bool ground_clearance = true;     ///< swing sole z >= min(z_target, z(t_0)) at NLP samples,
+  double swing_clearance = 0.0;     ///< plus this much in the middle of the horizon [m], with
+                                    ///< quadratic ramps over its first and last thirds (the
+                                    ///< sole lands with phidot = 0: z ~ (t_f - t)^2), so it
+                                    ///< cannot graze the ground and touch down early
   double tolerance = 1.0e-4;        ///< accepted violation, each family (units: see result)
   double input_tolerance = 1.0e-4;  ///< x_0, x_f on their contacts [m, rad, m/s, rad/s]
   int max_refinements = 3;          ///< re-solves (violating samples added, or a restart)

@@ -124,6 +124,8 @@ class TransitionNlp {
                    Eigen::Ref<Eigen::VectorXd> input) const;
   double controlPoint(const Eigen::VectorXd& x, int k, int joint) const;
   int freeIndex(int k) const;  ///< first variable of control point k, -1 when fixed
+  /// Lowest swing sole height allowed at t [m] (ground_clearance, swing_clearance).
+  double groundFloor(double t) const;
 
   std::shared_ptr<const RobotModel> model_;
   TransitionOcpConfig config_;
