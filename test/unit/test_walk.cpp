@@ -59,6 +59,9 @@ TEST(WalkingExperiment, ConfigErrors) {
   walk.initial_com_velocity.x() = NAN;
   EXPECT_THROW(walk.validate(), ReachError);
   EXPECT_THROW(WalkConfig::parseMode("fast"), ReachError);
+  walk = WalkConfig{};
+  walk.check_horizon = walk.single_support_duration;  // the check must start within the swing
+  EXPECT_THROW(walk.validate(), ReachError);
   EXPECT_THROW(WalkingExperiment("/nonexistent.urdf", WalkConfig{}, TvrConfig{}, ContactConfig{},
                                  WbcConfig{}, SimConfig{}),
                ReachError);
