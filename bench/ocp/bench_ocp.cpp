@@ -94,40 +94,6 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-/// The trajectory of solution x sampled every dt (and at t_f), as TransitionOcp samples its
-/// own solution before the re-check (only the fields checkTransition reads).
-TransitionResult sampleTrajectory(TransitionNlp& nlp, const Eigen::VectorXd& x, double dt,
-                                  Side stance) {
-  const double T = nlp.basis().duration();
-  const int nq = nlp.dynamics().nq(), nu = nlp.dynamics().nu();
-  int n = static_cast<int>(std::floor(T / dt + 1e-9)) + 1;
-  if (std::abs((n - 1) * dt - T) > 1e-9) ++n;
-  TransitionResult r;
-  r.dt = dt;
-  r.time.resize(n);
-  r.q.resize(nq, n);
-  r.qd.resize(nq, n);
-  r.qdd.resize(nq, n);
-  r.u.resize(nu, n);
-  r.lambda.setZero(12, n);
-  const int is = stance == Side::kLeft ? 0 : 6, in = 6 - is;
-  TransitionSampleState st;
-  for (int k = 0; k < n; ++k) {
-    const double t = k + 1 == n ? T : k * dt;
-    nlp.state(x, t, st);
-    r.time[k] = t;
-    r.q.col(k) = st.q;
-    r.qd.col(k) = st.qd;
-    r.qdd.col(k) = st.qdd;
-    r.u.col(k) = st.u;
-    r.lambda.col(k).segment<6>(is) = st.lambda_stance;
-    r.lambda.col(k).segment<6>(in) = st.lambda_new;
-  }
-  r.relaxed = nlp.relaxed();
-  r.eps = nlp.eps(x);
-  return r;
-}
-
 /// IPOPT on the NLP of one request, timed like one TransitionOcp round (see file comment).
 struct RefRun {
   IpoptBenchResult ipopt;
@@ -141,8 +107,8 @@ RefRun runReference(const TransitionOcp& ocp, const std::shared_ptr<const RobotM
   TransitionNlp nlp(model, ocp.config(), ocp.contact(), req, relaxed);
   RefRun run;
   run.ipopt = solveWithIpopt(nlp, nlp.initialGuess(), set);
-  const TransitionResult traj =
-      sampleTrajectory(nlp, run.ipopt.x, ocp.config().output_dt, req.stance);
+  TransitionResult traj;
+  nlp.sampleSolution(run.ipopt.x, ocp.config().output_dt, traj);
   run.violation = checkTransition(*model, ocp.contact(), req, traj, 0.5 * ocp.config().tolerance)
                       .violation.max();
   run.total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -455,4 +455,37 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
   if (row != m_in) throw ReachError("TransitionNlp: internal error, inequality count mismatch");
 }
 
+/// Samples the solution at dt (and exactly at t_f) into `res`.
+void TransitionNlp::sampleSolution(const Eigen::VectorXd& x, double dt, TransitionResult& res) {
+  const Side stance = request_.stance;
+  const double T = basis_.duration();
+  const int nq = nq_, nu = nu_;
+  int n = static_cast<int>(std::floor(T / dt + 1e-9)) + 1;
+  const bool on_grid = std::abs((n - 1) * dt - T) <= 1e-9;
+  if (!on_grid) ++n;
+  res.dt = dt;
+  res.time.resize(n);
+  res.q.resize(nq, n);
+  res.qd.resize(nq, n);
+  res.qdd.resize(nq, n);
+  res.u.resize(nu, n);
+  res.lambda.setZero(12, n);
+  const int is = stance == Side::kLeft ? 0 : 6, in = 6 - is;
+  TransitionSampleState st;
+  for (int k = 0; k < n; ++k) {
+    const double t = k + 1 == n ? T : k * dt;
+    state(x, t, st);
+    res.time[k] = t;
+    res.q.col(k) = st.q;
+    res.qd.col(k) = st.qd;
+    res.qdd.col(k) = st.qdd;
+    res.u.col(k) = st.u;
+    res.lambda.col(k).segment<6>(is) = st.lambda_stance;
+    res.lambda.col(k).segment<6>(in) = st.lambda_new;
+    if (k + 1 == n) res.landing_position = st.swing_position;
+  }
+  res.relaxed = relaxed_;
+  res.eps = eps(x);
+}
+
 }  // namespace reach_trajopt

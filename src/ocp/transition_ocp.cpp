@@ -147,39 +147,6 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, doub
   return nloptResultName(code);
 }
 
-/// Samples the NLP solution at output_dt (and exactly at t_f) into `res`.
-void sampleSolution(TransitionNlp& nlp, const Eigen::VectorXd& x, double dt, Side stance,
-                    TransitionResult& res) {
-  const double T = nlp.basis().duration();
-  const int nq = nlp.dynamics().nq(), nu = nlp.dynamics().nu();
-  int n = static_cast<int>(std::floor(T / dt + 1e-9)) + 1;
-  const bool on_grid = std::abs((n - 1) * dt - T) <= 1e-9;
-  if (!on_grid) ++n;
-  res.dt = dt;
-  res.time.resize(n);
-  res.q.resize(nq, n);
-  res.qd.resize(nq, n);
-  res.qdd.resize(nq, n);
-  res.u.resize(nu, n);
-  res.lambda.setZero(12, n);
-  const int is = stance == Side::kLeft ? 0 : 6, in = 6 - is;
-  TransitionSampleState st;
-  for (int k = 0; k < n; ++k) {
-    const double t = k + 1 == n ? T : k * dt;
-    nlp.state(x, t, st);
-    res.time[k] = t;
-    res.q.col(k) = st.q;
-    res.qd.col(k) = st.qd;
-    res.qdd.col(k) = st.qdd;
-    res.u.col(k) = st.u;
-    res.lambda.col(k).segment<6>(is) = st.lambda_stance;
-    res.lambda.col(k).segment<6>(in) = st.lambda_new;
-    if (k + 1 == n) res.landing_position = st.swing_position;
-  }
-  res.relaxed = nlp.relaxed();
-  res.eps = nlp.eps(x);
-}
-
 std::string worstFamily(const ConstraintViolations& v) {
   const std::pair<const char*, double> f[] = {
       {"dynamics", v.dynamics},           {"stance_contact", v.stance_contact},
@@ -311,14 +278,14 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     if (remaining <= 0.0) {
       res.status = OcpStatus::kFailed;
       res.reason = "time limit of " + std::to_string(config_.time_limit) + " s reached";
-      if (res.time.size() == 0) sampleSolution(nlp, x, config_.output_dt, request.stance, res);
+      if (res.time.size() == 0) nlp.sampleSolution(x, config_.output_dt, res);
       break;
     }
     res.nlopt_status = runSlsqp(nlp, config_, remaining, x, res.iterations, error);
     ++res.solves;
     res.variables = nlp.variableCount();
     res.constraints = nlp.equalityCount() + nlp.inequalityCount();
-    sampleSolution(nlp, x, config_.output_dt, request.stance, res);
+    nlp.sampleSolution(x, config_.output_dt, res);
     const TransitionCheck check =
         checkTransition(*model_, contact_, request, res, 0.5 * config_.tolerance);
     res.violation = check.violation;

@@ -49,6 +49,7 @@
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/stance_reduced_dynamics.h"
 #include "reach_trajopt/ocp/transition_request.h"
+#include "reach_trajopt/ocp/transition_result.h"
 
 namespace reach_trajopt {
 
@@ -104,6 +105,9 @@ class TransitionNlp {
   /// Slices currently enforced.
   const std::vector<int>& enforcedSlices() const { return enforced_slices_; }
 
+  /// The solution x sampled every dt and exactly at t_f (q, qd, qdd, u, lambda, landing,
+  /// eps, relaxed) into `out`, as the OCP's output before its re-check.
+  void sampleSolution(const Eigen::VectorXd& x, double dt, TransitionResult& out);
   /// The full state at time t in [0, T] for the solution x (lambda_2 acts only at t = T).
   void state(const Eigen::VectorXd& x, double t, TransitionSampleState& out);
   /// eps of x (zero for the strict problem) [m].
