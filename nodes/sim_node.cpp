@@ -17,6 +17,7 @@
 ///   reachability_markers (visualization_msgs/MarkerArray)  its sets, witness and foothold
 ///   transition_trajectory (TransitionTrajectory)  the OCP's trajectory (converged, relaxed or
 ///                                              failed) the swing then tracks
+///   transition_markers (visualization_msgs/MarkerArray)  its swing sole path and landing
 /// Parameters (private): ~config (YAML with sections contact, planner, walk, wbc, and for the
 /// proposed mode kinematic_feasibility, reach, ocp; default config/biped.yaml of the package),
 /// ~sim_config (YAML with a sim section, optional), ~mode
@@ -135,13 +136,14 @@ int main(int argc, char** argv) {
     std::vector<ros::Publisher*> pubs = {&clock_pub,   &joint_pub,     &com_pub,
                                          &contact_pub, &wrench_pub[0], &wrench_pub[1],
                                          &step_pub,    &marker_pub,    &result_pub};
-    ros::Publisher reach_pub, reach_marker_pub, traj_pub;  // proposed mode only
+    ros::Publisher reach_pub, reach_marker_pub, traj_pub, traj_marker_pub;  // proposed only
     if (proposed_mode) {
       reach_pub = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
       reach_marker_pub =
           nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 100);
       traj_pub = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
-      pubs.insert(pubs.end(), {&reach_pub, &reach_marker_pub, &traj_pub});
+      traj_marker_pub = nh.advertise<visualization_msgs::MarkerArray>("transition_markers", 100);
+      pubs.insert(pubs.end(), {&reach_pub, &reach_marker_pub, &traj_pub, &traj_marker_pub});
     }
     tf2_ros::TransformBroadcaster tf_broadcaster;
 
@@ -250,6 +252,10 @@ int main(int argc, char** argv) {
       reach_pub.publish(msgs.reachability);
       reach_marker_pub.publish(msgs.markers);
       traj_pub.publish(msgs.trajectory);
+      const FrameId swing_sole = model.frameId(r.swing == Side::kLeft ? contact.left_sole_frame
+                                                                      : contact.right_sole_frame);
+      traj_marker_pub.publish(
+          rb::transitionMarkers(step.trajectory, model, swing_sole, r.index, stamp));
     };
 
     WalkResult result;

@@ -2,8 +2,8 @@
 /// service, optionally seeded by the reachability witness, with the relaxation of an
 /// unreachable foothold (the robot steps to the closest reachable point).
 ///   service plan_transition (reach_trajopt/PlanTransition)
-///   publishes transition_trajectory (TransitionTrajectory) and, when the check ran,
-///   reachability_result (ReachabilityResult)
+///   publishes transition_trajectory (TransitionTrajectory), transition_markers (MarkerArray:
+///   the swing sole's path and landing) and, when the check ran, reachability_result
 /// x_f is the kinematic feasibility solution (Sec. III-B) with the swing sole on the foothold.
 /// Bad requests (NaN, wrong sizes, unknown frame, empty contact set, a foothold in the air) get
 /// success = false and the reason; the node keeps serving.
@@ -21,6 +21,7 @@
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/service_requests.h"
 
@@ -40,6 +41,7 @@ class TransitionOcpNode {
     ocp_ = std::make_unique<TransitionOcp>(s_.model, ocp_config, s_.contact);
     traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 10);
     reach_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 10);
+    marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("transition_markers", 10);
     server_ = nh.advertiseService("plan_transition", &TransitionOcpNode::plan, this);
   }
 
@@ -91,6 +93,8 @@ class TransitionOcpNode {
           res.success = true;
           res.message = res.trajectory.status + ": " + res.trajectory.message;
           traj_pub_.publish(res.trajectory);
+          marker_pub_.publish(rb::transitionMarkers(
+              result, *s_.model, s_.model->frameId(rb::swingFrame(s_.contact, r.stance)), 0, t0));
         },
         [&](const std::string& reason) {
           res.success = false;
@@ -105,7 +109,7 @@ class TransitionOcpNode {
   const rb::FootholdServiceSetup s_;
   double default_horizon_;
   std::unique_ptr<TransitionOcp> ocp_;
-  ros::Publisher traj_pub_, reach_pub_;
+  ros::Publisher traj_pub_, reach_pub_, marker_pub_;
   ros::ServiceServer server_;
 };
 

@@ -18,6 +18,8 @@ constexpr Rgba kBackwardColor{0.2f, 0.5f, 0.9f, 0.8f};
 constexpr Rgba kWitnessColor{0.9f, 0.1f, 0.6f, 1.0f};
 constexpr Rgba kReachableColor{0.1f, 0.8f, 0.2f, 1.0f};
 constexpr Rgba kUnreachableColor{0.9f, 0.1f, 0.1f, 1.0f};
+constexpr Rgba kRelaxedColor{1.0f, 0.6f, 0.0f, 1.0f};
+constexpr Rgba kTransitionColor{0.5f, 0.1f, 0.9f, 1.0f};
 constexpr double kSoleThickness = 0.005;  // [m], drawn height of a sole rectangle
 constexpr double kSamplePointSize = 0.004;  // [m]
 constexpr double kBoundaryWidth = 0.002;    // [m]
@@ -152,6 +154,33 @@ visualization_msgs::MarkerArray reachabilityMarkers(const reach_trajopt::Reachab
     m.pose.position = r.foothold;
     a.markers.push_back(m);
   }
+  return a;
+}
+
+visualization_msgs::MarkerArray transitionMarkers(const TransitionResult& trajectory,
+                                                  const RobotModel& model, FrameId swing_sole,
+                                                  int id, const ros::Time& stamp) {
+  visualization_msgs::MarkerArray a;
+  const Eigen::Index n = trajectory.q.cols();
+  if (n == 0) return a;
+  requireSize("transition markers: trajectory q rows", trajectory.q.rows(), model.nq());
+  Workspace ws(model);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.nq());
+  std::vector<Eigen::Vector3d> path;
+  path.reserve(static_cast<size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) {
+    model.update(ws, trajectory.q.col(k), zero);
+    path.push_back(model.framePose(ws, swing_sole).translation());
+  }
+  a.markers.push_back(pathMarker(path, kNsTransitionSwingPath, id, 0.004, kTransitionColor, stamp));
+  const Rgba landing_color = trajectory.status == OcpStatus::kConverged ? kReachableColor
+                             : trajectory.status == OcpStatus::kRelaxed ? kRelaxedColor
+                                                                        : kUnreachableColor;
+  auto m = baseMarker(kNsTransitionLanding, id, visualization_msgs::Marker::SPHERE, kWorldFrame,
+                      stamp, landing_color);
+  m.scale.x = m.scale.y = m.scale.z = 0.03;
+  m.pose.position = toPointMsg(path.back());
+  a.markers.push_back(m);
   return a;
 }
 

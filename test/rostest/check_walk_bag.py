@@ -10,7 +10,8 @@ end, stops the recorder so the bag is closed, then checks the bag with two indep
     to |executed - planned|, the executed foothold equal to the swing sole position given by the
     recorded TF at touchdown, and the count equal to the one of walk_result;
   - proposed mode: one reachability_result, one reachability_markers array and one
-    transition_trajectory per checked step, in step order, consistent with the step reports
+    transition_trajectory and transition_markers per checked step, in step order, consistent
+    with the step reports
     (verdict, swing sole, checked foothold = the TVR foothold, d_H, stamp = the sim time of the
     check: the first control tick reachability horizon before the nominal touchdown), all in
     "world", trajectory knot times increasing up to the horizon; baseline mode: none of these
@@ -40,7 +41,8 @@ TOPICS = ["/clock", "/tf", "/joint_states", "/com_state", "/contact_state",
           "/contact_wrench/l_sole", "/contact_wrench/r_sole", "/step_report", "/markers",
           "/walk_result", "/contact_plan"]
 # Published by sim_node once per checked step, in proposed mode only.
-CHECK_TOPICS = ["/reachability_result", "/reachability_markers", "/transition_trajectory"]
+CHECK_TOPICS = ["/reachability_result", "/reachability_markers", "/transition_trajectory",
+                "/transition_markers"]
 # StepReport verdicts of a step whose check ran (a "check_error" step has no check messages).
 CHECKED_VERDICTS = ("reachable", "unreachable", "kinematically_infeasible")
 
@@ -261,13 +263,17 @@ class WalkBagTest(unittest.TestCase):
         results = self.msgs.get("/reachability_result", [])
         markers = self.msgs.get("/reachability_markers", [])
         trajectories = self.msgs.get("/transition_trajectory", [])
+        transition_markers = self.msgs.get("/transition_markers", [])
         self.assertGreater(len(reports), 0, "no checked step in a proposed walk")
         self.assertEqual(len(results), len(reports), "one reachability_result per checked step")
         self.assertEqual(len(markers), len(reports), "one reachability_markers per checked step")
         self.assertEqual(len(trajectories), len(reports),
                          "one transition_trajectory per checked step")
+        self.assertEqual(len(transition_markers), len(reports),
+                         "one transition_markers per checked step")
         prev = -1.0
-        for res, rep, arr, traj in zip(results, reports, markers, trajectories):
+        for res, rep, arr, traj, tm in zip(results, reports, markers, trajectories,
+                                           transition_markers):
             what = "step %d" % rep.index
             stamp = res.header.stamp.to_sec()
             # The check runs between planning and touchdown, steps in order.
@@ -324,8 +330,19 @@ class WalkBagTest(unittest.TestCase):
                 self.assertEqual(t[0], 0.0, what)
                 self.assertAlmostEqual(t[-1], horizon, places=9, msg=what)
                 self.assertTrue(all(math.isfinite(v) for v in traj.q), what)
+                # The swing sole's path: one point per trajectory sample, in "world", ending
+                # on the trajectory's landing point.
+                path = [mk for mk in tm.markers if mk.ns == "transition_swing_path"]
+                self.assertEqual(len(path), 1, what)
+                self.assertEqual(path[0].header.frame_id, "world", what)
+                self.assertEqual(len(path[0].points), len(t), what)
+                end = path[0].points[-1]
+                self.assertLess(math.dist((end.x, end.y, end.z),
+                                          (traj.final_foothold.x, traj.final_foothold.y,
+                                           traj.final_foothold.z)), 1e-6, what)
             else:
                 self.assertEqual(traj.status, "failed", what)
+                self.assertEqual(len(tm.markers), 0, what)
 
     def test_rosbag_info(self):
         out = subprocess.run(["rosbag", "info", self.bag_path], capture_output=True, text=True,

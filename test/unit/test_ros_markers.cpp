@@ -160,3 +160,43 @@ TEST(RosMarkers, DeleteAll) {
   EXPECT_EQ(m.action, Marker::DELETEALL);
   EXPECT_EQ(m.header.frame_id, "world");
 }
+
+TEST(RosMarkers, TransitionSwingPathFollowsForwardKinematics) {
+  const auto model =
+      RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
+  const FrameId sole = model->frameId("r_sole");
+  TransitionResult traj;
+  traj.status = OcpStatus::kRelaxed;
+  traj.q = Eigen::MatrixXd::Zero(model->nq(), 5);
+  for (int k = 0; k < 5; ++k) {
+    traj.q(2, k) = 1.0;
+    traj.q(model->jointIndex("r_hip_pitch"), k) = -0.1 * k;  // the leg swings forward
+    traj.q(model->jointIndex("r_knee"), k) = 0.2 * k;
+  }
+  const ros::Time stamp(2.5);
+  const auto a = rb::transitionMarkers(traj, *model, sole, 7, stamp);
+  ASSERT_EQ(a.markers.size(), 2u);
+  const Marker& path = a.markers[0];
+  EXPECT_EQ(path.ns, rb::kNsTransitionSwingPath);
+  EXPECT_EQ(path.type, Marker::LINE_STRIP);
+  EXPECT_EQ(path.id, 7);
+  EXPECT_EQ(path.header.frame_id, "world");
+  EXPECT_EQ(path.header.stamp, stamp);
+  ASSERT_EQ(path.points.size(), 5u);
+  Workspace ws(*model);
+  for (int k = 0; k < 5; ++k) {  // FK of each sample, independently of the builder
+    model->update(ws, traj.q.col(k), Eigen::VectorXd::Zero(model->nq()));
+    const Eigen::Vector3d p = model->framePose(ws, sole).translation();
+    EXPECT_NEAR(path.points[k].x, p.x(), 1e-12);
+    EXPECT_NEAR(path.points[k].y, p.y(), 1e-12);
+    EXPECT_NEAR(path.points[k].z, p.z(), 1e-12);
+  }
+  const Marker& landing = a.markers[1];
+  EXPECT_EQ(landing.ns, rb::kNsTransitionLanding);
+  EXPECT_EQ(landing.type, Marker::SPHERE);
+  EXPECT_DOUBLE_EQ(landing.pose.position.z, path.points.back().z);
+  EXPECT_GT(landing.color.r, landing.color.b);  // relaxed: orange
+  EXPECT_TRUE(rb::transitionMarkers(TransitionResult(), *model, sole, 0, stamp).markers.empty());
+  traj.q.conservativeResize(3, Eigen::NoChange);
+  EXPECT_THROW(rb::transitionMarkers(traj, *model, sole, 0, stamp), ReachError);
+}

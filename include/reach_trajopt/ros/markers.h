@@ -16,6 +16,8 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "reach_trajopt/ReachabilityResult.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ocp/transition_result.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
@@ -31,6 +33,8 @@ inline constexpr char kNsForwardBoundary[] = "forward_boundary";
 inline constexpr char kNsBackwardBoundary[] = "backward_boundary";
 inline constexpr char kNsWitness[] = "witness";
 inline constexpr char kNsCheckedFoothold[] = "checked_foothold";
+inline constexpr char kNsTransitionSwingPath[] = "transition_swing_path";
+inline constexpr char kNsTransitionLanding[] = "transition_landing";
 
 /// Colour of a marker, components in [0, 1].
 struct Rgba {
@@ -60,6 +64,15 @@ visualization_msgs::Marker pathMarker(const std::vector<Eigen::Vector3d>& path,
 /// header (empty frame: "world").
 visualization_msgs::MarkerArray reachabilityMarkers(const reach_trajopt::ReachabilityResult& r,
                                                     int max_slices = 20);
+
+/// @brief The OCP's planned transition (eq. 22-23): the swing sole's path, by forward kinematics
+/// of every output sample (LINE_STRIP, ns transition_swing_path), and its landing point
+/// (SPHERE, ns transition_landing; green converged, orange relaxed, red failed), both id `id`.
+/// An empty trajectory gives an empty array.
+/// \throws ReachError on a trajectory whose q rows do not match the model.
+visualization_msgs::MarkerArray transitionMarkers(const TransitionResult& trajectory,
+                                                  const RobotModel& model, FrameId swing_sole,
+                                                  int id, const ros::Time& stamp);
 
 /// A marker deleting every marker of every namespace (action DELETEALL).
 visualization_msgs::Marker deleteAllMarker(const ros::Time& stamp);
