@@ -227,6 +227,7 @@ reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, WalkConfig::Mode 
   m.hausdorff_distance = r.hausdorff_distance;
   m.check_time = r.check_time_s;
   m.ocp_time = r.ocp_time_s;
+  m.ocp_status = r.ocp_status;
   return m;
 }
 

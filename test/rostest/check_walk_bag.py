@@ -252,6 +252,7 @@ class WalkBagTest(unittest.TestCase):
                 self.assertNotIn(t, self.bag_topics, "%s in a %s walk" % (t, self.mode))
             for r in self.msgs["/step_report"]:
                 self.assertEqual(r.verdict, "not_checked", "step %d" % r.index)
+                self.assertEqual(r.ocp_status, "none", "step %d" % r.index)
             return
         walk = self.config.get("walk", {})
         swing = float(walk.get("single_support_duration", 0.22))
@@ -322,6 +323,7 @@ class WalkBagTest(unittest.TestCase):
             self.assertEqual(traj.header.frame_id, "world", what)
             self.assertAlmostEqual(traj.header.stamp.to_sec(), stamp, places=9, msg=what)
             self.assertIn(traj.status, ("converged", "relaxed", "failed"), what)
+            self.assertEqual(traj.status, rep.ocp_status, what)
             t = list(traj.time)
             self.assertTrue(all(b > a for a, b in zip(t, t[1:])), "%s: knot times %s" % (what, t))
             self.assertEqual(len(traj.q), len(t) * len(traj.joint_names), what)

@@ -230,6 +230,7 @@ TEST(RosConversions, StepReportAndContactPlan) {
   EXPECT_FALSE(m.fell);
   EXPECT_EQ(m.com_velocity_at_plan.x, 0.4);
   EXPECT_EQ(m.verdict, "not_checked");
+  EXPECT_EQ(m.ocp_status, "none");
 
   TvrInput in;
   in.swing = Side::kRight;
