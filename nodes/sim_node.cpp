@@ -48,6 +48,7 @@
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
+#include "reach_trajopt/ros/service_requests.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
 using namespace reach_trajopt;
@@ -252,8 +253,7 @@ int main(int argc, char** argv) {
       reach_pub.publish(msgs.reachability);
       reach_marker_pub.publish(msgs.markers);
       traj_pub.publish(msgs.trajectory);
-      const FrameId swing_sole = model.frameId(r.swing == Side::kLeft ? contact.left_sole_frame
-                                                                      : contact.right_sole_frame);
+      const FrameId swing_sole = model.frameId(rb::swingFrame(contact, opposite(r.swing)));
       traj_marker_pub.publish(
           rb::transitionMarkers(step.trajectory, model, swing_sole, r.index, stamp));
     };

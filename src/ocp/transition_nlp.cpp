@@ -459,16 +459,15 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
 void TransitionNlp::sampleSolution(const Eigen::VectorXd& x, double dt, TransitionResult& res) {
   const Side stance = request_.stance;
   const double T = basis_.duration();
-  const int nq = nq_, nu = nu_;
   int n = static_cast<int>(std::floor(T / dt + 1e-9)) + 1;
   const bool on_grid = std::abs((n - 1) * dt - T) <= 1e-9;
   if (!on_grid) ++n;
   res.dt = dt;
   res.time.resize(n);
-  res.q.resize(nq, n);
-  res.qd.resize(nq, n);
-  res.qdd.resize(nq, n);
-  res.u.resize(nu, n);
+  res.q.resize(nq_, n);
+  res.qd.resize(nq_, n);
+  res.qdd.resize(nq_, n);
+  res.u.resize(nu_, n);
   res.lambda.setZero(12, n);
   const int is = stance == Side::kLeft ? 0 : 6, in = 6 - is;
   TransitionSampleState st;

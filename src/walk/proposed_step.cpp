@@ -4,9 +4,10 @@
 #include <chrono>
 #include <cmath>
 
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
 
 #include "reach_trajopt/planner/double_support_velocity.h"
+#include "reach_trajopt/sim/base_coordinates.h"
 
 namespace reach_trajopt {
 namespace {
@@ -57,16 +58,8 @@ ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& sta
     const Eigen::Matrix3d R_fix =
         Eigen::AngleAxisd(yawOf(sole), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
         sole.linear().transpose();
-    const Eigen::Matrix3d R_base =
-        (Eigen::AngleAxisd(q0[3], Eigen::Vector3d::UnitZ()) *
-         Eigen::AngleAxisd(q0[4], Eigen::Vector3d::UnitY()) *
-         Eigen::AngleAxisd(q0[5], Eigen::Vector3d::UnitX()))
-            .toRotationMatrix();
-    const Eigen::Matrix3d R = R_fix * R_base;
     q0.head<3>() = sole.translation() + R_fix * (q0.head<3>() - sole.translation());
-    q0[3] = std::atan2(R(1, 0), R(0, 0));
-    q0[4] = std::asin(std::max(-1.0, std::min(1.0, -R(2, 0))));
-    q0[5] = std::atan2(R(2, 1), R(2, 2));
+    q0.segment<3>(3) = eulerFromRotation(R_fix * rotationFromEuler(q0.segment<3>(3)));
     m.update(ws, q0, qd);
   }
   Matrix6Xd J(6, m.nq());
@@ -78,8 +71,9 @@ ProposedStep ProposedStepPlanner::plan(Side stance, const Eigen::Isometry3d& sta
   std::optional<Eigen::Vector3d> touchdown_pelvis;
   Eigen::Vector3d touchdown_com_velocity = Eigen::Vector3d::Zero();
   if (touchdown_com) {
-    const Eigen::Vector3d com_shift(touchdown_com->p.x() - m.centerOfMass(ws).x(),
-                                    touchdown_com->p.y() - m.centerOfMass(ws).y(), 0.0);
+    const Eigen::Vector3d com = m.centerOfMass(ws);
+    const Eigen::Vector3d com_shift(touchdown_com->p.x() - com.x(), touchdown_com->p.y() - com.y(),
+                                    0.0);
     touchdown_pelvis =
         m.framePose(ws, m.frameId(kinematics_->config().pelvis_frame)).translation() + com_shift;
     touchdown_com_velocity.head<2>() = touchdown_com->pd;
