@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Dynamics benchmark: our RobotModel vs Pinocchio C++ on urdf/biped.urdf (bench/dynamics/).
+# Dynamics benchmark: our RobotModel vs Pinocchio C++ (bench/dynamics/) on urdf/biped.urdf and
+# on TALOS (example-robot-data's talos_reduced.urdf from the venv, every joint free, mimic joints
+# independent as in our model).
 # Needs the package built (scripts/build, same REACH_WS) and the venv (scripts/bootstrap).
 # Configures and builds bench/dynamics in $WS/bench_dynamics (one TU including Pinocchio: about
 # 80 s the first time), saves Pinocchio's model of the URDF (parsed by Pinocchio in Python, root
 # joint PX PY PZ RZ RY RX = our floating base) and runs the benchmark, which prints
-#   BENCH dynamics.{full,mass_matrix,bias} ours_us=... ref=pinocchio ref_us=... ratio=...
+#   BENCH dynamics.{full,mass_matrix,bias} robot=... ours_us=... ref=pinocchio ref_us=... ratio=...
 # Extra arguments go to bench_dynamics (--rounds N --batch K).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
@@ -21,9 +23,6 @@ fi
 site="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
 prefix="$site/cmeel.prefix"
 build="$WS/bench_dynamics"
-urdf="$REPO/urdf/biped.urdf"
-model="$build/biped_pinocchio.txt"            # composite root PX PY PZ RZ RY RX (= ours)
-model_ff="$build/biped_pinocchio_freeflyer.txt"  # Pinocchio's usual FreeFlyer root (info only)
 mkdir -p "$build"
 
 # catkin's setup.bash exports CMAKE_PREFIX_PATH and LD_LIBRARY_PATH: keep Pinocchio's
@@ -36,7 +35,13 @@ echo "[bench_dynamics] building (one Pinocchio translation unit, about 80 s when
 cmake --build "$build" -j1 >"$build/build.log" 2>&1 || {
   tail -n 40 "$build/build.log" >&2; echo "[bench_dynamics] build failed" >&2; exit 1; }
 
-"$VENV/bin/python" - "$urdf" "$model" "$model_ff" <<'PY'
+# bench_one NAME URDF FRAMES [extra args]
+bench_one() {
+  local name="$1" urdf="$2" frames="$3"
+  shift 3
+  local model="$build/${name}_pinocchio.txt"            # composite root PX PY PZ RZ RY RX (= ours)
+  local model_ff="$build/${name}_pinocchio_freeflyer.txt"  # Pinocchio's FreeFlyer root (info only)
+  "$VENV/bin/python" - "$urdf" "$model" "$model_ff" <<'PY'
 import sys
 import pinocchio as pin
 root = pin.JointModelComposite()
@@ -46,6 +51,10 @@ for j in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(),
 pin.buildModelFromUrdf(sys.argv[1], root).saveToText(sys.argv[2])
 pin.buildModelFromUrdf(sys.argv[1], pin.JointModelFreeFlyer()).saveToText(sys.argv[3])
 PY
+  env -u LD_LIBRARY_PATH "$build/bench_dynamics" "$urdf" "$model" --freeflyer-model "$model_ff" \
+    --frames "$frames" --robot "$name" "$@"
+}
 
-env -u LD_LIBRARY_PATH "$build/bench_dynamics" "$urdf" "$model" --freeflyer-model "$model_ff" \
-  --frames l_sole,r_sole "$@"
+bench_one biped "$REPO/urdf/biped.urdf" l_sole,r_sole "$@"
+bench_one talos_reduced "$site/cmeel.prefix/share/example-robot-data/robots/talos_data/robots/talos_reduced.urdf" \
+  left_sole_link,right_sole_link "$@"

@@ -1,7 +1,7 @@
 /// bench_dynamics: time of one rigid-body dynamics evaluation of eq. (1), ours against Pinocchio.
 ///
 ///   bench_dynamics <urdf> <pinocchio_model.txt> [--freeflyer-model FILE] [--rounds N]
-///                  [--batch K] [--frames a,b]
+///                  [--batch K] [--frames a,b] [--robot NAME]
 ///
 /// <pinocchio_model.txt> is the same URDF loaded by Pinocchio's own parser (Python, the `pin`
 /// wheel) with the composite root joint PX PY PZ RZ RY RX (= our floating base) and saved with
@@ -20,7 +20,8 @@
 /// (our queries need update() first, so it is part of our cost; Pinocchio's crba and
 /// nonLinearEffects do their own forward pass.) Before timing, both are evaluated at one state
 /// and the largest relative differences are printed, so the benchmark cannot time wrong work.
-/// Output lines: BENCH <name> ours_us=... ref=pinocchio ref_us=... ratio=ours/ref
+/// Output lines: BENCH <name> robot=NAME ours_us=... ref=pinocchio ref_us=... ratio=ours/ref
+/// (NAME from --robot, default the URDF's file name without extension).
 ///
 /// --freeflyer-model: the same URDF with Pinocchio's usual FreeFlyer root (quaternion, n_q + 1
 /// positions), timed in the same rounds and printed as `info:` lines only. Pinocchio's composite
@@ -61,6 +62,7 @@ struct Options {
   std::string urdf;
   std::string pin_model;
   std::string ff_model;  // optional
+  std::string robot;     // label of the BENCH lines
   // Short batches (about 0.1 ms): on a shared, loaded machine a long batch is often cut by
   // preemption, which inflates the median of the slower side; many short rounds do not.
   int rounds = 2001;
@@ -97,10 +99,17 @@ Options parse(int argc, char** argv) {
       o.ff_model = argv[i + 1];
     } else if (key == "--frames") {
       o.frames = split(argv[i + 1]);
+    } else if (key == "--robot") {
+      o.robot = argv[i + 1];
     } else {
       std::fprintf(stderr, "bench_dynamics: unknown option %s\n", key.c_str());
       std::exit(2);
     }
+  }
+  if (o.robot.empty()) {
+    const size_t slash = o.urdf.find_last_of('/');
+    o.robot = o.urdf.substr(slash == std::string::npos ? 0 : slash + 1);
+    o.robot = o.robot.substr(0, o.robot.find_last_of('.'));
   }
   if (o.frames.size() != 2) {
     std::fprintf(stderr, "bench_dynamics: --frames needs exactly two frames\n");
@@ -351,8 +360,8 @@ int main(int argc, char** argv) try {
               opt.batch);
   for (const auto& p : pairs) {
     const double t_ours = median(p.t_ours), t_ref = median(p.t_ref);
-    std::printf("BENCH %s ours_us=%.3f ref=pinocchio ref_us=%.3f ratio=%.2f\n", p.name, t_ours,
-                t_ref, t_ours / t_ref);
+    std::printf("BENCH %s robot=%s ours_us=%.3f ref=pinocchio ref_us=%.3f ratio=%.2f\n", p.name,
+                opt.robot.c_str(), t_ours, t_ref, t_ours / t_ref);
   }
   for (const auto& p : pairs) {
     if (!ff) break;

@@ -1,14 +1,20 @@
 /// model_info: inspect any robot as reach_trajopt sees it (no ROS master needed).
 ///
-///   model_info <urdf> [--fixed-base] [--state FILE] [--frames a,b,...]
+///   model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]
 ///
 /// Without --state: a summary (mass, CoM at the neutral configuration, dofs, joint order and
-/// limits, frames). With --state FILE ({"q": [...], "qd": [...]} or {"states": [{...}, ...]},
+/// limits, frames); as text, or with --json as one JSON object for scripts:
+///   {"robot", "source", "floating_base", "nq", "nu", "mass" [kg], "com" [m],
+///    "joint_names" (q order), "joints": [{"name", "type" (virtual|revolute|continuous|prismatic),
+///    "q_min", "q_max" [m|rad], "qd_max" [m/s|rad/s], "effort_max" [N|Nm]}] (null = unlimited),
+///    "frames": [{"name", "parent" (parent link, "" for the root), "position" [m]}]}
+/// (positions at the neutral configuration, floating base at the origin). With --state FILE ({"q": [...], "qd": [...]} or {"states": [{...}, ...]},
 /// our coordinates: floating base [x y z yaw pitch roll] then the joints): JSON with M, b, the
 /// CoM and its Jacobian, and for each frame of --frames its pose, Jacobian and Jdot*qd
 /// (6 x n_q at the frame origin, world orientation, rows [linear; angular]).
 /// Exit status: 0 ok, 2 bad input (the message on stderr names the problem).
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -27,7 +33,7 @@ using Json = nlohmann::json;
 namespace {
 
 void usage() {
-  std::cerr << "usage: model_info <urdf> [--fixed-base] [--state FILE] [--frames a,b,...]\n";
+  std::cerr << "usage: model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]\n";
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -53,6 +59,15 @@ Json vectorToJson(const Eigen::VectorXd& v) {
   return Json(std::vector<double>(v.data(), v.data() + v.size()));
 }
 
+/// JSON has no infinity: an unlimited bound is null.
+Json boundToJson(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
+
+const char* jointType(const reach_trajopt::JointInfo& j) {
+  if (j.is_virtual) return "virtual";
+  if (j.is_prismatic) return "prismatic";
+  return j.is_continuous ? "continuous" : "revolute";
+}
+
 Eigen::VectorXd vectorFromJson(const Json& j, const std::string& what) {
   if (!j.is_array()) throw ReachError("state file: '" + what + "' must be a list of numbers");
   Eigen::VectorXd v(j.size());
@@ -65,6 +80,38 @@ Eigen::VectorXd vectorFromJson(const Json& j, const std::string& what) {
       throw ReachError("state file: '" + what + "' entry " + std::to_string(i) + " is not a number");
   }
   return v;
+}
+
+void printSummaryJson(const RobotModel& model) {
+  reach_trajopt::Workspace ws(model);
+  model.update(ws, model.neutralConfiguration(), Eigen::VectorXd::Zero(model.nq()));
+  Json out;
+  out["robot"] = model.name();
+  out["source"] = model.source();
+  out["floating_base"] = model.floatingBase();
+  out["nq"] = model.nq();
+  out["nu"] = model.nu();
+  out["mass"] = model.totalMass();
+  out["com"] = vectorToJson(model.centerOfMass(ws));
+  Json names = Json::array(), joints = Json::array();
+  for (const auto& j : model.joints()) {
+    names.push_back(j.name);
+    joints.push_back({{"name", j.name},
+                      {"type", jointType(j)},
+                      {"q_min", boundToJson(j.q_min)},
+                      {"q_max", boundToJson(j.q_max)},
+                      {"qd_max", boundToJson(j.qd_max)},
+                      {"effort_max", boundToJson(j.effort_max)}});
+  }
+  out["joint_names"] = names;
+  out["joints"] = joints;
+  Json frames = Json::array();
+  for (const auto& name : model.frameNames()) {
+    const Eigen::Vector3d p = model.framePose(ws, model.frameId(name)).translation();
+    frames.push_back({{"name", name}, {"parent", model.parentLink(name)}, {"position", vectorToJson(p)}});
+  }
+  out["frames"] = frames;
+  std::cout << out.dump() << "\n";
 }
 
 void printSummary(const RobotModel& model) {
@@ -82,7 +129,7 @@ void printSummary(const RobotModel& model) {
   for (int i = 0; i < model.nq(); ++i) {
     const auto& j = model.joints()[i];
     std::printf("  %2d %-18s %-10s [%8.3f, %8.3f] %8.3g %8.3g\n", i, j.name.c_str(),
-                j.is_virtual ? "virtual" : (j.is_prismatic ? "prismatic" : "revolute"), j.q_min,
+                jointType(j), j.q_min,
                 j.q_max, j.qd_max, j.effort_max);
   }
   std::printf("frames:\n");
@@ -132,11 +179,14 @@ Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws, const Json&
 
 int main(int argc, char** argv) {
   std::string urdf, state_file, frames_arg;
+  bool json_summary = false;
   reach_trajopt::ModelOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--fixed-base") {
       options.base = reach_trajopt::ModelOptions::Base::kFixed;
+    } else if (a == "--json") {
+      json_summary = true;
     } else if (a == "--state" && i + 1 < argc) {
       state_file = argv[++i];
     } else if (a == "--frames" && i + 1 < argc) {
@@ -159,7 +209,10 @@ int main(int argc, char** argv) {
   try {
     const auto model = RobotModel::fromUrdfFile(urdf, options);
     if (state_file.empty()) {
-      printSummary(*model);
+      if (json_summary)
+        printSummaryJson(*model);
+      else
+        printSummary(*model);
       return 0;
     }
     std::ifstream in(state_file);

@@ -45,10 +45,10 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
 }
 
 /// Adds a rigid inertia (mass m, com c and inertia about the origin I0, all in a frame F)
-/// placed at `F_in_body` to a body's inertia.
+/// placed at `F_in_body` to a body's inertia. A massless inertia with a rotational part (URDFs
+/// have them, e.g. feet with mass 0) still adds its rotational inertia, as Pinocchio does.
 void addInertia(Body& body, const Eigen::Isometry3d& F_in_body, double m, const Eigen::Vector3d& c,
                 const Eigen::Matrix3d& I0) {
-  if (m <= 0.0) return;
   const Eigen::Matrix3d R = F_in_body.linear();
   const Eigen::Vector3d c_body = F_in_body * c;
   const Eigen::Vector3d Rc = R * c;
@@ -56,7 +56,7 @@ void addInertia(Body& body, const Eigen::Isometry3d& F_in_body, double m, const 
   const Eigen::Matrix3d I_com = R * I0 * R.transpose() + m * skew(Rc) * skew(Rc);
   const Eigen::Matrix3d I_body = I_com - m * skew(c_body) * skew(c_body);
   const double total = body.mass + m;
-  body.com = (body.mass * body.com + m * c_body) / total;
+  if (total > 0.0) body.com = (body.mass * body.com + m * c_body) / total;
   body.inertia_origin += I_body;
   body.mass = total;
 }
@@ -189,15 +189,20 @@ std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf
           throw ReachError("unsupported joint type of '" + uj->name + "' in " + source +
                            " (only revolute, continuous, prismatic and fixed)");
       } else {
+        // KDL gives the axis in the parent *segment's* frame (the URDF joint origin's rotation
+        // applied), which is not the body frame when the parent link hangs on fixed joints:
+        // undo the joint origin's rotation only, giving the axis in the child link's frame.
         const KDL::Vector a = kj.JointAxis();
         const Eigen::Vector3d axis_parent(a.x(), a.y(), a.z());
-        const Eigen::Vector3d axis_child = T0.linear().transpose() * axis_parent;
+        const Eigen::Vector3d axis_child =
+            toEigen(seg.pose(0.0)).linear().transpose() * axis_parent;
         const bool prismatic = uj->type == urdf::Joint::PRISMATIC;
         child_body = newBody(body, T0, axis_child, prismatic);
         child_in_body = Eigen::Isometry3d::Identity();
         JointInfo j;
         j.name = uj->name;
         j.is_prismatic = prismatic;
+        j.is_continuous = uj->type == urdf::Joint::CONTINUOUS;
         j.q_min = -kInf;
         j.q_max = kInf;
         j.qd_max = kInf;
@@ -214,15 +219,13 @@ std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf
           throw ReachError("joint '" + j.name + "' has lower limit above upper limit in " + source);
         model->joints_.push_back(j);
       }
-      const KDL::RigidBodyInertia& in = seg.getInertia();
-      const KDL::RotationalInertia I = in.getRotationalInertia();
+      // The link's inertia straight from urdfdom (its <inertial> origin, rotation included),
+      // expressed in the link frame, then placed where the link sits in its body.
+      double m;
+      Eigen::Vector3d c;
       Eigen::Matrix3d I0;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) I0(r, c) = I.data[3 * r + c];
-      const KDL::Vector cog = in.getCOG();
-      if (child_body >= 0)
-        addInertia(tree.bodies[child_body], child_in_body, in.getMass(),
-                   Eigen::Vector3d(cog.x(), cog.y(), cog.z()), I0);
+      linkInertia(link->inertial, m, c, I0);
+      if (child_body >= 0) addInertia(tree.bodies[child_body], child_in_body, m, c, I0);
       tree.frames.push_back({link_name, child_body, child_in_body});
       model->link_names_.push_back(link_name);
       model->link_parents_.push_back(uj->parent_link_name);

@@ -90,6 +90,16 @@ def finite_or_none(x):
     return x if x is not None and math.isfinite(x) else None
 
 
+# Lines a test wants in the run's output even when it passes (e.g. how many robots an oracle
+# checked); printed at the end of the pytest run.
+SUMMARY_LINES = []
+
+
+def pytest_terminal_summary(terminalreporter):
+    for line in SUMMARY_LINES:
+        terminalreporter.write_line(line)
+
+
 @pytest.fixture(scope="session")
 def repo():
     return REPO

@@ -31,12 +31,10 @@ import pinocchio as pin
 import pytest
 
 from conftest import EXAMPLE_ROBOTS, REPO, run_tool, write_json
+from model_oracle import TOL, VIRTUAL, Reference, rel_err
 
-TOL = 1e-8  # relative to max(1, |reference|)
-VIRTUAL = ["base_x", "base_y", "base_z", "base_yaw", "base_pitch", "base_roll"]
 ROWS6 = ["vx", "vy", "vz", "wx", "wy", "wz"]
 XYZ = ["x", "y", "z"]
-LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 
 
 @dataclass(frozen=True)
@@ -62,116 +60,13 @@ ROBOTS = [
 ]
 
 
-def floating_root_joint():
-    """Pinocchio joint equal to our floating base: x, y, z then yaw, pitch, roll (Rz Ry Rx)."""
-    root = pin.JointModelComposite()
-    for joint in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(),
-                  pin.JointModelRZ(), pin.JointModelRY(), pin.JointModelRX()):
-        root.addJoint(joint)
-    return root
-
-
-class Reference:
-    """Pinocchio model of a URDF plus the map between its coordinates and ours."""
-
-    def __init__(self, robot):
-        if robot.floating:
-            self.model = pin.buildModelFromUrdf(str(robot.urdf), floating_root_joint())
-        else:
-            self.model = pin.buildModelFromUrdf(str(robot.urdf))
-        self.data = self.model.createData()
-        self.floating = robot.floating
-        m = self.model
-        # Name of every velocity coordinate, in Pinocchio's v order.
-        self.v_names = []
-        for j in range(1, m.njoints):
-            if self.floating and j == 1:
-                self.v_names += VIRTUAL
-                continue
-            assert m.joints[j].nv == 1, f"joint {m.names[j]}: nv {m.joints[j].nv}"
-            self.v_names.append(m.names[j])
-        self.frame_ids = {}
-
-    def frame_id(self, name):
-        if name not in self.frame_ids:
-            fid = self.model.getFrameId(name)
-            assert fid < self.model.nframes, f"Pinocchio has no frame '{name}'"
-            self.frame_ids[name] = fid
-        return self.frame_ids[name]
-
-    def sample(self, rng):
-        """A random state in Pinocchio's v coordinates: positions within the joint limits (a
-        continuous joint in [-pi, pi]), a random base pose, moderate velocities."""
-        m = self.model
-        qv = np.zeros(m.nv)
-        v = np.zeros(m.nv)
-        for j in range(1, m.njoints):
-            jm = m.joints[j]
-            if self.floating and j == 1:
-                qv[0:6] = np.concatenate([rng.uniform(-1.0, 1.0, 2), rng.uniform(0.3, 1.5, 1),
-                                          rng.uniform(-math.pi, math.pi, 1),
-                                          rng.uniform(-1.3, 1.3, 1),
-                                          rng.uniform(-math.pi, math.pi, 1)])
-                v[0:6] = np.concatenate([rng.uniform(-1.0, 1.0, 3), rng.uniform(-2.0, 2.0, 3)])
-                continue
-            if jm.nq == 1:
-                lo, hi = m.lowerPositionLimit[jm.idx_q], m.upperPositionLimit[jm.idx_q]
-            else:  # continuous joint (cos, sin)
-                lo, hi = -math.pi, math.pi
-            if not (math.isfinite(lo) and math.isfinite(hi) and hi - lo < 1e6):
-                lo, hi = -math.pi, math.pi
-            qv[jm.idx_v] = rng.uniform(lo, hi)
-            v[jm.idx_v] = rng.uniform(-3.0, 3.0)
-        return qv, v
-
-    def configuration(self, qv):
-        """Pinocchio's q from positions in v coordinates."""
-        m = self.model
-        q = np.zeros(m.nq)
-        for j in range(1, m.njoints):
-            jm = m.joints[j]
-            if jm.nq == jm.nv:
-                q[jm.idx_q:jm.idx_q + jm.nq] = qv[jm.idx_v:jm.idx_v + jm.nv]
-            else:
-                assert jm.nq == 2 and jm.nv == 1, f"joint {m.names[j]} not supported"
-                angle = qv[jm.idx_v]
-                q[jm.idx_q:jm.idx_q + 2] = [math.cos(angle), math.sin(angle)]
-        return q
-
-    def evaluate(self, qv, v, frames):
-        """Every compared quantity at (qv, v), in Pinocchio's v order."""
-        m, d = self.model, self.data
-        q = self.configuration(qv)
-        out = {}
-        M = pin.crba(m, d, q).copy()
-        out["M"] = np.triu(M) + np.triu(M, 1).T
-        out["b"] = pin.nonLinearEffects(m, d, q, v).copy()
-        out["com"] = pin.centerOfMass(m, d, q).copy()
-        out["com_jacobian"] = pin.jacobianCenterOfMass(m, d, q).copy()
-        pin.computeJointJacobians(m, d, q)
-        pin.forwardKinematics(m, d, q, v, np.zeros(m.nv))
-        pin.updateFramePlacements(m, d)
-        out["frames"] = {}
-        for name in frames:
-            fid = self.frame_id(name)
-            linear = pin.getFrameClassicalAcceleration(m, d, fid, LWA).linear
-            angular = pin.getFrameAcceleration(m, d, fid, LWA).angular
-            out["frames"][name] = {
-                "position": d.oMf[fid].translation.copy(),
-                "rotation": d.oMf[fid].rotation.copy(),
-                "jacobian": pin.getFrameJacobian(m, d, fid, LWA).copy(),
-                "jdot_qd": np.concatenate([linear, angular]),
-            }
-        return out
-
-
 class Case:
     """One robot: the tool's JSON output and Pinocchio's values at the same states, both in
     our coordinate order."""
 
     def __init__(self, robot, tmp_dir):
         self.robot = robot
-        self.ref = Reference(robot)
+        self.ref = Reference(robot.urdf, robot.floating)
         rng = np.random.default_rng(20200701)
         samples = [self.ref.sample(rng) for _ in range(robot.n_states)]
 
@@ -236,10 +131,6 @@ def _as_array(value, shape, where):
         raise AssertionError(f"{where}: not a numeric array ({e}): {str(value)[:200]}")
     assert a.shape == shape, f"{where}: shape {a.shape}, expected {shape}"
     return a
-
-
-def rel_err(a, b):
-    return float(np.linalg.norm(a - b)) / max(1.0, float(np.linalg.norm(b)))
 
 
 def compare(case, label, ours_of, ref_of, row_names, col_names=None):

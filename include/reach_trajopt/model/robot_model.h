@@ -8,6 +8,22 @@
 /// n_q = 6 + n_u and Euler integration q+ = q + dt qd is consistent. This is the same
 /// coordinate choice as a Pinocchio composite root joint (PX, PY, PZ, RZ, RY, RX).
 ///
+/// How URDF elements map onto the model (checked against Pinocchio on every robot of
+/// example-robot-data and on random URDF trees, test/oracle/test_model_*.py):
+///  - Links joined by `fixed` joints are merged into the moving body that carries them; the
+///    fixed joints' rotations go into the next joint's placement and axis (the axis is the
+///    URDF axis in the child link's frame) and into the merged inertias.
+///  - Inertias are read from urdfdom, their <inertial> origin (xyz and rpy) included; a link
+///    with mass 0 still contributes its rotational inertia (as in Pinocchio); the root link's
+///    inertia counts when the base floats.
+///  - Axes are normalized (as urdfdom's consumers and Pinocchio do).
+///  - `continuous` joints are one unbounded angle in q (Pinocchio uses cos, sin: convert).
+///  - `mimic` tags are ignored: a mimic joint is an independent degree of freedom, as in KDL and
+///    in Pinocchio's buildModelFromUrdf (its default, mimic = false).
+///  - Limits: position limits as in the URDF (urdfdom rejects a revolute or prismatic joint
+///    without <limit>; lower/upper left out read as 0); a velocity or effort limit that is
+///    missing or 0 means unlimited (+inf). `planar` and `floating` joints are rejected.
+///
 /// The dynamics are computed on the KDL tree's structure with the composite rigid body
 /// algorithm (M) and recursive Newton-Euler (b); KDL's own solvers work chain by chain and are
 /// several times slower on a branched robot. Conventions everywhere:
@@ -41,6 +57,8 @@ struct JointInfo {
   std::string name;
   bool is_virtual = false;   ///< one of the six floating-base coordinates
   bool is_prismatic = false;
+  /// URDF `continuous`: one unbounded angle [rad] (Pinocchio stores cos, sin instead).
+  bool is_continuous = false;
   double q_min = 0.0;        ///< position lower limit [m or rad] (-inf when unlimited)
   double q_max = 0.0;        ///< position upper limit [m or rad] (+inf when unlimited)
   double qd_max = 0.0;       ///< |velocity| limit [m/s or rad/s] (+inf when unlimited)
