@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
       sim = SimConfig::fromYaml(sim_file.section("sim"));
     }
     // The proposed mode's check and OCP.
-    const ProposedStepConfig proposed = ProposedStepConfig::fromYaml(file);
+    const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
     std::string mode;
     if (pnh.getParam("mode", mode)) walk.mode = WalkConfig::parseMode(mode);
     int int_value = 0;
@@ -243,7 +243,7 @@ int main(int argc, char** argv) {
     // The walking loop checks a step at the start of a control tick, before that tick's
     // on_tick: its sim time is the last tick's plus one time step. The foothold lies on the
     // ground at the stance sole's height.
-    auto onCheck = [&](const StepRecord& r, const ProposedStep& step) {
+    auto onCheck = [&](const StepRecord& r, const FootstepTransition& step) {
       const ros::Time stamp(last_tick_time + sim.time_step);
       const Eigen::Vector3d foothold =
           rb::checkedFoothold(r, sole_z[static_cast<int>(opposite(r.swing))]);

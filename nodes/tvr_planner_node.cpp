@@ -1,5 +1,5 @@
 /// tvr_planner_node: the next contact location from the CoM state, by the TVR planner of
-/// eq. (11) (DESIGN.md Sec. 3 sign convention). At every switch into single support seen on
+/// eq. (11) (docs/method.md Sec. 3 sign convention). At every switch into single support seen on
 /// `com_state`, the measured CoM state is predicted to the nominal touchdown with the LIPM about
 /// the stance sole (eq. 9-10), eq. (11) gives the foothold, and a ContactPlan (SS then DS) is
 /// published on `contact_plan`.

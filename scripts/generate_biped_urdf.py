@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes urdf/biped.urdf: our humanoid lower body with a torso mass (DESIGN.md section 2).
+"""Writes urdf/biped.urdf: our humanoid lower body with a torso mass (docs/method.md Sec. 1).
 
 12 actuated joints (per leg: hip yaw, roll, pitch, knee, ankle pitch, roll), ~77 kg, CoM near
 1 m when standing, Valkyrie-sized rectangular soles (half-length 0.135 m, half-width 0.08 m) with

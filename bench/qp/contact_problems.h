@@ -1,14 +1,14 @@
 #pragma once
 /// \file contact_problems.h
 /// Benchmark problem families for the bundled QP, all feasible by construction:
-///  - contact QP of DESIGN.md eq. (15): x = [qdd (18); du (12); lambda (6 per contact)],
+///  - contact QP of eq. (15) (docs/method.md Sec. 4): x = [qdd (18); du (12); lambda (6 per contact)],
 ///    min |qdd|^2_Wq + |du|^2_Wu + |lambda|^2_Wl s.t. M qdd - S^T du - J^T lambda = S^T u - b,
 ///    J_i qdd = -Jdot_i qd, u_min <= u + du <= u_max, C lambda_i >= 0 (16-row surface contact
 ///    wrench cone of Caron et al. 2015). Children of one parent share M, J, b and G and differ
 ///    by the random torque u ~ U(u_min, u_max).
 ///  - backward feasibility QP (19): min |lambda|^2 s.t. J_b^T lambda = M_b qdd + b_b (6 rows),
 ///    cone rows, torque bounds on u = M_a qdd + b_a - J_a^T lambda. Children differ by qdd.
-///  - random dense QPs of the same size class as eiquadprog's reference figures in ANCHORS.md.
+///  - random dense QPs of the same size class as eiquadprog's reference figures on this machine type (bench/qp/README.md).
 /// Problem form as in dual_active_set_qp.h: A_eq x = b_eq, A_in x >= b_in.
 
 #include <random>

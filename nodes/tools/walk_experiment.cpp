@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
                                                   std::stod(push.substr(comma + 1)));
     }
     walk.validate();
-    const ProposedStepConfig proposed = ProposedStepConfig::fromYaml(file);
+    const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
     WalkingExperiment experiment(urdf, walk, tvr, contact, wbc, sim, &proposed);
     const WalkResult r = experiment.run({}, [](const StepRecord& s) {
       std::printf("step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "

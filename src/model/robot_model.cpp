@@ -70,7 +70,7 @@ const Workspace::Buffers& requireUpdated(const Workspace& ws) {
 int RobotModel::jointIndex(const std::string& name) const {
   for (size_t i = 0; i < joints_.size(); ++i)
     if (joints_[i].name == name) return static_cast<int>(i);
-  throw ReachError("unknown joint '" + name + "' in " + source_);
+  throw ModelError("unknown joint '" + name + "' in " + source_);
 }
 
 Eigen::VectorXd RobotModel::positionLowerLimits() const {
@@ -103,7 +103,7 @@ Eigen::MatrixXd RobotModel::selectionMatrix() const {
 FrameId RobotModel::frameId(const std::string& name) const {
   for (size_t i = 0; i < frame_names_.size(); ++i)
     if (frame_names_[i] == name) return static_cast<FrameId>(i);
-  throw ReachError("unknown frame '" + name + "' in " + source_);
+  throw ModelError("unknown frame '" + name + "' in " + source_);
 }
 bool RobotModel::hasFrame(const std::string& name) const {
   for (const auto& f : frame_names_)
@@ -113,7 +113,7 @@ bool RobotModel::hasFrame(const std::string& name) const {
 const std::string& RobotModel::parentLink(const std::string& link) const {
   for (size_t i = 0; i < link_names_.size(); ++i)
     if (link_names_[i] == link) return link_parents_[i];
-  throw ReachError("unknown link '" + link + "' in " + source_);
+  throw ModelError("unknown link '" + link + "' in " + source_);
 }
 
 Eigen::VectorXd RobotModel::neutralConfiguration() const {

@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -85,178 +84,211 @@ void validateInertias(const urdf::ModelInterface& urdf, const std::string& sourc
     const double vals[] = {in.mass, in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
     for (double v : vals)
       if (!std::isfinite(v))
-        throw ReachError("non-finite inertial value in link '" + link->name + "' of " + source);
+        throw ModelError("non-finite inertial value in link '" + link->name + "' of " + source);
     if (in.mass < 0.0)
-      throw ReachError("negative mass in link '" + link->name + "' of " + source);
+      throw ModelError("negative mass in link '" + link->name + "' of " + source);
   }
 }
 
 }  // namespace
 
-/// Builds a RobotModel; friend of RobotModel so it can fill the private members.
-struct ModelBuilder {
+/// Builds a RobotModel from a URDF and its KDL tree; friend of RobotModel so it can fill the
+/// private members. One builder per model.
+class ModelBuilder {
+ public:
   static std::shared_ptr<const RobotModel> build(urdf::ModelInterface& urdf,
                                                  const ModelOptions& options,
                                                  const std::string& source);
+
+ private:
+  ModelBuilder(const urdf::ModelInterface& urdf, const std::string& source);
+  int newBody(int parent, const Eigen::Isometry3d& placement, const Eigen::Vector3d& axis,
+              bool prismatic);
+  /// The six virtual joints x, y, z, yaw, pitch, roll; returns the last body (the root link's).
+  int addFloatingBase(const urdf::InertialSharedPtr& root_inertial);
+  /// Depth-first over the KDL tree below `element`, in kdl_parser's order (the URDF's child
+  /// order); `body` carries the element's link at `in_body`.
+  void visit(const KDL::SegmentMap::const_iterator& element, int body,
+             const Eigen::Isometry3d& in_body);
+  JointInfo jointInfo(const urdf::Joint& joint) const;
+  void finish();
+
+  const urdf::ModelInterface& urdf_;
+  const std::string& source_;
+  std::shared_ptr<RobotModel> model_;
+  ModelTree* tree_ = nullptr;
 };
+
+ModelBuilder::ModelBuilder(const urdf::ModelInterface& urdf, const std::string& source)
+    : urdf_(urdf), source_(source), model_(new RobotModel()) {
+  model_->tree_ = std::make_unique<ModelTree>();
+  tree_ = model_->tree_.get();
+}
 
 std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf,
                                                       const ModelOptions& options,
                                                       const std::string& source) {
-  if (!options.gravity.allFinite()) throw ReachError("non-finite gravity for " + source);
+  if (!options.gravity.allFinite()) throw ModelError("non-finite gravity for " + source);
   validateInertias(urdf, source);
-  if (!urdf.root_link_) throw ReachError("URDF has no root link: " + source);
+  if (!urdf.root_link_) throw ModelError("URDF has no root link: " + source);
   // kdl_parser drops (and warns about) the root link's inertia; we keep it ourselves.
   const urdf::InertialSharedPtr root_inertial = urdf.root_link_->inertial;
   urdf.root_link_->inertial.reset();
   KDL::Tree kdl_tree;
   if (!kdl_parser::treeFromUrdfModel(urdf, kdl_tree))
-    throw ReachError("kdl_parser could not build a KDL tree from " + source);
+    throw ModelError("kdl_parser could not build a KDL tree from " + source);
 
-  std::shared_ptr<RobotModel> model(new RobotModel());
-  model->name_ = urdf.getName();
-  model->source_ = source;
-  model->gravity_ = options.gravity;
-  model->tree_ = std::make_unique<ModelTree>();
-  ModelTree& tree = *model->tree_;
-
+  ModelBuilder b(urdf, source);
+  RobotModel& model = *b.model_;
+  model.name_ = urdf.getName();
+  model.source_ = source;
+  model.gravity_ = options.gravity;
   const urdf::LinkConstSharedPtr root = urdf.getRoot();
-  if (!root) throw ReachError("URDF has no root link: " + source);
+  if (!root) throw ModelError("URDF has no root link: " + source);
   bool floating = root->name != "world";
   if (options.base == ModelOptions::Base::kFloating) floating = true;
   if (options.base == ModelOptions::Base::kFixed) floating = false;
-  model->floating_base_ = floating;
+  model.floating_base_ = floating;
+  // A fixed-base root link never moves: its mass does not enter M or b.
+  const int root_body = floating ? b.addFloatingBase(root_inertial) : -1;
+  b.tree_->frames.push_back({root->name, root_body, Eigen::Isometry3d::Identity()});
+  model.link_names_.push_back(root->name);
+  model.link_parents_.push_back("");
+  b.visit(kdl_tree.getRootSegment(), root_body, Eigen::Isometry3d::Identity());
+  b.finish();
+  return b.model_;
+}
 
-  auto newBody = [&](int parent, const Eigen::Isometry3d& placement, const Eigen::Vector3d& axis,
-                     bool prismatic) {
-    Body b;
-    b.parent = parent;
-    b.placement = placement;
-    b.axis = axis.normalized();
-    b.prismatic = prismatic;
-    b.com.setZero();
-    b.inertia_origin.setZero();
-    tree.bodies.push_back(b);
-    return static_cast<int>(tree.bodies.size()) - 1;
-  };
+int ModelBuilder::newBody(int parent, const Eigen::Isometry3d& placement,
+                          const Eigen::Vector3d& axis, bool prismatic) {
+  Body b;
+  b.parent = parent;
+  b.placement = placement;
+  b.axis = axis.normalized();
+  b.prismatic = prismatic;
+  b.com.setZero();
+  b.inertia_origin.setZero();
+  tree_->bodies.push_back(b);
+  return static_cast<int>(tree_->bodies.size()) - 1;
+}
 
-  // Floating base: x, y, z along the world axes, then yaw (z), pitch (y), roll (x).
+int ModelBuilder::addFloatingBase(const urdf::InertialSharedPtr& root_inertial) {
+  // x, y, z along the world axes, then yaw (z), pitch (y), roll (x).
+  const char* names[6] = {"base_x", "base_y", "base_z", "base_yaw", "base_pitch", "base_roll"};
+  const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                   Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ(),
+                                   Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
   int root_body = -1;
-  if (floating) {
-    const char* names[6] = {"base_x", "base_y", "base_z", "base_yaw", "base_pitch", "base_roll"};
-    const Eigen::Vector3d axes[6] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                                     Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitZ(),
-                                     Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX()};
-    for (int i = 0; i < 6; ++i) {
-      root_body = newBody(root_body, Eigen::Isometry3d::Identity(), axes[i], i < 3);
-      JointInfo j;
-      j.name = names[i];
-      j.is_virtual = true;
-      j.is_prismatic = i < 3;
-      j.q_min = -kInf;
-      j.q_max = kInf;
-      j.qd_max = kInf;
-      j.effort_max = 0.0;
-      model->joints_.push_back(j);
+  for (int i = 0; i < 6; ++i) {
+    root_body = newBody(root_body, Eigen::Isometry3d::Identity(), axes[i], i < 3);
+    JointInfo j;
+    j.name = names[i];
+    j.is_virtual = true;
+    j.is_prismatic = i < 3;
+    j.q_min = -kInf;
+    j.q_max = kInf;
+    j.qd_max = kInf;
+    j.effort_max = 0.0;
+    model_->joints_.push_back(j);
+  }
+  // kdl_parser ignores the root link's inertia: take it from the URDF.
+  double m;
+  Eigen::Vector3d c;
+  Eigen::Matrix3d I0;
+  linkInertia(root_inertial, m, c, I0);
+  addInertia(tree_->bodies[root_body], Eigen::Isometry3d::Identity(), m, c, I0);
+  return root_body;
+}
+
+JointInfo ModelBuilder::jointInfo(const urdf::Joint& uj) const {
+  JointInfo j;
+  j.name = uj.name;
+  j.is_prismatic = uj.type == urdf::Joint::PRISMATIC;
+  j.is_continuous = uj.type == urdf::Joint::CONTINUOUS;
+  j.q_min = -kInf;
+  j.q_max = kInf;
+  j.qd_max = kInf;
+  j.effort_max = kInf;
+  if (uj.limits) {
+    if (uj.type != urdf::Joint::CONTINUOUS) {
+      j.q_min = uj.limits->lower;
+      j.q_max = uj.limits->upper;
     }
-    // kdl_parser ignores the root link's inertia: take it from the URDF.
+    if (uj.limits->velocity > 0.0) j.qd_max = uj.limits->velocity;
+    if (uj.limits->effort > 0.0) j.effort_max = uj.limits->effort;
+  }
+  if (j.q_min > j.q_max)
+    throw ModelError("joint '" + j.name + "' has lower limit above upper limit in " + source_);
+  return j;
+}
+
+void ModelBuilder::visit(const KDL::SegmentMap::const_iterator& element, int body,
+                         const Eigen::Isometry3d& in_body) {
+  for (const auto& child : GetTreeElementChildren(element->second)) {
+    const KDL::Segment& seg = GetTreeElementSegment(child->second);
+    const KDL::Joint& kj = seg.getJoint();
+    const Eigen::Isometry3d T0 = in_body * toEigen(seg.pose(0.0));
+    const std::string& link_name = seg.getName();
+    const urdf::LinkConstSharedPtr link = urdf_.getLink(link_name);
+    const urdf::JointConstSharedPtr uj = link ? link->parent_joint : nullptr;
+    if (!uj) throw ModelError("link '" + link_name + "' has no parent joint in " + source_);
+    int child_body = body;
+    Eigen::Isometry3d child_in_body = T0;
+    if (kj.getType() == KDL::Joint::None) {
+      if (uj->type != urdf::Joint::FIXED)
+        throw ModelError("unsupported joint type of '" + uj->name + "' in " + source_ +
+                         " (only revolute, continuous, prismatic and fixed)");
+    } else {
+      // KDL gives the axis in the parent *segment's* frame (the URDF joint origin's rotation
+      // applied), which is not the body frame when the parent link hangs on fixed joints:
+      // undo the joint origin's rotation only, giving the axis in the child link's frame.
+      const KDL::Vector a = kj.JointAxis();
+      const Eigen::Vector3d axis_parent(a.x(), a.y(), a.z());
+      const Eigen::Vector3d axis_child = toEigen(seg.pose(0.0)).linear().transpose() * axis_parent;
+      const JointInfo j = jointInfo(*uj);
+      child_body = newBody(body, T0, axis_child, j.is_prismatic);
+      child_in_body = Eigen::Isometry3d::Identity();
+      model_->joints_.push_back(j);
+    }
+    // The link's inertia straight from urdfdom (its <inertial> origin, rotation included),
+    // expressed in the link frame, then placed where the link sits in its body.
     double m;
     Eigen::Vector3d c;
     Eigen::Matrix3d I0;
-    linkInertia(root_inertial, m, c, I0);
-    addInertia(tree.bodies[root_body], Eigen::Isometry3d::Identity(), m, c, I0);
-  }  // A fixed-base root link never moves: its mass does not enter M or b.
-  tree.frames.push_back({root->name, root_body, Eigen::Isometry3d::Identity()});
-  model->link_names_.push_back(root->name);
-  model->link_parents_.push_back("");
+    linkInertia(link->inertial, m, c, I0);
+    if (child_body >= 0) addInertia(tree_->bodies[child_body], child_in_body, m, c, I0);
+    tree_->frames.push_back({link_name, child_body, child_in_body});
+    model_->link_names_.push_back(link_name);
+    model_->link_parents_.push_back(uj->parent_link_name);
+    visit(child, child_body, child_in_body);
+  }
+}
 
-  // Depth-first over the KDL tree, in kdl_parser's order (the URDF's child order).
-  std::function<void(const KDL::SegmentMap::const_iterator&, int, const Eigen::Isometry3d&)> visit;
-  visit = [&](const KDL::SegmentMap::const_iterator& element, int body,
-              const Eigen::Isometry3d& in_body) {
-    for (const auto& child : GetTreeElementChildren(element->second)) {
-      const KDL::Segment& seg = GetTreeElementSegment(child->second);
-      const KDL::Joint& kj = seg.getJoint();
-      const Eigen::Isometry3d T0 = in_body * toEigen(seg.pose(0.0));
-      const std::string& link_name = seg.getName();
-      const urdf::LinkConstSharedPtr link = urdf.getLink(link_name);
-      const urdf::JointConstSharedPtr uj = link ? link->parent_joint : nullptr;
-      if (!uj) throw ReachError("link '" + link_name + "' has no parent joint in " + source);
-      int child_body = body;
-      Eigen::Isometry3d child_in_body = T0;
-      if (kj.getType() == KDL::Joint::None) {
-        if (uj->type != urdf::Joint::FIXED)
-          throw ReachError("unsupported joint type of '" + uj->name + "' in " + source +
-                           " (only revolute, continuous, prismatic and fixed)");
-      } else {
-        // KDL gives the axis in the parent *segment's* frame (the URDF joint origin's rotation
-        // applied), which is not the body frame when the parent link hangs on fixed joints:
-        // undo the joint origin's rotation only, giving the axis in the child link's frame.
-        const KDL::Vector a = kj.JointAxis();
-        const Eigen::Vector3d axis_parent(a.x(), a.y(), a.z());
-        const Eigen::Vector3d axis_child =
-            toEigen(seg.pose(0.0)).linear().transpose() * axis_parent;
-        const bool prismatic = uj->type == urdf::Joint::PRISMATIC;
-        child_body = newBody(body, T0, axis_child, prismatic);
-        child_in_body = Eigen::Isometry3d::Identity();
-        JointInfo j;
-        j.name = uj->name;
-        j.is_prismatic = prismatic;
-        j.is_continuous = uj->type == urdf::Joint::CONTINUOUS;
-        j.q_min = -kInf;
-        j.q_max = kInf;
-        j.qd_max = kInf;
-        j.effort_max = kInf;
-        if (uj->limits) {
-          if (uj->type != urdf::Joint::CONTINUOUS) {
-            j.q_min = uj->limits->lower;
-            j.q_max = uj->limits->upper;
-          }
-          if (uj->limits->velocity > 0.0) j.qd_max = uj->limits->velocity;
-          if (uj->limits->effort > 0.0) j.effort_max = uj->limits->effort;
-        }
-        if (j.q_min > j.q_max)
-          throw ReachError("joint '" + j.name + "' has lower limit above upper limit in " + source);
-        model->joints_.push_back(j);
-      }
-      // The link's inertia straight from urdfdom (its <inertial> origin, rotation included),
-      // expressed in the link frame, then placed where the link sits in its body.
-      double m;
-      Eigen::Vector3d c;
-      Eigen::Matrix3d I0;
-      linkInertia(link->inertial, m, c, I0);
-      if (child_body >= 0) addInertia(tree.bodies[child_body], child_in_body, m, c, I0);
-      tree.frames.push_back({link_name, child_body, child_in_body});
-      model->link_names_.push_back(link_name);
-      model->link_parents_.push_back(uj->parent_link_name);
-      visit(child, child_body, child_in_body);
-    }
-  };
-  visit(kdl_tree.getRootSegment(), root_body, Eigen::Isometry3d::Identity());
-
-  if (tree.bodies.empty()) throw ReachError("the robot in " + source + " has no degree of freedom");
+void ModelBuilder::finish() {
+  ModelTree& tree = *tree_;
+  if (tree.bodies.empty())
+    throw ModelError("the robot in " + source_ + " has no degree of freedom");
   for (int i = 0; i < static_cast<int>(tree.bodies.size()); ++i) {
     for (int j = i; j >= 0; j = tree.bodies[j].parent) tree.bodies[i].support.push_back(j);
-    model->total_mass_ += tree.bodies[i].mass;
+    model_->total_mass_ += tree.bodies[i].mass;
   }
-  for (const Frame& f : tree.frames) model->frame_names_.push_back(f.name);
-  return model;
+  for (const Frame& f : tree.frames) model_->frame_names_.push_back(f.name);
 }
 
 std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& xml,
                                                              const ModelOptions& options,
                                                              const std::string& source) {
   if (xml.find("<robot") == std::string::npos)
-    throw ReachError("malformed URDF in " + source + ": no <robot> element");
+    throw ModelError("malformed URDF in " + source + ": no <robot> element");
   const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(xml);
-  if (!urdf) throw ReachError("malformed URDF in " + source + " (urdfdom could not parse it)");
+  if (!urdf) throw ModelError("malformed URDF in " + source + " (urdfdom could not parse it)");
   return ModelBuilder::build(*urdf, options, source);
 }
 
 std::shared_ptr<const RobotModel> RobotModel::fromUrdfFile(const std::string& path,
                                                            const ModelOptions& options) {
   std::ifstream in(path);
-  if (!in) throw ReachError("cannot open URDF file '" + path + "'");
+  if (!in) throw ModelError("cannot open URDF file '" + path + "'");
   std::stringstream ss;
   ss << in.rdbuf();
   return fromUrdfString(ss.str(), options, path);

@@ -11,10 +11,6 @@ namespace reach_trajopt {
 
 namespace {
 
-const std::string& soleName(const ContactConfig& c, Side s) {
-  return s == Side::kLeft ? c.left_sole_frame : c.right_sole_frame;
-}
-
 }  // namespace
 
 TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
@@ -36,8 +32,8 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   const RobotModel& m = *model_;
   const Side swing = opposite(request.stance);
   dyn_ = std::make_unique<StanceReducedDynamics>(
-      model_, m.frameId(soleName(contact, request.stance)), request.stance_pose,
-      m.frameId(soleName(contact, swing)), request.swing_target, request.q0[3]);
+      model_, m.frameId(contact.soleFrame(request.stance)), request.stance_pose,
+      m.frameId(contact.soleFrame(swing)), request.swing_target, request.q0[3]);
   scratch_ = std::make_unique<StanceReducedDynamics::Scratch>(*dyn_);
   const ContactWrenchCone cone(contact);
   C_stance_ = cone.worldMatrix(request.stance_pose.linear());

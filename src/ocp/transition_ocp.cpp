@@ -20,10 +20,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-const std::string& soleName(const ContactConfig& c, Side s) {
-  return s == Side::kLeft ? c.left_sole_frame : c.right_sole_frame;
-}
-
 const char* nloptResultName(nlopt::result r) {
   switch (r) {
     case nlopt::FAILURE: return "FAILURE";
@@ -234,12 +230,12 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
   // x_0 on its stance contact.
   Workspace ws(m);
   m.update(ws, r.q0, r.qd0);
-  const ContactConstraint stance(m, soleName(contact_, r.stance), r.stance_pose);
+  const ContactConstraint stance(m, contact_.soleFrame(r.stance), r.stance_pose);
   ContactConstraintTerms terms(nq);
   stance.evaluate(m, ws, terms);
   const double off = std::max(terms.phi.cwiseAbs().maxCoeff(), terms.phidot.cwiseAbs().maxCoeff());
   if (off > config_.input_tolerance) {
-    os << "TransitionOcp: x_0 is off its stance contact " << soleName(contact_, r.stance)
+    os << "TransitionOcp: x_0 is off its stance contact " << contact_.soleFrame(r.stance)
        << ": max(|phi|, |phidot|) = " << off << " > " << config_.input_tolerance;
     throw ReachError(os.str());
   }
@@ -259,7 +255,7 @@ bool TransitionOcp::finalStateOnContacts(const TransitionRequest& r) const {
   double off = 0.0;
   for (int k = 0; k < 2; ++k) {
     const Side s = k == 0 ? r.stance : opposite(r.stance);
-    const ContactConstraint c(m, soleName(contact_, s), k == 0 ? r.stance_pose : r.swing_target);
+    const ContactConstraint c(m, contact_.soleFrame(s), k == 0 ? r.stance_pose : r.swing_target);
     c.evaluate(m, ws, terms);
     off = std::max({off, terms.phi.cwiseAbs().maxCoeff(), terms.phidot.cwiseAbs().maxCoeff()});
   }

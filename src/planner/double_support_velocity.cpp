@@ -1,6 +1,7 @@
 #include "reach_trajopt/planner/double_support_velocity.h"
 
 #include <string>
+#include <vector>
 
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -43,6 +44,34 @@ Eigen::VectorXd doubleSupportVelocity(const RobotModel& model, const Eigen::Vect
   Eigen::VectorXd qd = Z * v_base;
   if (!qd.allFinite())
     throw ReachError("doubleSupportVelocity: no finite solution at q");
+  return qd;
+}
+
+Eigen::VectorXd doubleSupportBaseVelocity(const RobotModel& model, const Eigen::VectorXd& q,
+                                          FrameId left, FrameId right,
+                                          const Eigen::Vector2d& v) {
+  const int n = model.nq();
+  requireSize("doubleSupportBaseVelocity: q", q.size(), n);
+  requireFinite("doubleSupportBaseVelocity: base velocity", v);
+  Eigen::VectorXd qd = Eigen::VectorXd::Zero(n);
+  if (v.squaredNorm() == 0.0) return qd;
+  Workspace ws(model);
+  model.update(ws, q, qd);
+  Matrix6Xd J(6, n);
+  for (FrameId f : {left, right}) {
+    model.frameJacobian(ws, f, J);
+    // Leg columns: the joints whose column is non-zero for this sole (besides the base).
+    std::vector<int> cols;
+    for (int j = 6; j < n; ++j)
+      if (J.col(j).norm() > 0.0) cols.push_back(j);
+    Eigen::MatrixXd Jl(6, cols.size());
+    for (size_t k = 0; k < cols.size(); ++k) Jl.col(k) = J.col(cols[k]);
+    Eigen::VectorXd base = Eigen::VectorXd::Zero(6);
+    base.head<2>() = v;
+    const Eigen::VectorXd ql = Jl.completeOrthogonalDecomposition().solve(-J.leftCols(6) * base);
+    for (size_t k = 0; k < cols.size(); ++k) qd[cols[k]] = ql[k];
+  }
+  qd.head<2>() = v;
   return qd;
 }
 

@@ -100,6 +100,157 @@ Eigen::Isometry3d FlatContact::pose() const {
   return T;
 }
 
+namespace {
+
+/// Why a foothold is rejected before the IK (one foot through the other), or "" when not.
+std::string geometricRejection(const KinematicFeasibilityConfig& config,
+                               const ContactConfig& contact, Side stance,
+                               const FlatContact& current, const FlatContact& planned,
+                               const std::string& stance_name, const std::string& swing_name) {
+  // Overlapping soles, or the swing sole across the stance sole.
+  const double margin = 0.5 * config.sole_clearance;
+  if (rectanglesOverlap(current.position.head<2>(), current.yaw, planned.position.head<2>(),
+                        planned.yaw, contact.half_length + margin, contact.half_width + margin))
+    return "planned " + swing_name + " overlaps the stance sole " + stance_name +
+           " (clearance " + fmt(config.sole_clearance) +
+           " m): one foot would pass through the other";
+  const Eigen::Vector3d delta = planned.position - current.position;
+  const Eigen::Vector2d offset =
+      Eigen::Rotation2Dd(-current.yaw) * delta.head<2>();  // stance heading frame
+  const double toward_swing = (opposite(stance) == Side::kLeft ? 1.0 : -1.0) * offset.y();
+  if (toward_swing < config.min_lateral_offset)
+    return "planned " + swing_name + " crosses to the far side of the stance sole " +
+           stance_name + " (lateral offset " + fmt(toward_swing) + " m < " +
+           fmt(config.min_lateral_offset) + " m): the swing leg would pass through the stance leg";
+  return "";
+}
+
+/// One damped least-squares step toward e = 0 whose joints stay within [q_lo, q_hi]: a joint
+/// that would cross its limit is clamped to it and the step is re-solved for the others.
+void clampedStep(const Eigen::MatrixXd& J, const Eigen::Matrix<double, kTaskRows, 1>& e,
+                 const Eigen::VectorXd& q, const Eigen::VectorXd& q_lo,
+                 const Eigen::VectorXd& q_hi, double lambda, double max_step,
+                 std::vector<bool>& locked, Eigen::MatrixXd& Jf, Eigen::VectorXd& dq) {
+  const int n = static_cast<int>(q.size());
+  Eigen::Matrix<double, kTaskRows, kTaskRows> JJt;
+  std::fill(locked.begin(), locked.end(), false);
+  dq.setZero();
+  for (int pass = 0; pass <= n; ++pass) {
+    Jf = J;
+    Eigen::Matrix<double, kTaskRows, 1> rhs = -e;
+    for (int i = 0; i < n; ++i) {
+      if (locked[i]) {
+        rhs -= J.col(i) * dq[i];
+        Jf.col(i).setZero();
+      }
+    }
+    JJt.noalias() = Jf * Jf.transpose();
+    JJt.diagonal().array() += lambda;
+    Eigen::VectorXd step = Jf.transpose() * JJt.ldlt().solve(rhs);
+    const double biggest = step.cwiseAbs().maxCoeff();
+    if (biggest > max_step) step *= max_step / biggest;
+    bool clamped = false;
+    for (int i = 0; i < n; ++i) {
+      if (locked[i]) continue;
+      dq[i] = step[i];
+      const double qi = q[i] + dq[i];
+      if (qi < q_lo[i] || qi > q_hi[i]) {
+        dq[i] = std::clamp(qi, q_lo[i], q_hi[i]) - q[i];
+        locked[i] = true;
+        clamped = true;
+      }
+    }
+    if (!clamped) break;
+  }
+}
+
+/// Outcome of the IK iterations: position / orientation residual per task (left sole, right
+/// sole, pelvis) [m, rad].
+struct IkOutcome {
+  bool converged = false;
+  int iterations = 0;
+  double task_pos[3] = {0, 0, 0}, task_rot[3] = {0, 0, 0};
+};
+
+/// Joint-limited IK of the three tasks from q (updated in place).
+IkOutcome solveIk(const RobotModel& model, const ContactConstraint (&tasks)[3], bool pelvis_free,
+                  const KinematicFeasibilityConfig& config, Eigen::VectorXd& q,
+                  KinematicFeasibilityResult& result) {
+  const int n = model.nq();
+  const Eigen::VectorXd q_lo = model.positionLowerLimits();
+  const Eigen::VectorXd q_hi = model.positionUpperLimits();
+  Workspace ws(model);
+  ContactConstraintTerms terms(n);
+  Eigen::Matrix<double, kTaskRows, 1> e;
+  Eigen::MatrixXd J(kTaskRows, n), Jf(kTaskRows, n);
+  Eigen::VectorXd dq(n);
+  std::vector<bool> locked(n);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  IkOutcome out;
+  int it = 0;
+  for (;; ++it) {
+    model.update(ws, q, zero);
+    for (int t = 0; t < 3; ++t) {
+      tasks[t].evaluate(model, ws, terms);
+      e.segment<6>(6 * t) = terms.phi;
+      J.middleRows<6>(6 * t) = terms.J_phi;
+      if (t == 2 && pelvis_free) {  // x, y free: zero rows (the damping keeps JJ^T regular)
+        e.segment<2>(12).setZero();
+        J.middleRows<2>(12).setZero();
+      }
+      out.task_pos[t] = e.segment<3>(6 * t).norm();
+      out.task_rot[t] = terms.phi.tail<3>().norm();
+    }
+    result.position_residual = *std::max_element(out.task_pos, out.task_pos + 3);
+    result.orientation_residual = *std::max_element(out.task_rot, out.task_rot + 3);
+    if (result.position_residual <= config.position_tolerance &&
+        result.orientation_residual <= config.orientation_tolerance) {
+      out.converged = true;
+      break;
+    }
+    if (it >= config.max_iterations) break;
+    // Levenberg-style damping lambda^2 = damping + |e|^2: large far away (robust near the
+    // reach boundary), vanishing at the solution (quadratic convergence).
+    const double lambda = config.damping + e.squaredNorm();
+    clampedStep(J, e, q, q_lo, q_hi, lambda, config.max_joint_step, locked, Jf, dq);
+    q += dq;
+    q = q.cwiseMax(q_lo).cwiseMin(q_hi);  // rounding
+  }
+  out.iterations = it;
+  return out;
+}
+
+/// Why the IK failed: the task that missed most, by how much, and the joints at their limits.
+std::string infeasibleReason(const RobotModel& model, const KinematicFeasibilityConfig& config,
+                             const ContactConfig& contact, const IkOutcome& ik,
+                             const Eigen::VectorXd& q) {
+  const char* names[3] = {contact.left_sole_frame.c_str(), contact.right_sole_frame.c_str(),
+                          config.pelvis_frame.c_str()};
+  int worst = 0;
+  for (int t = 1; t < 3; ++t) {
+    if (ik.task_pos[t] + ik.task_rot[t] > ik.task_pos[worst] + ik.task_rot[worst]) worst = t;
+  }
+  std::ostringstream os;
+  os << "kinematically infeasible: after " << ik.iterations << " IK iterations " << names[worst]
+     << " misses its target by " << fmt(ik.task_pos[worst]) << " m and "
+     << fmt(ik.task_rot[worst]) << " rad (tolerances " << config.position_tolerance << " m, "
+     << config.orientation_tolerance << " rad)";
+  const Eigen::VectorXd q_lo = model.positionLowerLimits();
+  const Eigen::VectorXd q_hi = model.positionUpperLimits();
+  std::string at_limits;
+  for (int i = 0; i < model.nq(); ++i) {
+    const auto& j = model.joints()[i];
+    if (j.is_virtual) continue;
+    const double tol = 1e-9;
+    if (q[i] <= q_lo[i] + tol) at_limits += " " + j.name + " (lower)";
+    if (q[i] >= q_hi[i] - tol) at_limits += " " + j.name + " (upper)";
+  }
+  if (!at_limits.empty()) os << "; joints at limits:" << at_limits;
+  return os.str();
+}
+
+}  // namespace
+
 KinematicFeasibility::KinematicFeasibility(std::shared_ptr<const RobotModel> model,
                                            const KinematicFeasibilityConfig& config,
                                            const ContactConfig& contact)
@@ -134,10 +285,8 @@ KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatCo
     requireFinite("KinematicFeasibility: q_init", q_init);
   }
   const Side swing = opposite(stance);
-  const std::string& stance_name =
-      stance == Side::kLeft ? contact_.left_sole_frame : contact_.right_sole_frame;
-  const std::string& swing_name =
-      swing == Side::kLeft ? contact_.left_sole_frame : contact_.right_sole_frame;
+  const std::string& stance_name = contact_.soleFrame(stance);
+  const std::string& swing_name = contact_.soleFrame(swing);
 
   const Eigen::Vector3d delta = planned.position - current.position;
   if (delta.head<2>().norm() > config_.workspace_radius ||
@@ -167,28 +316,12 @@ KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatCo
     result.q_f[4] = result.q_f[5] = 0.0;
   }
 
-  // One foot through the other: overlapping soles, or the swing sole across the stance sole.
-  const double margin = 0.5 * config_.sole_clearance;
-  if (rectanglesOverlap(current.position.head<2>(), current.yaw, planned.position.head<2>(),
-                        planned.yaw, contact_.half_length + margin,
-                        contact_.half_width + margin)) {
+  // One foot through the other.
+  result.reason = geometricRejection(config_, contact_, stance, current, planned, stance_name,
+                                     swing_name);
+  if (!result.reason.empty()) {
     result.position_residual = result.orientation_residual =
         std::numeric_limits<double>::infinity();
-    result.reason = "planned " + swing_name + " overlaps the stance sole " + stance_name +
-                    " (clearance " + fmt(config_.sole_clearance) +
-                    " m): one foot would pass through the other";
-    return result;
-  }
-  const Eigen::Vector2d offset =
-      Eigen::Rotation2Dd(-current.yaw) * delta.head<2>();  // stance heading frame
-  const double toward_swing = (swing == Side::kLeft ? 1.0 : -1.0) * offset.y();
-  if (toward_swing < config_.min_lateral_offset) {
-    result.position_residual = result.orientation_residual =
-        std::numeric_limits<double>::infinity();
-    result.reason = "planned " + swing_name + " crosses to the far side of the stance sole " +
-                    stance_name + " (lateral offset " + fmt(toward_swing) + " m < " +
-                    fmt(config_.min_lateral_offset) +
-                    " m): the swing leg would pass through the stance leg";
     return result;
   }
 
@@ -205,108 +338,13 @@ KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatCo
   const Eigen::VectorXd q_hi = model.positionUpperLimits();
   result.q_f = result.q_f.cwiseMax(q_lo).cwiseMin(q_hi);
 
-  Workspace ws(model);
-  ContactConstraintTerms terms(n);
-  Eigen::Matrix<double, kTaskRows, 1> e;
-  Eigen::MatrixXd J(kTaskRows, n), Jf(kTaskRows, n);
-  Eigen::Matrix<double, kTaskRows, kTaskRows> JJt;
-  Eigen::VectorXd dq(n), q_next(n);
-  std::vector<bool> locked(n);
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
-  double task_pos[3] = {0, 0, 0}, task_rot[3] = {0, 0, 0};
-
-  bool converged = false;
-  int it = 0;
-  for (;; ++it) {
-    model.update(ws, result.q_f, zero);
-    for (int t = 0; t < 3; ++t) {
-      tasks[t].evaluate(model, ws, terms);
-      if (t < 2) {
-        e.segment<6>(6 * t) = terms.phi;
-        J.middleRows<6>(6 * t) = terms.J_phi;
-        task_pos[t] = terms.phi.head<3>().norm();
-      } else {
-        e.segment<6>(12) = terms.phi;
-        J.middleRows<6>(12) = terms.J_phi;
-        if (!pelvis_position) {  // x, y free: zero rows (the damping keeps JJ^T regular)
-          e.segment<2>(12).setZero();
-          J.middleRows<2>(12).setZero();
-        }
-        task_pos[t] = e.segment<3>(12).norm();
-      }
-      task_rot[t] = terms.phi.tail<3>().norm();
-    }
-    result.position_residual = *std::max_element(task_pos, task_pos + 3);
-    result.orientation_residual = *std::max_element(task_rot, task_rot + 3);
-    if (result.position_residual <= config_.position_tolerance &&
-        result.orientation_residual <= config_.orientation_tolerance) {
-      converged = true;
-      break;
-    }
-    if (it >= config_.max_iterations) break;
-
-    // Levenberg-style damping lambda^2 = damping + |e|^2: large far away (robust near the
-    // reach boundary), vanishing at the solution (quadratic convergence).
-    const double lambda = config_.damping + e.squaredNorm();
-    std::fill(locked.begin(), locked.end(), false);
-    dq.setZero();
-    for (int pass = 0; pass <= n; ++pass) {
-      Jf = J;
-      Eigen::Matrix<double, kTaskRows, 1> rhs = -e;
-      for (int i = 0; i < n; ++i) {
-        if (locked[i]) {
-          rhs -= J.col(i) * dq[i];
-          Jf.col(i).setZero();
-        }
-      }
-      JJt.noalias() = Jf * Jf.transpose();
-      JJt.diagonal().array() += lambda;
-      Eigen::VectorXd step = Jf.transpose() * JJt.ldlt().solve(rhs);
-      const double biggest = step.cwiseAbs().maxCoeff();
-      if (biggest > config_.max_joint_step) step *= config_.max_joint_step / biggest;
-      bool clamped = false;
-      for (int i = 0; i < n; ++i) {
-        if (locked[i]) continue;
-        dq[i] = step[i];
-        const double qi = result.q_f[i] + dq[i];
-        if (qi < q_lo[i] || qi > q_hi[i]) {
-          dq[i] = std::clamp(qi, q_lo[i], q_hi[i]) - result.q_f[i];
-          locked[i] = true;
-          clamped = true;
-        }
-      }
-      if (!clamped) break;
-    }
-    result.q_f += dq;
-    result.q_f = result.q_f.cwiseMax(q_lo).cwiseMin(q_hi);  // rounding
-  }
-  result.iterations = it;
-
-  if (converged) {
+  const IkOutcome ik = solveIk(model, tasks, !pelvis_position, config_, result.q_f, result);
+  result.iterations = ik.iterations;
+  if (ik.converged) {
     result.feasible = true;
     return result;
   }
-  const char* names[3] = {contact_.left_sole_frame.c_str(), contact_.right_sole_frame.c_str(),
-                          config_.pelvis_frame.c_str()};
-  int worst = 0;
-  for (int t = 1; t < 3; ++t) {
-    if (task_pos[t] + task_rot[t] > task_pos[worst] + task_rot[worst]) worst = t;
-  }
-  std::ostringstream os;
-  os << "kinematically infeasible: after " << it << " IK iterations " << names[worst]
-     << " misses its target by " << fmt(task_pos[worst]) << " m and " << fmt(task_rot[worst])
-     << " rad (tolerances " << config_.position_tolerance << " m, "
-     << config_.orientation_tolerance << " rad)";
-  std::string at_limits;
-  for (int i = 0; i < n; ++i) {
-    const auto& j = model.joints()[i];
-    if (j.is_virtual) continue;
-    const double tol = 1e-9;
-    if (result.q_f[i] <= q_lo[i] + tol) at_limits += " " + j.name + " (lower)";
-    if (result.q_f[i] >= q_hi[i] - tol) at_limits += " " + j.name + " (upper)";
-  }
-  if (!at_limits.empty()) os << "; joints at limits:" << at_limits;
-  result.reason = os.str();
+  result.reason = infeasibleReason(model, config_, contact_, ik, result.q_f);
   return result;
 }
 

@@ -20,7 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 int checkedVariables(int n) {
   if (n <= 0)
-    throw ReachError("DualActiveSetQp: number of variables must be > 0, got " +
+    throw QpInputError("DualActiveSetQp: number of variables must be > 0, got " +
                      std::to_string(n));
   return n;
 }
@@ -56,16 +56,16 @@ const char* toString(QpStatus status) {
 
 void QpSolverConfig::validate() const {
   if (max_iterations < 0)
-    throw ReachError("QpSolverConfig.max_iterations must be >= 0, got " +
+    throw ConfigError("QpSolverConfig.max_iterations must be >= 0, got " +
                      std::to_string(max_iterations));
   if (!std::isfinite(feasibility_tol) || feasibility_tol < 0.0)
-    throw ReachError("QpSolverConfig.feasibility_tol must be finite and >= 0, got " +
+    throw ConfigError("QpSolverConfig.feasibility_tol must be finite and >= 0, got " +
                      std::to_string(feasibility_tol));
   if (!std::isfinite(dependence_tol) || dependence_tol < 0.0 || dependence_tol >= 1.0)
-    throw ReachError("QpSolverConfig.dependence_tol must be in [0, 1), got " +
+    throw ConfigError("QpSolverConfig.dependence_tol must be in [0, 1), got " +
                      std::to_string(dependence_tol));
   if (!std::isfinite(regularization) || regularization < 0.0)
-    throw ReachError("QpSolverConfig.regularization must be finite and >= 0, got " +
+    throw ConfigError("QpSolverConfig.regularization must be finite and >= 0, got " +
                      std::to_string(regularization));
 }
 
@@ -76,7 +76,7 @@ DualActiveSetQp::DualActiveSetQp(int n, int m_eq_max, int m_in_max, const QpSolv
       m_in_max_(m_in_max),
       own_factor_(n) {
   if (m_eq_max < 0 || m_in_max < 0)
-    throw ReachError("DualActiveSetQp: row maxima must be >= 0, got m_eq_max " +
+    throw QpInputError("DualActiveSetQp: row maxima must be >= 0, got m_eq_max " +
                      std::to_string(m_eq_max) + ", m_in_max " + std::to_string(m_in_max));
   config_.validate();
   result_.x = Eigen::VectorXd::Zero(n);

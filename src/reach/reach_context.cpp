@@ -38,13 +38,11 @@ ReachContext::ReachContext(std::shared_ptr<const RobotModel> model_in,
     if (!mode.isSingleSupport())
       throw ReachError("reachability: output_frame is empty and mode " + mode.name() +
                        " has no swing sole: name the output frame");
-    output_frame = md.frameId(mode.swing() == Side::kLeft ? contact.left_sole_frame
-                                                          : contact.right_sole_frame);
+    output_frame = md.frameId(contact.soleFrame(mode.swing()));
   }
   for (char c : config.output_axes) output_axes.push_back(c - 'x');
   if (mode.isSingleSupport() && target && std::isfinite(config.swing_ground_margin)) {
-    swing_frame = md.frameId(mode.swing() == Side::kLeft ? contact.left_sole_frame
-                                                         : contact.right_sole_frame);
+    swing_frame = md.frameId(contact.soleFrame(mode.swing()));
     ground_height = target->translation().z() - config.swing_ground_margin;
   }
   q_min = md.positionLowerLimits();

@@ -35,8 +35,7 @@ RobotState swingState(std::shared_ptr<const RobotModel> model,
   s.qd = Eigen::VectorXd::Zero(m.nq());
   Workspace ws(m);
   m.update(ws, s.q, s.qd);
-  const FrameId sw = m.frameId(stance == Side::kLeft ? contact.right_sole_frame
-                                                     : contact.left_sole_frame);
+  const FrameId sw = m.frameId(contact.soleFrame(opposite(stance)));
   Matrix6Xd J(6, m.nq());
   m.frameJacobian(ws, sw, J);
   // The swing leg: actuated columns that move the swing sole.

@@ -11,7 +11,7 @@ Eigen::Vector3d checkedFoothold(const StepRecord& record, double ground_z) {
 }
 
 ProposedStepMsgs toProposedStepMsgs(const RobotModel& model, const ContactConfig& contact,
-                                    const StepRecord& record, const ProposedStep& step,
+                                    const StepRecord& record, const FootstepTransition& step,
                                     const Eigen::Vector3d& foothold, double delta,
                                     const ros::Time& t0, bool samples, int max_points) {
   ProposedStepMsgs m;

@@ -56,6 +56,13 @@ struct BulletWorld::Bullet {
   btAlignedObjectArray<btQuaternion> world_to_local;
   btAlignedObjectArray<btVector3> local_origin;
 
+  /// The robot as one btMultiBody: a link per body of the tree, in Bullet's principal frames.
+  void addMultiBody(const SimBodyTree& tree, const SimConfig& config, bool floating);
+  /// One compound collider per body with shapes (boxes, spheres, cylinders of the URDF).
+  void addColliders(const SimBodyTree& tree, const SimConfig& config);
+  /// Bullet's joint limit constraints for the joints with finite limits.
+  void addJointLimits(const SimBodyTree& tree);
+
   ~Bullet() {
     if (world) {
       for (auto& c : limits) world->removeMultiBodyConstraint(c.get());
@@ -140,30 +147,17 @@ std::unique_ptr<BulletWorld> BulletWorld::fromUrdfFile(const std::string& urdf_p
 
 BulletWorld::~BulletWorld() = default;
 
-void BulletWorld::build() {
-  bt_.reset();  // destroy the previous world before building the next
-  auto bt = std::make_unique<Bullet>();
-  bt->collision_config = std::make_unique<btDefaultCollisionConfiguration>();
-  // Several contact points per box-plane pair from the first touch (perturbed queries), so a
-  // flat sole gets its support polygon at once instead of accumulating it over steps.
-  bt->collision_config->setPlaneConvexMultipointIterations();
-  bt->dispatcher = std::make_unique<btCollisionDispatcher>(bt->collision_config.get());
-  bt->broadphase = std::make_unique<btDbvtBroadphase>();
-  bt->solver = std::make_unique<btMultiBodyConstraintSolver>();
-  bt->world = std::make_unique<btMultiBodyDynamicsWorld>(
-      bt->dispatcher.get(), bt->broadphase.get(), bt->solver.get(), bt->collision_config.get());
-  btMultiBodyDynamicsWorld& world = *bt->world;
-  world.setGravity(toBt(config_.gravity));
-  world.getSolverInfo().m_numIterations = config_.solver_iterations;
-
-  const int n_links = static_cast<int>(tree_.bodies.size()) - 1;
-  const SimBody& root = tree_.bodies[0];
-  bt->multibody = std::make_unique<btMultiBody>(n_links, root.mass, toBt(root.principal_inertia),
-                                                /*fixedBase=*/!floating_, /*canSleep=*/false);
-  btMultiBody& mb = *bt->multibody;
+void BulletWorld::Bullet::addMultiBody(const SimBodyTree& tree, const SimConfig& config,
+                                       bool floating) {
+  btMultiBodyDynamicsWorld& dynamics = *world;
+  const int n_links = static_cast<int>(tree.bodies.size()) - 1;
+  const SimBody& root = tree.bodies[0];
+  multibody = std::make_unique<btMultiBody>(n_links, root.mass, toBt(root.principal_inertia),
+                                                /*fixedBase=*/!floating, /*canSleep=*/false);
+  btMultiBody& mb = *multibody;
   for (int k = 1; k <= n_links; ++k) {
-    const SimBody& b = tree_.bodies[k];
-    const SimBody& p = tree_.bodies[b.parent];
+    const SimBody& b = tree.bodies[k];
+    const SimBody& p = tree.bodies[b.parent];
     // Bullet's frames are the principal frames; P and K below are the parent's and this one's.
     const Eigen::Isometry3d P_to_K = p.principal.inverse() * b.parent_to_body * b.principal;
     const btQuaternion rot_parent_to_this =
@@ -185,14 +179,19 @@ void BulletWorld::build() {
   mb.finalizeMultiDof();
   mb.setLinearDamping(0.0);
   mb.setAngularDamping(0.0);
-  mb.setMaxCoordinateVelocity(config_.max_coordinate_velocity);
+  mb.setMaxCoordinateVelocity(config.max_coordinate_velocity);
   mb.setUseGyroTerm(true);
   mb.setHasSelfCollision(false);
-  world.addMultiBody(&mb);
+  dynamics.addMultiBody(&mb);
 
-  bt->colliders.resize(tree_.bodies.size());
-  for (size_t k = 0; k < tree_.bodies.size(); ++k) {
-    const SimBody& b = tree_.bodies[k];
+}
+
+void BulletWorld::Bullet::addColliders(const SimBodyTree& tree, const SimConfig& config) {
+  btMultiBodyDynamicsWorld& dynamics = *world;
+  btMultiBody& mb = *multibody;
+  colliders.resize(tree.bodies.size());
+  for (size_t k = 0; k < tree.bodies.size(); ++k) {
+    const SimBody& b = tree.bodies[k];
     if (b.shapes.empty()) continue;
     auto compound = std::make_unique<btCompoundShape>();
     for (const SimShape& s : b.shapes) {
@@ -200,7 +199,7 @@ void BulletWorld::build() {
       switch (s.type) {
         case SimShape::Type::kBox:
           child = std::make_unique<btBoxShape>(toBt(0.5 * s.size));
-          child->setMargin(config_.collision_margin);  // keeps the outer box size
+          child->setMargin(config.collision_margin);  // keeps the outer box size
           break;
         case SimShape::Type::kSphere:
           child = std::make_unique<btSphereShape>(s.size[0]);
@@ -208,39 +207,61 @@ void BulletWorld::build() {
         case SimShape::Type::kCylinder:
           child = std::make_unique<btCylinderShapeZ>(
               btVector3(s.size[0], s.size[0], 0.5 * s.size[1]));
-          child->setMargin(config_.collision_margin);
+          child->setMargin(config.collision_margin);
           break;
       }
       compound->addChildShape(toBt(b.principal.inverse() * s.pose), child.get());
-      bt->shapes.push_back(std::move(child));
+      shapes.push_back(std::move(child));
     }
     auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, static_cast<int>(k) - 1);
     collider->setCollisionShape(compound.get());
-    collider->setFriction(config_.mu);  // combined friction = product; the ground has 1
+    collider->setFriction(config.mu);  // combined friction = product; the ground has 1
     collider->setRestitution(0.0);
     collider->setRollingFriction(0.0);
     collider->setSpinningFriction(0.0);
     collider->setActivationState(DISABLE_DEACTIVATION);
-    bt->shapes.push_back(std::move(compound));
-    world.addCollisionObject(collider.get(), kRobotGroup, kGroundGroup);
+    shapes.push_back(std::move(compound));
+    dynamics.addCollisionObject(collider.get(), kRobotGroup, kGroundGroup);
     if (k == 0) {
       mb.setBaseCollider(collider.get());
     } else {
       mb.getLink(static_cast<int>(k) - 1).m_collider = collider.get();
     }
-    bt->colliders[k] = std::move(collider);
+    colliders[k] = std::move(collider);
   }
 
-  if (config_.joint_limits) {
-    for (int k = 1; k <= n_links; ++k) {
-      const SimBody& b = tree_.bodies[k];
-      if (!std::isfinite(b.q_min) || !std::isfinite(b.q_max)) continue;
-      bt->limits.push_back(
-          std::make_unique<btMultiBodyJointLimitConstraint>(&mb, k - 1, b.q_min, b.q_max));
-      world.addMultiBodyConstraint(bt->limits.back().get());
-    }
-  }
+}
 
+void BulletWorld::Bullet::addJointLimits(const SimBodyTree& tree) {
+  btMultiBodyDynamicsWorld& dynamics = *world;
+  btMultiBody& mb = *multibody;
+  const int n_links = static_cast<int>(tree.bodies.size()) - 1;
+  for (int k = 1; k <= n_links; ++k) {
+    const SimBody& b = tree.bodies[k];
+    if (!std::isfinite(b.q_min) || !std::isfinite(b.q_max)) continue;
+    limits.push_back(
+        std::make_unique<btMultiBodyJointLimitConstraint>(&mb, k - 1, b.q_min, b.q_max));
+    dynamics.addMultiBodyConstraint(limits.back().get());
+  }
+}
+
+void BulletWorld::build() {
+  bt_.reset();  // destroy the previous world before building the next
+  auto bt = std::make_unique<Bullet>();
+  bt->collision_config = std::make_unique<btDefaultCollisionConfiguration>();
+  // Several contact points per box-plane pair from the first touch (perturbed queries), so a
+  // flat sole gets its support polygon at once instead of accumulating it over steps.
+  bt->collision_config->setPlaneConvexMultipointIterations();
+  bt->dispatcher = std::make_unique<btCollisionDispatcher>(bt->collision_config.get());
+  bt->broadphase = std::make_unique<btDbvtBroadphase>();
+  bt->solver = std::make_unique<btMultiBodyConstraintSolver>();
+  bt->world = std::make_unique<btMultiBodyDynamicsWorld>(
+      bt->dispatcher.get(), bt->broadphase.get(), bt->solver.get(), bt->collision_config.get());
+  bt->world->setGravity(toBt(config_.gravity));
+  bt->world->getSolverInfo().m_numIterations = config_.solver_iterations;
+  bt->addMultiBody(tree_, config_, floating_);
+  bt->addColliders(tree_, config_);
+  if (config_.joint_limits) bt->addJointLimits(tree_);
   bt->ground_shape = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0);
   bt->ground = std::make_unique<btCollisionObject>();
   bt->ground->setCollisionShape(bt->ground_shape.get());

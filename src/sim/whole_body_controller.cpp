@@ -100,7 +100,7 @@ void WholeBodyController::addTask(const Eigen::Ref<const Eigen::MatrixXd>& J,
 const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                                               const ContactMode& mode, const WbcReference& ref) {
   const RobotModel& m = *model_;
-  const int n = m.nq(), nu = m.nu();
+  const int n = m.nq();
   const int nc = mode.contactCount();
   if (nc == 0) throw ReachError("WholeBodyController: no sole in contact (flight is not handled)");
   m.update(ws_, q, qd);
@@ -109,8 +109,16 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
   const int nx = n + 6 * nc;
   G_.topLeftCorner(nx, nx).setZero();
   g_.head(nx).setZero();
+  addTasks(q, qd, mode, ref);
+  addConstraints(mode);
+  return solveQp(mode);
+}
 
-  // --- Tasks -----------------------------------------------------------------------------
+void WholeBodyController::addTasks(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                   const ContactMode& mode, const WbcReference& ref) {
+  const RobotModel& m = *model_;
+  const int n = m.nq(), nu = m.nu();
+  const int nc = mode.contactCount();
   const WbcConfig& c = config_;
   m.centerOfMassJacobian(ws_, J_com_);
   {
@@ -156,7 +164,13 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
   G_.topLeftCorner(n, n).diagonal().array() += c.w_qdd;
   G_.block(n, n, 6 * nc, 6 * nc).diagonal().array() += c.w_lambda;
 
-  // --- Constraints -------------------------------------------------------------------------
+}
+
+void WholeBodyController::addConstraints(const ContactMode& mode) {
+  const RobotModel& m = *model_;
+  const int n = m.nq(), nu = m.nu();
+  const int nc = mode.contactCount();
+  const int nx = n + 6 * nc;
   const int m_eq = 6 + 6 * nc;
   const int m_in = ContactWrenchCone::kRows * nc + 2 * nu;
   auto Aeq = A_eq_.topLeftCorner(m_eq, nx);
@@ -190,6 +204,17 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
   Ain.block(t0 + nu, 0, nu, n) = M_.bottomRows(nu);      // u >= -u_max
   b_in_.segment(t0 + nu, nu) = -u_max - b_.tail(nu);
 
+}
+
+const WbcOutput& WholeBodyController::solveQp(const ContactMode& mode) {
+  const int n = model_->nq(), nu = model_->nu();
+  const int nc = mode.contactCount();
+  const int nx = n + 6 * nc;
+  const int m_eq = 6 + 6 * nc;
+  const int m_in = ContactWrenchCone::kRows * nc + 2 * nu;
+  const int t0 = ContactWrenchCone::kRows * nc;
+  auto Aeq = A_eq_.topLeftCorner(m_eq, nx);
+  auto Ain = A_in_.topLeftCorner(m_in, nx);
   qp::DualActiveSetQp& solver = nc == 1 ? qp_single_ : qp_double_;
   std::vector<int>& warm = nc == 1 ? warm_single_ : warm_double_;
   const qp::QpResult& r = solver.solve(G_.topLeftCorner(nx, nx), g_.head(nx), Aeq,

@@ -14,7 +14,10 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/walk/standing_pose.h"
+#include "reach_trajopt/planner/double_support_velocity.h"
+#include "reach_trajopt/walk/com_reference.h"
 #include "reach_trajopt/walk/swing_trajectory.h"
+#include "reach_trajopt/walk/transition_tracking.h"
 
 namespace reach_trajopt {
 
@@ -97,15 +100,6 @@ WalkConfig WalkConfig::fromYaml(const YamlSection& s) {
   return validatedIn(s, c);
 }
 
-ProposedStepConfig ProposedStepConfig::fromYaml(const YamlSection& root) {
-  ProposedStepConfig c;
-  if (root.has("kinematic_feasibility"))
-    c.kinematics = KinematicFeasibilityConfig::fromYaml(root.section("kinematic_feasibility"));
-  if (root.has("reach")) c.reach = ReachConfig::fromYaml(root.section("reach"));
-  if (root.has("ocp")) c.ocp = TransitionOcpConfig::fromYaml(root.section("ocp"));
-  return c;
-}
-
 std::string WalkResult::summaryLine() const {
   std::ostringstream os;
   os.precision(4);
@@ -119,7 +113,7 @@ std::string WalkResult::summaryLine() const {
 // ---- The loop ---------------------------------------------------------------------------------
 
 struct WalkingExperiment::Impl {
-  std::unique_ptr<ProposedStepPlanner> proposed;
+  std::unique_ptr<FootstepTransitionPlanner> proposed;
   WalkConfig walk;
   TvrConfig tvr_config;
   ContactConfig contact;
@@ -131,7 +125,7 @@ struct WalkingExperiment::Impl {
 WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk,
                                      const TvrConfig& tvr, const ContactConfig& contact,
                                      const WbcConfig& wbc, const SimConfig& sim,
-                                     const ProposedStepConfig* proposed)
+                                     const FootstepPlannerConfig* proposed)
     : model_(RobotModel::fromUrdfFile(urdf_path)), impl_(std::make_unique<Impl>()) {
   walk.validate();
   tvr.validate();
@@ -139,13 +133,14 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
   wbc.validate();
   sim.validate();
   if (walk.mode == WalkConfig::Mode::kProposed) {
-    const ProposedStepConfig defaults;
-    const ProposedStepConfig& c = proposed ? *proposed : defaults;
+    const FootstepPlannerConfig defaults;
+    const FootstepPlannerConfig& c = proposed ? *proposed : defaults;
     ReachConfig reach = c.reach;
     reach.horizon = walk.check_horizon;
     reach.validate();
-    impl_->proposed =
-        std::make_unique<ProposedStepPlanner>(model_, contact, c.kinematics, reach, c.ocp);
+    FootstepPlannerConfig planner = c;
+    planner.reach = reach;
+    impl_->proposed = std::make_unique<FootstepTransitionPlanner>(model_, contact, planner);
   }
   impl_->walk = walk;
   impl_->tvr_config = tvr;
@@ -161,314 +156,345 @@ namespace {
 
 Eigen::Vector2d xy(const Eigen::Vector3d& v) { return v.head<2>(); }
 
-/// Joint velocities that give the base a horizontal velocity while both soles stay still.
-Eigen::VectorXd pushVelocity(const RobotModel& model, Workspace& ws, const Eigen::VectorXd& q,
-                             const Eigen::Vector2d& v, FrameId left, FrameId right) {
-  const int n = model.nq();
-  Eigen::VectorXd qd = Eigen::VectorXd::Zero(n);
-  if (v.squaredNorm() == 0.0) return qd;
-  model.update(ws, q, qd);
-  Matrix6Xd J(6, n);
-  for (FrameId f : {left, right}) {
-    model.frameJacobian(ws, f, J);
-    // Leg columns: the joints whose column is non-zero for this sole (besides the base).
-    std::vector<int> cols;
-    for (int j = 6; j < n; ++j)
-      if (J.col(j).norm() > 0.0) cols.push_back(j);
-    Eigen::MatrixXd Jl(6, cols.size());
-    for (size_t k = 0; k < cols.size(); ++k) Jl.col(k) = J.col(cols[k]);
-    Eigen::VectorXd base = Eigen::VectorXd::Zero(6);
-    base.head<2>() = v;
-    const Eigen::VectorXd ql =
-        Jl.completeOrthogonalDecomposition().solve(-J.leftCols(6) * base);
-    for (size_t k = 0; k < cols.size(); ++k) qd[cols[k]] = ql[k];
-  }
-  qd.head<2>() = v;
-  return qd;
-}
-
 }  // namespace
 
-WalkResult WalkingExperiment::run(const std::function<void(const WalkTick&)>& on_tick,
-                                  const std::function<void(const StepRecord&)>& on_step,
-                                  const std::function<void(const StepRecord&, const ProposedStep&)>& on_check) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  const WalkConfig& wc = impl_->walk;
-  const RobotModel& m = *model_;
-  const FrameId sole[2] = {m.frameId(impl_->contact.left_sole_frame),
-                           m.frameId(impl_->contact.right_sole_frame)};
-  const FrameId pelvis = m.frameId(m.linkNames().front());
-  Workspace ws(m);
-
-  const Eigen::VectorXd q0 = standingConfiguration(m, wc.knee_bend, impl_->contact.left_sole_frame);
-  const Eigen::VectorXd qd0 =
-      pushVelocity(m, ws, q0, wc.initial_com_velocity, sole[0], sole[1]);
-  auto world = BulletWorld::fromUrdfFile(impl_->urdf, m, impl_->sim_config);
-  world->reset(q0, qd0);
-  const double dt = world->timeStep();
-
-  m.update(ws, q0, Eigen::VectorXd::Zero(m.nq()));
-  const Eigen::Vector3d com0 = m.centerOfMass(ws);
-  TvrConfig tvr_config = impl_->tvr_config;
-  tvr_config.com_height = com0.z();  // the LIPM height is the robot's standing CoM height
-  tvr_config.heuristic_bounds = wc.mode == WalkConfig::Mode::kBaseline;
-  const TvrPlanner planner(tvr_config);
-  const Lipm& lipm = planner.lipm();
-  WholeBodyController wbc(model_, impl_->contact, impl_->wbc_config, q0);
-
+/// One run of the stepping loop: the phase machine DS (settle) -> SS -> DS -> SS ... over the
+/// named parts (TVR step planning, the footstep check, the CoM reference, the swing source,
+/// touchdown and fall detection). Lives for one run().
+struct WalkingExperiment::Loop {
   enum class Phase { kSettle, kSingle, kDouble };
-  Phase phase = Phase::kSettle;
-  double phase_start = 0.0;
-  Side swing = wc.first_swing;
-  ContactMode mode = ContactMode::doubleSupport();
-  // LIPM CoM reference (horizontal) and the pivot it rotates about.
-  LipmState com_ref;
-  Eigen::Vector2d pivot_from = Eigen::Vector2d::Zero(), pivot_to = Eigen::Vector2d::Zero();
-  Eigen::Vector2d feet_mid = Eigen::Vector2d::Zero();
-  std::unique_ptr<SwingTrajectory> swing_traj;
-  StepRecord current;
-  // Proposed mode: the OCP trajectory being tracked (empty when none) and when it started.
-  bool checked = false;
-  TransitionResult tracked;
-  double tracked_start = 0.0;
-  Workspace ws_traj(m);
-  Matrix6Xd J_traj(6, m.nq());
 
-  WalkResult result;
-  result.mode = wc.mode;
-  WbcReference ref;
-  ref.posture = q0;
-  Eigen::Matrix3Xd Jc(3, m.nq());
+  Loop(const WalkingExperiment::Impl& impl, std::shared_ptr<const RobotModel> model,
+       const std::function<void(const WalkTick&)>& on_tick,
+       const std::function<void(const StepRecord&)>& on_step,
+       const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check);
+  WalkResult run();
 
-  // Eq. (11) from the measured CoM state predicted to the nominal touchdown (LIPM about the
-  // stance sole). Called at lift-off and again during the first part of the swing, so that
-  // the footstep follows the measured state rather than a single prediction.
-  auto planStep = [&](double t, const Eigen::Vector3d& com, const Eigen::Vector3d& vcom,
-                      double time_in_swing) {
-    current.com_at_plan.p = xy(com);
-    current.com_at_plan.pd = xy(vcom);
-    current.plan_time = t;
-    const double remaining = std::max(0.0, wc.single_support_duration - time_in_swing);
-    current.com_predicted = lipm.propagate(current.com_at_plan, current.stance, remaining);
-    TvrInput in;
-    in.com = current.com_predicted;
-    in.p_des = Eigen::Vector2d(com0.x() + wc.forward_speed * (t + remaining), feet_mid.y());
-    in.stance = current.stance;
-    in.stance_yaw = 0.0;
-    in.swing = current.swing;
-    const TvrStep step = planner.plan(in);
-    current.planned_tvr = step.alpha_tvr;
-    current.planned = step.alpha;
-    current.offset_clipped = step.offset_clipped;
-  };
-  double ground_z = 0.0;
-  auto target3 = [&]() {
-    return Eigen::Vector3d(current.planned.x(), current.planned.y(), ground_z);
-  };
-
-  auto beginSingleSupport = [&](double t, const Eigen::Vector3d& com, const Eigen::Vector3d& vcom) {
-    phase = Phase::kSingle;
-    phase_start = t;
-    mode = ContactMode::singleSupport(opposite(swing));
-    const Side stance = opposite(swing);
-    const Eigen::Vector3d stance_pos = m.framePose(ws, sole[static_cast<int>(stance)]).translation();
-    const Eigen::Vector3d swing_pos = m.framePose(ws, sole[static_cast<int>(swing)]).translation();
-    current = StepRecord();
-    current.index = result.steps + 1;
-    current.swing = swing;
-    current.stance = xy(stance_pos);
-    ground_z = stance_pos.z();
-    planStep(t, com, vcom, 0.0);
-    swing_traj = std::make_unique<SwingTrajectory>(swing_pos, target3(), wc.single_support_duration,
-                                                   wc.swing_height, wc.touchdown_depth);
-    com_ref = current.com_at_plan;
-    pivot_from = pivot_to = current.stance;
-    checked = false;
-    tracked = TransitionResult();
-  };
-
-  const int max_ticks = static_cast<int>(std::ceil(wc.max_sim_time / dt));
-  result.end_reason = "time limit";
-  for (int tick = 0; tick < max_ticks; ++tick) {
-    const double t = tick * dt;
-    const Eigen::VectorXd& q = world->q();
-    const Eigen::VectorXd& qd = world->qd();
-    m.update(ws, q, qd);
-    const Eigen::Vector3d com = m.centerOfMass(ws);
-    m.centerOfMassJacobian(ws, Jc);
-    const Eigen::Vector3d vcom = Jc * qd;
-
-    // ---- Phase transitions ----
-    if (phase == Phase::kSettle && t >= wc.settle_duration) {
-      if (result.steps >= wc.steps) {
-        result.end_reason = "completed";
-        break;
-      }
-      feet_mid = 0.5 * (xy(m.framePose(ws, sole[0]).translation()) +
-                        xy(m.framePose(ws, sole[1]).translation()));
-      beginSingleSupport(t, com, vcom);
-    } else if (phase == Phase::kSingle) {
-      const double ts = t - phase_start;
-      if (ts < wc.replan_fraction * wc.single_support_duration) {
-        planStep(t, com, vcom, ts);
-        swing_traj->retarget(target3());
-      }
-      if (impl_->proposed && !checked &&
-          ts >= wc.single_support_duration - impl_->proposed->horizon()) {
-        // The simulation waits (in sim time) for the check and the OCP.
-        checked = true;
-        const Side stance = opposite(swing);
-        try {
-          // The CoM velocity at touchdown: the LIPM about the stance sole from the measured
-          // CoM state, over the time left to the nominal touchdown.
-          const LipmState at_touchdown = lipm.propagate(
-              LipmState{xy(com), xy(vcom)}, current.stance,
-              std::max(0.0, wc.single_support_duration - ts));
-          const ProposedStep step = impl_->proposed->plan(
-              stance, m.framePose(ws, sole[static_cast<int>(stance)]), target3(), q, qd,
-              at_touchdown);
-          current.verdict = step.verdict;
-          current.hausdorff_distance = step.hausdorff_distance;
-          current.check_time_s = step.check_time_s;
-          current.ocp_time_s = step.ocp_time_s;
-          current.ocp_status = ocpStatusName(step.trajectory.status);
-          current.reason = step.reason;
-          current.planned = xy(step.foothold);
-          if (on_check) on_check(current, step);
-          if (step.usable()) {
-            tracked = step.trajectory;
-            tracked_start = t;
-          } else {
-            swing_traj->retarget(
-                Eigen::Vector3d(step.foothold.x(), step.foothold.y(), ground_z));
-          }
-        } catch (const ReachError& e) {
-          // The measured state is outside what the check accepts (e.g. a joint beyond its
-          // velocity limit while the robot is already falling): the step goes on unchecked.
-          current.verdict = "check_error";
-          current.reason = e.what();
-        }
-        m.update(ws, q, qd);  // plan() used its own workspace; keep ours current
-      }
-      const SoleContact& sc = world->soleContacts()[static_cast<int>(swing)];
-      if (ts > 0.5 * wc.single_support_duration && sc.in_contact &&
-          sc.wrench[2] > wc.touchdown_force) {
-        current.touched_down = true;
-        current.touchdown_time = t;
-        current.executed = m.framePose(ws, sole[static_cast<int>(swing)]).translation();
-        current.touchdown_error = (xy(current.executed) - current.planned).norm();
-        result.max_touchdown_error = std::max(result.max_touchdown_error, current.touchdown_error);
-        result.records.push_back(current);
-        ++result.steps;
-        if (on_step) on_step(current);
-        phase = Phase::kDouble;
-        phase_start = t;
-        mode = ContactMode::doubleSupport();
-        com_ref.p = xy(com);
-        com_ref.pd = xy(vcom);
-        pivot_from = current.stance;
-        pivot_to = xy(current.executed);
-      } else if (ts > wc.single_support_duration + wc.late_touchdown) {
-        result.fell = true;
-        result.end_reason = "no touchdown of the swing sole";
-        result.records.push_back(current);
-        break;
-      }
-    } else if (phase == Phase::kDouble && t - phase_start >= wc.double_support_duration) {
-      if (result.steps >= wc.steps) {
-        result.end_reason = "completed";
-        break;
-      }
-      swing = opposite(swing);
-      beginSingleSupport(t, com, vcom);
-    }
-
-    // ---- References ----
-    if (phase != Phase::kSettle) {
-      double s = 1.0;
-      if (phase == Phase::kDouble)
-        s = std::min(1.0, (t - phase_start) / wc.double_support_duration);
-      const Eigen::Vector2d pivot = (1.0 - s) * pivot_from + s * pivot_to;
-      const Eigen::Vector2d acc = lipm.acceleration(com_ref.p, pivot);
-      ref.com_acceleration = Eigen::Vector3d(acc.x(), acc.y(), 0.0);
-      com_ref.p += dt * com_ref.pd + 0.5 * dt * dt * acc;
-      com_ref.pd += dt * acc;
-    } else {
-      ref.com_acceleration.setZero();
-      com_ref.p = xy(com0);
-      com_ref.pd.setZero();
-    }
-    ref.com_position = Eigen::Vector3d(com_ref.p.x(), com_ref.p.y(), com0.z());
-    ref.com_velocity = Eigen::Vector3d(com_ref.pd.x(), com_ref.pd.y(), 0.0);
-    ref.q_ff.resize(0);
-    ref.qd_ff.resize(0);
-    ref.qdd_ff.resize(0);
-    if (phase == Phase::kSingle && tracked.time.size() > 0) {
-      // Track the OCP trajectory: swing sole from its configurations, joints as feed-forward.
-      const int last = static_cast<int>(tracked.time.size()) - 1;
-      const double tt = t - tracked_start;
-      const int k = std::min(last, static_cast<int>(std::lround(tt / tracked.dt)));
-      m.update(ws_traj, tracked.q.col(k), tracked.qd.col(k));
-      const FrameId id = sole[static_cast<int>(swing)];
-      m.frameJacobian(ws_traj, id, J_traj);
-      const Eigen::Isometry3d T = m.framePose(ws_traj, id);
-      ref.swing_position = T.translation();
-      ref.swing_rotation = T.linear();
-      ref.swing_velocity = (J_traj * tracked.qd.col(k)).head<3>();
-      ref.swing_acceleration =
-          (J_traj * tracked.qdd.col(k) + m.frameJdotQd(ws_traj, id)).head<3>();
-      if (tt > tracked.time[last]) {
-        // Past the horizon without touchdown: keep descending slowly.
-        ref.swing_position.z() -= 0.2 * (tt - tracked.time[last]);
-        ref.swing_velocity = Eigen::Vector3d(0, 0, -0.2);
-        ref.swing_acceleration.setZero();
-      } else {
-        ref.q_ff = tracked.q.col(k);
-        ref.qd_ff = tracked.qd.col(k);
-        ref.qdd_ff = tracked.qdd.col(k);
-      }
-    } else if (phase == Phase::kSingle) {
-      const SwingSample sw = swing_traj->sample(t - phase_start);
-      ref.swing_position = sw.position;
-      ref.swing_velocity = sw.velocity;
-      ref.swing_acceleration = sw.acceleration;
-      ref.swing_rotation.setIdentity();
-    }
-
-    const WbcOutput& out = wbc.compute(q, qd, mode, ref);
-    if (out.status != qp::QpStatus::kOptimal) ++result.qp_failures;
-    if (on_tick) {
-      WalkTick info;
-      info.time = t;
-      info.mode = mode;
-      info.q = &q;
-      info.qd = &qd;
-      info.com = com;
-      info.com_velocity = vcom;
-      info.com_reference = ref.com_position;
-      info.wbc = &out;
-      info.soles = &world->soleContacts();
-      on_tick(info);
-    }
-    world->step(out.u);
-    result.sim_time = world->time();
-
-    // ---- Fall detection ----
-    const double pelvis_z = m.framePose(ws, pelvis).translation().z();
-    if (pelvis_z < wc.fall_pelvis_height) {
-      result.fell = true;
-      result.end_reason = "pelvis below " + std::to_string(wc.fall_pelvis_height) + " m";
-      break;
-    }
-    if (!world->nonFootContacts().empty()) {
-      result.fell = true;
-      result.end_reason = "link '" + world->nonFootContacts().front() + "' touched the ground";
-      break;
-    }
+ private:
+  static TvrConfig plannerConfig(const TvrConfig& tvr, const WalkConfig& wc, double com_height);
+  void measure();
+  /// Phase transitions; false when the run ends here.
+  bool updatePhase(double t);
+  bool singleSupport(double t);
+  void beginSingleSupport(double t);
+  void planStep(double t, double time_in_swing);
+  void checkStep(double t, double time_in_swing);
+  void touchdown(double t);
+  void references(double t);
+  /// False when the robot fell.
+  bool controlAndStep(double t);
+  Eigen::Vector3d target3() const {
+    return Eigen::Vector3d(current_.planned.x(), current_.planned.y(), ground_z_);
   }
-  result.wall_time =
+
+  const WalkingExperiment::Impl& impl_;
+  const WalkConfig& wc_;
+  std::shared_ptr<const RobotModel> model_;
+  const RobotModel& m_;
+  const std::function<void(const WalkTick&)>& on_tick_;
+  const std::function<void(const StepRecord&)>& on_step_;
+  const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check_;
+  FrameId sole_[2];
+  FrameId pelvis_;
+  Workspace ws_, ws_traj_;
+  Eigen::VectorXd q0_;
+  std::unique_ptr<BulletWorld> world_;
+  double dt_ = 0.0;
+  Eigen::Vector3d com0_;
+  TvrPlanner planner_;
+  LipmComReference com_ref_;
+  WholeBodyController wbc_;
+  Eigen::Matrix3Xd Jc_;
+
+  Phase phase_ = Phase::kSettle;
+  double phase_start_ = 0.0;
+  Side swing_;
+  ContactMode mode_ = ContactMode::doubleSupport();
+  Eigen::Vector2d feet_mid_ = Eigen::Vector2d::Zero();
+  double ground_z_ = 0.0;
+  std::unique_ptr<SwingTrajectory> swing_traj_;
+  StepRecord current_;
+  bool checked_ = false;       ///< this swing's footstep check has run
+  TransitionResult tracked_;   ///< the OCP trajectory tracked (empty when none)
+  double tracked_start_ = 0.0;
+  WbcReference ref_;
+  WalkResult result_;
+  // The measured state of the current tick.
+  Eigen::Vector3d com_ = Eigen::Vector3d::Zero(), vcom_ = Eigen::Vector3d::Zero();
+};
+
+WalkingExperiment::Loop::Loop(
+    const WalkingExperiment::Impl& impl, std::shared_ptr<const RobotModel> model,
+    const std::function<void(const WalkTick&)>& on_tick,
+    const std::function<void(const StepRecord&)>& on_step,
+    const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check)
+    : impl_(impl),
+      wc_(impl.walk),
+      model_(model),
+      m_(*model),
+      on_tick_(on_tick),
+      on_step_(on_step),
+      on_check_(on_check),
+      sole_{m_.frameId(impl.contact.left_sole_frame), m_.frameId(impl.contact.right_sole_frame)},
+      pelvis_(m_.frameId(m_.linkNames().front())),
+      ws_(m_),
+      ws_traj_(m_),
+      q0_(standingConfiguration(m_, wc_.knee_bend, impl.contact.left_sole_frame)),
+      com0_([&] {
+        m_.update(ws_, q0_, Eigen::VectorXd::Zero(m_.nq()));
+        return m_.centerOfMass(ws_);
+      }()),
+      planner_(plannerConfig(impl.tvr_config, wc_, com0_.z())),
+      com_ref_(planner_.lipm(), com0_),
+      wbc_(model_, impl.contact, impl.wbc_config, q0_),
+      Jc_(3, m_.nq()),
+      swing_(wc_.first_swing) {
+  const Eigen::VectorXd qd0 =
+      doubleSupportBaseVelocity(m_, q0_, sole_[0], sole_[1], wc_.initial_com_velocity);
+  world_ = BulletWorld::fromUrdfFile(impl.urdf, m_, impl.sim_config);
+  world_->reset(q0_, qd0);
+  dt_ = world_->timeStep();
+  result_.mode = wc_.mode;
+  ref_.posture = q0_;
+}
+
+TvrConfig WalkingExperiment::Loop::plannerConfig(const TvrConfig& tvr, const WalkConfig& wc,
+                                                 double com_height) {
+  TvrConfig c = tvr;
+  c.com_height = com_height;  // the LIPM height is the robot's standing CoM height
+  c.heuristic_bounds = wc.mode == WalkConfig::Mode::kBaseline;
+  return c;
+}
+
+WalkResult WalkingExperiment::Loop::run() {
+  const auto wall_start = std::chrono::steady_clock::now();
+  const int max_ticks = static_cast<int>(std::ceil(wc_.max_sim_time / dt_));
+  result_.end_reason = "time limit";
+  for (int tick = 0; tick < max_ticks; ++tick) {
+    const double t = tick * dt_;
+    measure();
+    if (!updatePhase(t)) break;
+    references(t);
+    if (!controlAndStep(t)) break;
+  }
+  result_.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  return result;
+  return result_;
+}
+
+void WalkingExperiment::Loop::measure() {
+  m_.update(ws_, world_->q(), world_->qd());
+  com_ = m_.centerOfMass(ws_);
+  m_.centerOfMassJacobian(ws_, Jc_);
+  vcom_ = Jc_ * world_->qd();
+}
+
+bool WalkingExperiment::Loop::updatePhase(double t) {
+  if (phase_ == Phase::kSettle && t >= wc_.settle_duration) {
+    if (result_.steps >= wc_.steps) {
+      result_.end_reason = "completed";
+      return false;
+    }
+    feet_mid_ = 0.5 * (xy(m_.framePose(ws_, sole_[0]).translation()) +
+                       xy(m_.framePose(ws_, sole_[1]).translation()));
+    beginSingleSupport(t);
+  } else if (phase_ == Phase::kSingle) {
+    return singleSupport(t);
+  } else if (phase_ == Phase::kDouble && t - phase_start_ >= wc_.double_support_duration) {
+    if (result_.steps >= wc_.steps) {
+      result_.end_reason = "completed";
+      return false;
+    }
+    swing_ = opposite(swing_);
+    beginSingleSupport(t);
+  }
+  return true;
+}
+
+bool WalkingExperiment::Loop::singleSupport(double t) {
+  const double ts = t - phase_start_;
+  if (ts < wc_.replan_fraction * wc_.single_support_duration) {
+    planStep(t, ts);
+    swing_traj_->retarget(target3());
+  }
+  if (impl_.proposed && !checked_ &&
+      ts >= wc_.single_support_duration - impl_.proposed->horizon())
+    checkStep(t, ts);
+  const SoleContact& sc = world_->soleContacts()[static_cast<int>(swing_)];
+  if (ts > 0.5 * wc_.single_support_duration && sc.in_contact &&
+      sc.wrench[2] > wc_.touchdown_force) {
+    touchdown(t);
+  } else if (ts > wc_.single_support_duration + wc_.late_touchdown) {
+    result_.fell = true;
+    result_.end_reason = "no touchdown of the swing sole";
+    result_.records.push_back(current_);
+    return false;
+  }
+  return true;
+}
+
+void WalkingExperiment::Loop::beginSingleSupport(double t) {
+  phase_ = Phase::kSingle;
+  phase_start_ = t;
+  mode_ = ContactMode::singleSupport(opposite(swing_));
+  const Side stance = opposite(swing_);
+  const Eigen::Vector3d stance_pos = m_.framePose(ws_, sole_[static_cast<int>(stance)]).translation();
+  const Eigen::Vector3d swing_pos = m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();
+  current_ = StepRecord();
+  current_.index = result_.steps + 1;
+  current_.swing = swing_;
+  current_.stance = xy(stance_pos);
+  ground_z_ = stance_pos.z();
+  planStep(t, 0.0);
+  swing_traj_ = std::make_unique<SwingTrajectory>(swing_pos, target3(), wc_.single_support_duration,
+                                                  wc_.swing_height, wc_.touchdown_depth);
+  com_ref_.startSingleSupport(current_.com_at_plan, current_.stance);
+  checked_ = false;
+  tracked_ = TransitionResult();
+}
+
+// Eq. (11) from the measured CoM state predicted to the nominal touchdown (LIPM about the
+// stance sole). Called at lift-off and again during the first part of the swing, so that the
+// footstep follows the measured state rather than a single prediction.
+void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
+  current_.com_at_plan.p = xy(com_);
+  current_.com_at_plan.pd = xy(vcom_);
+  current_.plan_time = t;
+  const double remaining = std::max(0.0, wc_.single_support_duration - time_in_swing);
+  current_.com_predicted = planner_.lipm().propagate(current_.com_at_plan, current_.stance, remaining);
+  TvrInput in;
+  in.com = current_.com_predicted;
+  in.p_des = Eigen::Vector2d(com0_.x() + wc_.forward_speed * (t + remaining), feet_mid_.y());
+  in.stance = current_.stance;
+  in.stance_yaw = 0.0;
+  in.swing = current_.swing;
+  const TvrStep step = planner_.plan(in);
+  current_.planned_tvr = step.alpha_tvr;
+  current_.planned = step.alpha;
+  current_.offset_clipped = step.offset_clipped;
+}
+
+// The proposed mode's footstep check; the simulation waits (in sim time) for it and the OCP.
+void WalkingExperiment::Loop::checkStep(double t, double ts) {
+  checked_ = true;
+  const Side stance = opposite(swing_);
+  try {
+    FootstepPlanRequest request;
+    request.stance = stance;
+    request.stance_pose = m_.framePose(ws_, sole_[static_cast<int>(stance)]);
+    request.target = target3();
+    request.q = world_->q();
+    request.qd = world_->qd();
+    // The CoM velocity at touchdown: the LIPM about the stance sole from the measured CoM
+    // state, over the time left to the nominal touchdown.
+    request.touchdown_com = planner_.lipm().propagate(
+        LipmState{xy(com_), xy(vcom_)}, current_.stance,
+        std::max(0.0, wc_.single_support_duration - ts));
+    const FootstepTransition step = impl_.proposed->plan(request);
+    current_.verdict = step.verdict;
+    current_.hausdorff_distance = step.hausdorff_distance;
+    current_.check_time_s = step.check_time_s;
+    current_.ocp_time_s = step.ocp_time_s;
+    current_.ocp_status = ocpStatusName(step.trajectory.status);
+    current_.reason = step.reason;
+    current_.planned = xy(step.foothold);
+    if (on_check_) on_check_(current_, step);
+    if (step.usable()) {
+      tracked_ = step.trajectory;
+      tracked_start_ = t;
+    } else {
+      swing_traj_->retarget(Eigen::Vector3d(step.foothold.x(), step.foothold.y(), ground_z_));
+    }
+  } catch (const ReachError& e) {
+    // The measured state is outside what the check accepts (e.g. a joint beyond its velocity
+    // limit while the robot is already falling): the step goes on unchecked.
+    current_.verdict = "check_error";
+    current_.reason = e.what();
+  }
+}
+
+void WalkingExperiment::Loop::touchdown(double t) {
+  current_.touched_down = true;
+  current_.touchdown_time = t;
+  current_.executed = m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();
+  current_.touchdown_error = (xy(current_.executed) - current_.planned).norm();
+  result_.max_touchdown_error = std::max(result_.max_touchdown_error, current_.touchdown_error);
+  result_.records.push_back(current_);
+  ++result_.steps;
+  if (on_step_) on_step_(current_);
+  phase_ = Phase::kDouble;
+  phase_start_ = t;
+  mode_ = ContactMode::doubleSupport();
+  com_ref_.startDoubleSupport(LipmState{xy(com_), xy(vcom_)}, current_.stance,
+                              xy(current_.executed));
+}
+
+void WalkingExperiment::Loop::references(double t) {
+  if (phase_ == Phase::kSettle) {
+    com_ref_.hold(ref_);
+  } else {
+    const double transfer =
+        phase_ == Phase::kDouble ? std::min(1.0, (t - phase_start_) / wc_.double_support_duration)
+                                 : 1.0;
+    com_ref_.advance(dt_, transfer, ref_);
+  }
+  ref_.q_ff.resize(0);
+  ref_.qd_ff.resize(0);
+  ref_.qdd_ff.resize(0);
+  if (phase_ != Phase::kSingle) return;
+  if (tracked_.time.size() > 0) {  // the OCP's swing sole, its joints as feed-forward
+    trackTransition(m_, ws_traj_, sole_[static_cast<int>(swing_)], tracked_, t - tracked_start_,
+                    ref_);
+  } else {
+    const SwingSample sw = swing_traj_->sample(t - phase_start_);
+    ref_.swing_position = sw.position;
+    ref_.swing_velocity = sw.velocity;
+    ref_.swing_acceleration = sw.acceleration;
+    ref_.swing_rotation.setIdentity();
+  }
+}
+
+bool WalkingExperiment::Loop::controlAndStep(double t) {
+  const Eigen::VectorXd& q = world_->q();
+  const Eigen::VectorXd& qd = world_->qd();
+  const WbcOutput& out = wbc_.compute(q, qd, mode_, ref_);
+  if (out.status != qp::QpStatus::kOptimal) ++result_.qp_failures;
+  if (on_tick_) {
+    WalkTick info;
+    info.time = t;
+    info.mode = mode_;
+    info.q = &q;
+    info.qd = &qd;
+    info.com = com_;
+    info.com_velocity = vcom_;
+    info.com_reference = ref_.com_position;
+    info.wbc = &out;
+    info.soles = &world_->soleContacts();
+    on_tick_(info);
+  }
+  world_->step(out.u);
+  result_.sim_time = world_->time();
+  // Fall detection, on the state measured at the start of the tick.
+  const double pelvis_z = m_.framePose(ws_, pelvis_).translation().z();
+  if (pelvis_z < wc_.fall_pelvis_height) {
+    result_.fell = true;
+    result_.end_reason = "pelvis below " + std::to_string(wc_.fall_pelvis_height) + " m";
+    return false;
+  }
+  if (!world_->nonFootContacts().empty()) {
+    result_.fell = true;
+    result_.end_reason = "link '" + world_->nonFootContacts().front() + "' touched the ground";
+    return false;
+  }
+  return true;
+}
+
+WalkResult WalkingExperiment::run(
+    const std::function<void(const WalkTick&)>& on_tick,
+    const std::function<void(const StepRecord&)>& on_step,
+    const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check) {
+  Loop loop(*impl_, model_, on_tick, on_step, on_check);
+  return loop.run();
 }
 
 }  // namespace reach_trajopt

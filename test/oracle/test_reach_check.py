@@ -197,7 +197,7 @@ def test_biped_normal_footstep_witness_satisfies_the_dynamics_per_pinocchio(tmp_
 
 
 def cone_matrix(mu, X, Y):
-    """The 16 x 6 contact wrench cone of DESIGN.md Sec. 3 (Caron, Pham, Nakamura 2015)."""
+    """The 16 x 6 contact wrench cone of docs/method.md Sec. 2 (Caron, Pham, Nakamura 2015)."""
     rows = [[1, 0, mu, 0, 0, 0], [-1, 0, mu, 0, 0, 0], [0, 1, mu, 0, 0, 0], [0, -1, mu, 0, 0, 0],
             [0, 0, Y, 1, 0, 0], [0, 0, Y, -1, 0, 0], [0, 0, X, 0, 1, 0], [0, 0, X, 0, -1, 0]]
     for s1 in (1, -1):

@@ -1,4 +1,4 @@
-"""Contact wrench cone of eq. (7)-(8) (DESIGN.md Sec. 3) against an independent LP.
+"""Contact wrench cone of eq. (7)-(8) (docs/method.md Sec. 2) against an independent LP.
 
 A wrench w = [f; tau] at the sole centre (sole frame) is in the cone iff it is the sum of four
 corner forces f_k at (+-X, +-Y, 0), each in the friction pyramid |fx_k|, |fy_k| <= mu fz_k.

@@ -73,7 +73,7 @@ TEST(RosProposedStepMsgs, ReachableStepGivesSetsMarkersAndTrajectory) {
   ContactConfig contact;
   StepRecord record;
   record.swing = Side::kLeft;
-  ProposedStep step;
+  FootstepTransition step;
   step.check.kinematically_feasible = true;
   step.check.reachable = true;
   step.check.reach = makeReach(4);
@@ -123,7 +123,7 @@ TEST(RosProposedStepMsgs, KinematicallyInfeasibleStepIsUnreachableWithoutSets) {
   ContactConfig contact;
   StepRecord record;
   record.swing = Side::kRight;
-  ProposedStep step;
+  FootstepTransition step;
   step.verdict = "kinematically_infeasible";
   step.check.kinematically_feasible = false;
   step.check.kinematics.reason = "knee at its limit";

@@ -98,7 +98,7 @@ WalkResult runShipped(WalkConfig::Mode mode, int steps, const Eigen::Vector2d& p
   walk.steps = steps;
   walk.initial_com_velocity = push;
   walk.forward_speed = forward_speed;
-  ProposedStepConfig proposed = ProposedStepConfig::fromYaml(file);
+  FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
   proposed.reach.initial_samples = samples;
   WalkingExperiment experiment(kUrdf, walk, TvrConfig::fromYaml(file.section("planner")),
                                ContactConfig::fromYaml(file.section("contact")),

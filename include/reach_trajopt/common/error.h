@@ -1,9 +1,11 @@
 #pragma once
 /// \file error.h
-/// The one exception type of reach_trajopt. Every bad input (missing file, malformed URDF,
-/// unknown frame, non-finite numbers, wrong sizes, invalid configuration) throws it with a
-/// message naming the problem and where it was found. Nodes catch it at their boundary,
-/// answer the request with the message and keep serving.
+/// The exception types of reach_trajopt. Every bad input (missing file, malformed URDF,
+/// unknown frame, non-finite numbers, wrong sizes, invalid configuration) throws a ReachError
+/// with a message naming the problem and where it was found; callers that need to tell the
+/// cause apart catch one of its subclasses (ModelError, ConfigError, QpInputError,
+/// RequestError). Nodes catch ReachError at their boundary, answer the request with the
+/// message and keep serving.
 
 #include <sstream>
 #include <stdexcept>
@@ -14,9 +16,35 @@
 
 namespace reach_trajopt {
 
+/// Base of every error the library throws on bad input.
 class ReachError : public std::runtime_error {
  public:
   explicit ReachError(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// The robot description: a missing or malformed URDF, an unsupported joint, an unknown frame
+/// or joint name.
+class ModelError : public ReachError {
+ public:
+  using ReachError::ReachError;
+};
+
+/// A configuration file or struct: unknown keys, wrong types, values out of range.
+class ConfigError : public ReachError {
+ public:
+  using ReachError::ReachError;
+};
+
+/// A QP given to the solver: wrong sizes or non-finite data.
+class QpInputError : public ReachError {
+ public:
+  using ReachError::ReachError;
+};
+
+/// A request to a tool, a service or a planner: states, footholds, horizons, options.
+class RequestError : public ReachError {
+ public:
+  using ReachError::ReachError;
 };
 
 /// Throws ReachError("<what>: expected size <expected>, got <actual>") when sizes differ.

@@ -5,11 +5,13 @@
 
 #include <string>
 
+#include "reach_trajopt/contact/contact_mode.h"
+
 namespace reach_trajopt {
 
 class YamlSection;
 
-/// Rectangular-sole contact parameters. Defaults: a Valkyrie-like sole (DESIGN.md Sec. 2).
+/// Rectangular-sole contact parameters. Defaults: a Valkyrie-like sole (docs/method.md).
 struct ContactConfig {
   double mu = 0.7;                        ///< friction coefficient, > 0
   double half_length = 0.135;             ///< X: sole half-length along the sole's x axis [m]
@@ -23,6 +25,11 @@ struct ContactConfig {
   /// Reads the keys mu, half_length, half_width, left_sole_frame, right_sole_frame of a YAML
   /// section (missing keys keep the defaults, unknown keys throw), then validates.
   static ContactConfig fromYaml(const YamlSection& section);
+
+  /// The frame of the sole on `side`.
+  const std::string& soleFrame(Side side) const {
+    return side == Side::kLeft ? left_sole_frame : right_sole_frame;
+  }
 };
 
 }  // namespace reach_trajopt

@@ -163,7 +163,7 @@ class RobotModel {
  private:
   RobotModel();
   friend class Workspace;
-  friend struct ModelBuilder;
+  friend class ModelBuilder;
 
   std::string name_;
   std::string source_;

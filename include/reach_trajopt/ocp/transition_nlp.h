@@ -3,7 +3,7 @@
 /// The transcription of the transition OCP (eq. 22-23) that NLopt's SLSQP solves.
 ///
 /// Why this transcription. SLSQP is a dense SQP method whose cost per iteration grows as n^3
-/// (ANCHORS.md), so the variable count must stay in the hundreds. We therefore
+/// (measured beside IPOPT in bench/README.md), so the variable count must stay in the hundreds. We therefore
 ///  1. write the 12 actuated joint trajectories as clamped cubic B-splines with few segments
 ///     (cubic_bspline.h): q_a(t) = sum_k N_k(t) c_k. The first two and (strict problem) last two
 ///     control points encode x(t_0) = x_0 and x(t_f) = x_f exactly, so the boundary states are
@@ -34,7 +34,7 @@
 /// Gradients: per sample, the signals' Jacobian with respect to (q_a, qd_a, qdd_a, lambda_2)
 /// (stance_reduced_dynamics.h: analytic / exact / finite differences) chained with the spline
 /// basis (each sample depends on 4 control points per joint). Checked against central finite
-/// differences of this class's functions in test_ocp_nlp.cpp.
+/// differences of this class's functions in test/unit/test_ocp_gradients.cpp.
 
 #include <memory>
 #include <vector>

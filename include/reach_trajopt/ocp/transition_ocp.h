@@ -9,7 +9,7 @@
 /// The transcription (joint B-splines, exact stance contact, torques and stance wrenches by
 /// inverse dynamics) is explained in transition_nlp.h.
 ///
-/// Relaxation for an unreachable foothold (DESIGN.md Sec. 3): x(t_f) = x_f is dropped and the
+/// Relaxation for an unreachable foothold (docs/method.md Sec. 5): x(t_f) = x_f is dropped and the
 /// new contact becomes phi_2 - eps = 0 with eps = [eps_x, eps_y, 0, 0, 0, 0] and cost
 /// w_eps |eps|^2: the swing sole lands at the closest point allowed by the dynamics, the limits
 /// and the reachable-set hulls, and the result is flagged relaxed. By default the landing also

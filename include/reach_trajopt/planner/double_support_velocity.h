@@ -2,8 +2,8 @@
 /// \file double_support_velocity.h
 /// The terminal velocity qd_f of a transition's final state x_f (Sec. III-B): the final
 /// posture q_f comes from the kinematic feasibility IK; its velocity is either zero or, as
-/// here, the one that keeps the LIPM's CoM velocity at touchdown (DESIGN.md: "qd_f = 0 or
-/// from the LIPM touchdown velocity"). A walking robot does not stop at every touchdown: a
+/// here, the one that keeps the LIPM's CoM velocity at touchdown (docs/method.md Sec. 3: qd_f = 0 or
+/// from the LIPM touchdown velocity). A walking robot does not stop at every touchdown: a
 /// final state at rest asks the stance leg to brake the whole body within the last tenths of
 /// a second, which the contact wrench cone does not allow.
 
@@ -24,5 +24,14 @@ namespace reach_trajopt {
 Eigen::VectorXd doubleSupportVelocity(const RobotModel& model, const Eigen::VectorXd& q,
                                       FrameId left_sole, FrameId right_sole,
                                       const Eigen::Vector3d& com_velocity);
+
+/// @brief Joint velocities of a double-support posture q with the base moving horizontally at
+/// `base_velocity` [m/s] (angular rates zero) and both soles still: for each sole, the
+/// least-norm rates of the joints that move it (its Jacobian's non-zero columns) cancelling the
+/// base's motion at the sole. Used for a push at t = 0 (the robot's initial velocity).
+/// 	hrows ReachError on wrong sizes or NaN.
+Eigen::VectorXd doubleSupportBaseVelocity(const RobotModel& model, const Eigen::VectorXd& q,
+                                          FrameId left_sole, FrameId right_sole,
+                                          const Eigen::Vector2d& base_velocity);
 
 }  // namespace reach_trajopt

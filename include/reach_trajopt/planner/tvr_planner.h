@@ -1,7 +1,7 @@
 #pragma once
 /// \file tvr_planner.h
 /// The Time-to-Velocity-Reversal (TVR) footstep planner of eq. (11)-(12), in the sign
-/// convention of DESIGN.md Sec. 3 (the paper's printed (11) drops a minus sign, and its bias
+/// convention of docs/method.md Sec. 3 (the paper's printed (11) drops a minus sign, and its bias
 /// sign with kappa = -0.66 would be unstable). Per horizontal axis, the next contact point
 ///   a = p + (pd / omega) coth(omega t_s) + kappa (p_des - p)
 /// makes the LIPM's CoM velocity reverse t_s seconds after the switch when kappa = 0; kappa < 0

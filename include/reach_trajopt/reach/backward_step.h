@@ -1,7 +1,7 @@
 #pragma once
 /// \file backward_step.h
 /// One backward step of the reachable set, eq. (17)-(20), in the corrected reading of
-/// DESIGN.md Sec. 3. From x_j = (q_j, qd_j):
+/// docs/method.md Sec. 4. From x_j = (q_j, qd_j):
 ///   q_{j-1} = q_j - dt qd_j;
 ///   draw d ~ U(-dt a_max, dt a_max) per coordinate, v = N d + Jbar e, with N = I - Jbar J_phi,
 ///   Jbar = M^-1 J_phi^T (J_phi M^-1 J_phi^T)^-1 (eq. 17) and e = J_phi qd_j - beta phi / dt

@@ -1,6 +1,6 @@
 #pragma once
 /// \file reach_config.h
-/// Parameters of the reachability check (DESIGN.md Sec. 3, eq. 13-21, Prop. 1-2) and what each
+/// Parameters of the reachability check (docs/method.md Sec. 4, eq. 13-21, Prop. 1-2) and what each
 /// one costs. The paper gives dt = 1 ms, 1e4 samples at the first step and delta = 1e-5; the
 /// rest are ours (documented here and in config/biped.yaml, section `reach:`).
 ///

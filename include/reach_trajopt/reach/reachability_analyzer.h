@@ -1,7 +1,7 @@
 #pragma once
 /// \file reachability_analyzer.h
 /// The reachability check of the paper's Sec. III-C/D (eq. 13-21, Prop. 1-2), in the corrected
-/// reading of DESIGN.md Sec. 3: can the robot, in contact mode m_k from x_0, reach x_f (a state
+/// reading of docs/method.md Sec. 4: can the robot, in contact mode m_k from x_0, reach x_f (a state
 /// of the next mode m_{k+1}, e.g. the touchdown of the swing sole) within the horizon?
 ///
 ///  1. Forward set (15)-(16) from x_0 over [0, t_1], backward set (17)-(20) from x_f over
@@ -58,6 +58,8 @@
 #include "reach_trajopt/reach/hausdorff.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/reach/sample_slice.h"
+#include "reach_trajopt/reach/window_comparison.h"
+#include "reach_trajopt/reach/witness_path.h"
 
 namespace reach_trajopt {
 
@@ -71,53 +73,6 @@ struct ReachProblem {
   /// The swing sole's next foothold (m_{k+1} = m_k plus this contact); x_f must have the swing
   /// sole on it. Empty for systems without contacts (then x_f is only checked for limits).
   std::optional<Eigen::Isometry3d> target;
-};
-
-/// The test (14) on one slice of the overlap window.
-struct SliceComparison {
-  double time = 0.0;       ///< t - t_0 [s]
-  int forward_slice = 0;   ///< index into ReachResult::forward
-  int backward_slice = 0;  ///< index into ReachResult::backward
-  SetDistance distance;    ///< d_H, directed distances, K's, closest pair
-  double overlap_tolerance = 0.0;  ///< min(K, overlap_gap_max) [m]
-  /// Backward outputs inside the forward set's convex hull (up to overlap_tolerance).
-  int backward_inside_forward = 0;
-  int forward_inside_backward = 0;  ///< forward outputs inside the backward set's hull
-  /// A sample of one set inside the other's hull, or closest <= overlap_tolerance.
-  bool overlap = false;
-  bool within_delta = false;       ///< d_H <= min(delta, K) (Prop. 2)
-};
-
-/// Largest constraint violations along a path (all >= 0; 0 = satisfied).
-struct PathViolation {
-  double dynamics = 0.0;       ///< |M qdd + b - S^T u - J^T lambda|_inf of eq. (1) [N, Nm]
-  double cone = 0.0;           ///< max(0, -min C R lambda) of eq. (8) [N]
-  double torque = 0.0;         ///< max(0, |u| - u_max) [Nm]
-  double position_limit = 0.0; ///< [m, rad]
-  double velocity_limit = 0.0; ///< [m/s, rad/s]
-  double contact = 0.0;        ///< max |phi| of the held soles (eq. 5) [m, rad]
-  double contact_velocity = 0.0;  ///< max |J_phi qd| [m/s, rad/s]
-  double integration = 0.0;    ///< max |q_{k+1} - (q_k + dt qd)| of the Euler steps [m, rad]
-  double max() const;
-};
-
-/// A state path x_0 -> a | b -> x_f through the closest forward/backward pair (a, b).
-struct WitnessPath {
-  bool valid = false;
-  std::vector<double> time;  ///< t - t_0 of each state [s] (a and b share a time)
-  Eigen::MatrixXd q, qd;     ///< n_q x L
-  /// Step k (state k -> k+1): torques and wrenches (n_u x (L-1), 6 n_c x (L-1)); the junction
-  /// step a -> b (index `junction`) has none (zeros).
-  Eigen::MatrixXd u, lambda;
-  /// Step k evaluates eq. (1) at state k with qdd = (qd_{k+1} - qd_k) / dt; forward steps use
-  /// the configured forward integrator, backward ones the semi-implicit step.
-  std::vector<char> semi_implicit_step;
-  int junction = -1;            ///< index of a (the last forward state); b is junction + 1
-  Eigen::MatrixXd output;       ///< n_y x L swing sole outputs [m]
-  double output_gap = 0.0;      ///< |y(a) - y(b)| [m]
-  double position_gap = 0.0;    ///< |q_a - q_b|_inf [m, rad]
-  double velocity_gap = 0.0;    ///< |qd_a - qd_b|_inf [m/s, rad/s]
-  PathViolation violation;      ///< over every state and every step except the junction
 };
 
 /// Counts of one check.

@@ -3,7 +3,7 @@
 /// Pure conversions between the core library's types and ROS messages (no node, no master):
 /// Eigen geometry <-> geometry_msgs, the model's forward kinematics -> TF transforms of every
 /// link, the measured state -> sensor_msgs/JointState, and the walking loop's records -> the
-/// package's messages. Conventions (DESIGN.md Sec. 2, REP 103): SI units, the world frame
+/// package's messages. Conventions (docs/method.md Sec. 1, REP 103): SI units, the world frame
 /// "world" with z up, wrenches [f; tau] in world orientation at the sole centre.
 
 #include <string>

@@ -4,7 +4,7 @@
 /// `robot_description` parameter (URDF text, or a private temporary file for loaders that need a
 /// path), the ~config YAML path, the setup both foothold services build (check_reachability,
 /// plan_transition), a request handler that answers a bad request with its reason and keeps
-/// serving (STYLE.md practice 7), and the main() of a service node.
+/// serving (errors with context, caught at the node boundary), and the main() of a service node.
 /// Parameters are private (`~name`); `robot_description` is a global, remappable name.
 
 #include <memory>

@@ -14,7 +14,7 @@
 #include "reach_trajopt/TransitionTrajectory.h"
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
-#include "reach_trajopt/walk/proposed_step.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
 namespace reach_trajopt {
@@ -46,7 +46,7 @@ Eigen::Vector3d checkedFoothold(const StepRecord& record, double ground_z);
 /// \param samples   send the output samples of each slice (at most `max_points` per set and
 ///                  slice); boundaries are always sent
 ProposedStepMsgs toProposedStepMsgs(const RobotModel& model, const ContactConfig& contact,
-                                    const StepRecord& record, const ProposedStep& step,
+                                    const StepRecord& record, const FootstepTransition& step,
                                     const Eigen::Vector3d& foothold, double delta,
                                     const ros::Time& t0, bool samples, int max_points = 500);
 

@@ -3,41 +3,21 @@
 /// The simulator's edge: conversions between a simulator's floating-base state (a body frame B
 /// rigidly attached to the root link, its position, quaternion, and world-frame linear and
 /// angular velocity, as Bullet's btMultiBody stores its base) and our six virtual coordinates
-/// q_b = [x, y, z, yaw, pitch, roll] of DESIGN.md Sec. 2, where (x, y, z) is the root link's
+/// q_b = [x, y, z, yaw, pitch, roll] (robot_model.h), where (x, y, z) is the root link's
 /// origin and its orientation is R = Rz(yaw) Ry(pitch) Rx(roll), with their time derivatives.
 ///
-/// Angular velocity and Euler rates (ZYX): omega_world = E(yaw, pitch) [yawd; pitchd; rolld],
-///   E = [ e_z | Rz(yaw) e_y | Rz(yaw) Ry(pitch) e_x ]
-///     = [0 -sin(yaw) cos(yaw) cos(pitch); 0 cos(yaw) sin(yaw) cos(pitch); 1 0 -sin(pitch)],
-/// singular at pitch = +-pi/2 (gimbal lock), where the rates are undefined: ReachError.
+/// The Euler-angle maps themselves are the model's (model/euler_angles.h).
 /// Nothing else in the library sees quaternions; this file is used only at the simulator edge.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/model/euler_angles.h"
 
 namespace reach_trajopt {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
-
-/// Rotation R = Rz(yaw) Ry(pitch) Rx(roll); ypr = [yaw, pitch, roll] [rad].
-Eigen::Matrix3d rotationFromEuler(const Eigen::Vector3d& ypr);
-
-/// ZYX Euler angles [yaw, pitch, roll] of a rotation, pitch in [-pi/2, pi/2]. With a
-/// `reference` (e.g. the previous sample), yaw and roll are shifted by multiples of 2 pi to be
-/// the closest to the reference ones, so a trajectory stays continuous across +-pi.
-/// Throws ReachError when R has non-finite entries.
-Eigen::Vector3d eulerFromRotation(const Eigen::Matrix3d& R);
-Eigen::Vector3d eulerFromRotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& reference);
-
-/// E(ypr) with omega_world = E ypr_dot [rad/s] (see the file comment).
-Eigen::Matrix3d eulerRateMatrix(const Eigen::Vector3d& ypr);
-/// dE/dt at (ypr, ypr_dot), so omega_dot = E ypr_ddot + Edot ypr_dot.
-Eigen::Matrix3d eulerRateMatrixDot(const Eigen::Vector3d& ypr, const Eigen::Vector3d& ypr_dot);
-/// ypr_dot = E^-1 omega_world. Throws ReachError at gimbal lock (|cos(pitch)| < 1e-12).
-Eigen::Vector3d eulerRatesFromAngularVelocity(const Eigen::Vector3d& ypr,
-                                              const Eigen::Vector3d& omega_world);
 
 /// A simulator's floating base: body frame B (for Bullet, the root body's centre of mass with
 /// its principal axes) in the world, velocities in world coordinates.

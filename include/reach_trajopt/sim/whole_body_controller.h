@@ -98,6 +98,13 @@ class WholeBodyController {
   FrameId soleFrame(Side s) const { return s == Side::kLeft ? left_sole_ : right_sole_; }
 
  private:
+  /// The weighted tasks (CoM, pelvis, swing sole, posture, regularization) into G_, g_.
+  void addTasks(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactMode& mode,
+                const WbcReference& ref);
+  /// Floating-base dynamics, contacts (5), cones (8) and torque limits into A_eq_, A_in_.
+  void addConstraints(const ContactMode& mode);
+  /// Solves the QP (without the torque limits when they are infeasible) into out_.
+  const WbcOutput& solveQp(const ContactMode& mode);
   void fillOutput(const qp::QpResult& r, const ContactMode& mode, int n, int nu);
   void addTask(const Eigen::Ref<const Eigen::MatrixXd>& J, const Eigen::Ref<const Eigen::VectorXd>& drift,
                const Eigen::Ref<const Eigen::VectorXd>& a_des, double weight);

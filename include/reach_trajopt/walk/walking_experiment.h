@@ -24,7 +24,7 @@
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/sim/sim_config.h"
 #include "reach_trajopt/sim/whole_body_controller.h"
-#include "reach_trajopt/walk/proposed_step.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 
 namespace reach_trajopt {
 
@@ -113,16 +113,6 @@ struct WalkResult {
   std::string summaryLine() const;
 };
 
-/// Configurations of the proposed mode's per-step pipeline (proposed_step.h).
-struct ProposedStepConfig {
-  KinematicFeasibilityConfig kinematics;
-  ReachConfig reach;  ///< its horizon is replaced by WalkConfig::check_horizon
-  TransitionOcpConfig ocp;
-  /// From a config file's root: its `kinematic_feasibility`, `reach` and `ocp` sections (each
-  /// optional: defaults). \throws ReachError naming a bad key or value.
-  static ProposedStepConfig fromYaml(const YamlSection& root);
-};
-
 /// @brief The walking experiment of Sec. IV: Bullet world + whole-body controller + TVR.
 class WalkingExperiment {
  public:
@@ -131,7 +121,7 @@ class WalkingExperiment {
   /// (defaults when null).
   WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk, const TvrConfig& tvr,
                     const ContactConfig& contact, const WbcConfig& wbc, const SimConfig& sim,
-                    const ProposedStepConfig* proposed = nullptr);
+                    const FootstepPlannerConfig* proposed = nullptr);
   ~WalkingExperiment();
 
   /// Runs one walk from the standing pose. `on_tick` (optional) is called after every
@@ -139,13 +129,14 @@ class WalkingExperiment {
   /// reachability check + OCP with the step so far and the planner's full output.
   WalkResult run(const std::function<void(const WalkTick&)>& on_tick = {},
                  const std::function<void(const StepRecord&)>& on_step = {},
-                 const std::function<void(const StepRecord&, const ProposedStep&)>& on_check = {});
+                 const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check = {});
 
   const RobotModel& model() const { return *model_; }
   std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
 
  private:
   struct Impl;
+  struct Loop;
   std::shared_ptr<const RobotModel> model_;
   std::unique_ptr<Impl> impl_;
 };

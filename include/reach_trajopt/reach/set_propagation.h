@@ -1,0 +1,50 @@
+#pragma once
+/// \file set_propagation.h
+/// One direction of the reachability check (paper eq. 15-16 forward, 17-20 backward): from a
+/// root state, `steps` slices dt apart, each made of the children of the previous slice's kept
+/// samples (its boundary (21) plus interior picks), every child the solution of one contact QP
+/// (ForwardStep / BackwardStep). The same routine serves both directions; only the step type,
+/// the direction of time and the number of children per parent differ.
+///
+/// Determinism: the draws of a child depend only on (seed, direction, step, parent, child) and
+/// results are stored at fixed indices, so the slices are bit-identical for any thread count.
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "reach_trajopt/reach/reach_context.h"
+#include "reach_trajopt/reach/sample_slice.h"
+
+namespace reach_trajopt {
+
+enum class PropagationDirection { kForward, kBackward };
+
+/// What one direction of the check produced besides its slices.
+struct PropagationStats {
+  long samples = 0;             ///< kept samples over all slices (root excluded)
+  long rejected = 0;            ///< draws that gave no sample
+  long qps = 0;                 ///< QPs solved
+  double boundary_time = 0.0;   ///< wall time of the boundary selection (21) [s]
+  double propagation_time = 0.0;  ///< wall time of the rest [s]
+};
+
+/// Propagates one direction of the check.
+/// \param root_index  time index of the root: slice j is at time (root_index + sign j) dt, sign
+///     +1 forward (root x_0 at index 0), -1 backward (root x_f at index i_t).
+/// \param q, qd       the root state (size n_q each)
+/// \param steps       slices to add after the root
+/// \param threads     OpenMP threads (>= 1)
+/// \param[out] slices the root slice followed by `steps` slices
+PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
+                              int root_index, const Eigen::VectorXd& q,
+                              const Eigen::VectorXd& qd, int steps, int threads,
+                              std::vector<SampleSlice>& slices);
+
+/// The configuration q of sample `index` of slice `slice` (exact, from its parent's stored
+/// configuration). \param semi_implicit  the forward integrator used (forward slices only)
+Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,
+                                      PropagationDirection direction, double dt,
+                                      bool semi_implicit, int slice, int index);
+
+}  // namespace reach_trajopt

@@ -1,0 +1,152 @@
+#pragma once
+/// \file footstep_transition_planner.h
+/// The proposed method's per-step pipeline (paper Sec. III, used in Sec. IV), one class for
+/// every caller (the walking loop, transition_ocp_node, the tools): from a single-support state
+/// x_0 a short time before touchdown,
+///   1. x_0 made consistent with the stance contact (contact_consistent_state.h), optionally;
+///   2. the kinematic check of the foothold (Sec. III-B), x_f its IK posture;
+///   3. the bidirectional reachability check (13)-(21), optionally;
+///   4. the transition OCP (22)-(23), seeded with the check's witness path: strict to the
+///      foothold when it is reachable, relaxed (to the closest reachable foothold) when not;
+///   5. the fallback of a kinematically infeasible foothold: the nearest feasible one
+///      (planner/nearest_feasible_foothold.h), the relaxed OCP toward the target, or an error.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/ocp/ocp_config.h"
+#include "reach_trajopt/ocp/transition_ocp.h"
+#include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/planner/lipm.h"
+#include "reach_trajopt/planner/nearest_feasible_foothold.h"
+#include "reach_trajopt/reach/footstep_reachability.h"
+#include "reach_trajopt/reach/reach_config.h"
+
+namespace reach_trajopt {
+
+class YamlSection;
+
+/// Configurations of the pipeline's stages.
+struct FootstepPlannerConfig {
+  KinematicFeasibilityConfig kinematics;
+  ReachConfig reach;  ///< the walk replaces its horizon by WalkConfig::check_horizon
+  TransitionOcpConfig ocp;
+  NearestFootholdConfig nearest_foothold;
+  /// From a config file's root: its `kinematic_feasibility`, `reach`, `ocp` and
+  /// `nearest_foothold` sections (each optional: defaults). \throws ReachError naming a bad
+  /// key or value.
+  static FootstepPlannerConfig fromYaml(const YamlSection& root);
+};
+
+/// What happens when the foothold fails the kinematic check.
+enum class InfeasibleFootholdPolicy {
+  kNearestFeasible,  ///< the nearest feasible foothold, its IK posture as x_f (OCP strict, then relaxed)
+  kRelaxTowardTarget,  ///< the relaxed OCP toward the target, the IK's best posture as x_f
+  kReject,           ///< a ReachError naming the IK's reason
+};
+
+/// Which OCP a kinematically feasible foothold gets.
+enum class OcpPolicy {
+  kByVerdict,  ///< strict when the check says reachable, relaxed otherwise (Sec. III-E)
+  kStrict,     ///< strict only
+  kAuto,       ///< strict first, relaxed if it fails
+};
+
+/// One footstep to plan.
+struct FootstepPlanRequest {
+  Side stance = Side::kLeft;  ///< the held sole; the other one swings
+  /// The stance sole as measured (its heading is the target's heading).
+  Eigen::Isometry3d stance_pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();  ///< the planned foothold (sole centre) [m]
+  Eigen::VectorXd q, qd;  ///< x_0 (size n_q) [m, rad; m/s, rad/s]
+  /// The CoM's horizontal state predicted at touchdown (LIPM about the stance sole): x_f then
+  /// has the pelvis where the CoM will have carried it, at its current height, and moves with
+  /// the CoM's velocity with both soles still. None: the Sec. III-B posture at rest.
+  std::optional<LipmState> touchdown_com;
+  /// Step 1: move x_0 onto the stance contact manifold (a measured state). False: x_0 as given
+  /// (the check rejects it when it violates the contact).
+  bool make_contact_consistent = true;
+  bool check_reachability = true;  ///< step 3 (false: kinematic check and OCP only)
+  /// Reachability settings for this request (e.g. another horizon); none: the planner's.
+  std::optional<ReachConfig> reach;
+  /// t_f - t_0 of the OCP [s]; 0: the reachability horizon.
+  double horizon = 0.0;
+  OcpPolicy ocp_policy = OcpPolicy::kByVerdict;
+  InfeasibleFootholdPolicy on_infeasible = InfeasibleFootholdPolicy::kNearestFeasible;
+};
+
+/// What one footstep decided.
+struct FootstepTransition {
+  bool kinematically_feasible = false;
+  bool reachable = false;
+  std::string verdict;        ///< "reachable", "unreachable", "not_checked",
+                              ///< "kinematically_infeasible"
+  std::string reason;         ///< the check's and the OCP's explanations
+  double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed
+  double check_time_s = 0.0;  ///< kinematic + reachability check wall time
+  double ocp_time_s = 0.0;    ///< OCP wall time
+  TransitionResult trajectory;  ///< converged, relaxed or failed
+  /// The full check (kinematics, reachable sets, witness) for recorders and the ROS layer.
+  FootstepResult check;
+  Side stance = Side::kLeft;
+  FlatContact stance_contact;  ///< the held stance sole (position [m], yaw [rad])
+  FlatContact target;          ///< the foothold checked (flat, stance heading)
+  Eigen::VectorXd q0, qd0;     ///< x_0 as used
+  double horizon = 0.0;        ///< t_f - t_0 used [s]
+  /// Where the swing sole will land [m]: the OCP's landing when usable, else the nearest
+  /// kinematically feasible foothold to the target (the target when it is feasible).
+  Eigen::Vector3d foothold = Eigen::Vector3d::Zero();
+  /// True when the trajectory may be tracked (OCP converged or relaxed).
+  bool usable() const { return trajectory.status != OcpStatus::kFailed; }
+};
+
+/// @brief Kinematic check + reachability check + transition OCP of one footstep (Sec. III).
+/// Immutable; plan() may run concurrently.
+class FootstepTransitionPlanner {
+ public:
+  /// \throws ReachError on invalid configs or unknown frames.
+  FootstepTransitionPlanner(std::shared_ptr<const RobotModel> model, const ContactConfig& contact,
+                            const FootstepPlannerConfig& config);
+
+  /// Plans the swing from x_0 to the foothold (see the file comment).
+  /// \throws ReachError on bad input (sizes, NaN, a target outside the workspace, a state the
+  ///     check rejects) and, with InfeasibleFootholdPolicy::kReject, on an infeasible foothold.
+  FootstepTransition plan(const FootstepPlanRequest& request) const;
+
+  /// Time from the check to touchdown [s] (the reachability horizon t_f - t_0).
+  double horizon() const { return config_.reach.horizon; }
+  const FootstepPlannerConfig& config() const { return config_; }
+  const KinematicFeasibility& kinematics() const { return *kinematics_; }
+  const ReachabilityAnalyzer& analyzer() const { return footsteps_.analyzer(); }
+
+ private:
+  /// The LIPM's prediction at touchdown: pelvis position to hold [m], CoM velocity [m/s].
+  struct Touchdown {
+    std::optional<Eigen::Vector3d> pelvis;
+    Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
+  };
+  /// Step 1: x_0 into `out`; returns the held stance sole pose.
+  Eigen::Isometry3d initialState(const FootstepPlanRequest& r, FootstepTransition& out) const;
+  Touchdown predictTouchdown(const FootstepPlanRequest& r, const FootstepTransition& out) const;
+  /// Steps 2-3 into out.check and the verdict fields.
+  void checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach,
+                     const Touchdown& td, FootstepTransition& out) const;
+  /// Steps 4-5 into out.trajectory and out.foothold.
+  void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
+                       const Touchdown& td, FootstepTransition& out) const;
+
+  std::shared_ptr<const RobotModel> model_;
+  ContactConfig contact_;
+  FootstepPlannerConfig config_;
+  std::shared_ptr<const KinematicFeasibility> kinematics_;
+  FootstepReachability footsteps_;
+  NearestFeasibleFoothold nearest_;
+  TransitionOcp ocp_;
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,41 @@
+#pragma once
+/// \file com_reference.h
+/// The horizontal CoM reference of the walking loop: the LIPM (eq. 9) integrated tick by tick
+/// about a pivot, the stance sole in single support and, in double support, a pivot moving
+/// from the old stance sole to the new one as the weight transfers. Standing (settle phase):
+/// held at the standing CoM. The height is the standing CoM height throughout.
+
+#include <Eigen/Core>
+
+#include "reach_trajopt/planner/lipm.h"
+#include "reach_trajopt/sim/whole_body_controller.h"
+
+namespace reach_trajopt {
+
+/// @brief LIPM CoM reference (position, velocity, acceleration) for the whole-body controller.
+class LipmComReference {
+ public:
+  /// \param standing_com  the CoM of the standing pose [m] (its height is the reference height)
+  LipmComReference(const Lipm& lipm, const Eigen::Vector3d& standing_com);
+
+  /// Single support from the measured CoM state, about the stance sole centre [m].
+  void startSingleSupport(const LipmState& com, const Eigen::Vector2d& stance);
+  /// Double support from the measured CoM state, the pivot moving `from` -> `to` [m].
+  void startDoubleSupport(const LipmState& com, const Eigen::Vector2d& from,
+                          const Eigen::Vector2d& to);
+  /// One tick of `dt` [s] while walking; `transfer` in [0, 1] is how far the pivot has moved
+  /// (1 in single support). Fills the CoM fields of `ref`.
+  void advance(double dt, double transfer, WbcReference& ref);
+  /// One tick while standing: the standing CoM at rest.
+  void hold(WbcReference& ref);
+
+ private:
+  void fill(WbcReference& ref) const;
+
+  const Lipm& lipm_;
+  Eigen::Vector3d standing_com_;
+  LipmState com_;
+  Eigen::Vector2d pivot_from_ = Eigen::Vector2d::Zero(), pivot_to_ = Eigen::Vector2d::Zero();
+};
+
+}  // namespace reach_trajopt

@@ -1,0 +1,222 @@
+/// \file footstep_transition_planner.cpp
+/// The per-step pipeline: contact-consistent x_0, kinematic check, reachability check, OCP,
+/// fallback (see the header).
+
+#include "reach_trajopt/step/footstep_transition_planner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/planner/double_support_velocity.h"
+#include "reach_trajopt/step/contact_consistent_state.h"
+
+namespace reach_trajopt {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+const char* verdictOf(const FootstepResult& check, bool checked) {
+  if (!check.kinematically_feasible) return "kinematically_infeasible";
+  if (!checked) return "not_checked";
+  return check.reachable ? "reachable" : "unreachable";
+}
+
+RelaxationMode relaxationFor(OcpPolicy policy, bool reachable) {
+  switch (policy) {
+    case OcpPolicy::kStrict:
+      return RelaxationMode::kStrict;
+    case OcpPolicy::kAuto:
+      return RelaxationMode::kAuto;
+    case OcpPolicy::kByVerdict:
+      break;
+  }
+  return reachable ? RelaxationMode::kStrict : RelaxationMode::kRelaxed;
+}
+
+/// The witness path x_0 -> x_f as the OCP's initial guess.
+void seedFromWitness(const ReachResult& reach, TransitionRequest& ocp) {
+  if (!reach.witness.valid) return;
+  const WitnessPath& w = reach.witness;
+  ocp.seed.time =
+      Eigen::Map<const Eigen::VectorXd>(w.time.data(), static_cast<Eigen::Index>(w.time.size()));
+  ocp.seed.q = w.q;
+}
+
+}  // namespace
+
+FootstepPlannerConfig FootstepPlannerConfig::fromYaml(const YamlSection& root) {
+  FootstepPlannerConfig c;
+  if (root.has("kinematic_feasibility"))
+    c.kinematics = KinematicFeasibilityConfig::fromYaml(root.section("kinematic_feasibility"));
+  if (root.has("reach")) c.reach = ReachConfig::fromYaml(root.section("reach"));
+  if (root.has("ocp")) c.ocp = TransitionOcpConfig::fromYaml(root.section("ocp"));
+  if (root.has("nearest_foothold"))
+    c.nearest_foothold = NearestFootholdConfig::fromYaml(root.section("nearest_foothold"));
+  return c;
+}
+
+FootstepTransitionPlanner::FootstepTransitionPlanner(std::shared_ptr<const RobotModel> model,
+                                                     const ContactConfig& contact,
+                                                     const FootstepPlannerConfig& config)
+    : model_(model),
+      contact_(contact),
+      config_(config),
+      kinematics_(std::make_shared<KinematicFeasibility>(model, config.kinematics, contact)),
+      footsteps_(std::make_shared<ReachabilityAnalyzer>(model, contact, config.reach),
+                 kinematics_),
+      nearest_(kinematics_, config.nearest_foothold),
+      ocp_(model, config.ocp, contact) {}
+
+FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r) const {
+  const RobotModel& m = *model_;
+  m.checkState(r.q, r.qd);
+  requireFinite("FootstepTransitionPlanner: target", r.target);
+  if (r.touchdown_com) {
+    requireFinite("FootstepTransitionPlanner: touchdown CoM position", r.touchdown_com->p);
+    requireFinite("FootstepTransitionPlanner: touchdown CoM velocity", r.touchdown_com->pd);
+  }
+  const ReachConfig& reach = r.reach ? *r.reach : config_.reach;
+  FootstepTransition out;
+  out.stance = r.stance;
+  out.horizon = r.horizon > 0.0 ? r.horizon : reach.horizon;
+  const Eigen::Isometry3d held = initialState(r, out);
+  const Touchdown touchdown = predictTouchdown(r, out);
+  checkFoothold(r, reach, touchdown, out);
+  solveTransition(r, held, touchdown, out);
+  return out;
+}
+
+Eigen::Isometry3d FootstepTransitionPlanner::initialState(const FootstepPlanRequest& r,
+                                                          FootstepTransition& out) const {
+  const RobotModel& m = *model_;
+  const FrameId stance_frame = m.frameId(contact_.soleFrame(r.stance));
+  Eigen::Isometry3d held;
+  if (r.make_contact_consistent) {
+    ContactConsistentState x0 = contactConsistentState(m, stance_frame, r.q, r.qd);
+    out.q0 = std::move(x0.q);
+    out.qd0 = std::move(x0.qd);
+    held = x0.stance_sole;
+  } else {
+    out.q0 = r.q;
+    out.qd0 = r.qd;
+    Workspace ws(m);
+    m.update(ws, out.q0, out.qd0);
+    held = m.framePose(ws, stance_frame);
+  }
+  out.stance_contact.position = held.translation();
+  out.stance_contact.yaw = yawOf(held);
+  out.target.position = r.target;
+  out.target.yaw = yawOf(r.stance_pose);
+  return held;
+}
+
+FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown(
+    const FootstepPlanRequest& r, const FootstepTransition& out) const {
+  Touchdown td;
+  if (!r.touchdown_com) return td;
+  // x_f: where the CoM will have carried the pelvis by touchdown, at its current height.
+  const RobotModel& m = *model_;
+  Workspace ws(m);
+  m.update(ws, out.q0, out.qd0);
+  const Eigen::Vector3d com = m.centerOfMass(ws);
+  const Eigen::Vector3d com_shift(r.touchdown_com->p.x() - com.x(),
+                                  r.touchdown_com->p.y() - com.y(), 0.0);
+  td.pelvis =
+      m.framePose(ws, m.frameId(kinematics_->config().pelvis_frame)).translation() + com_shift;
+  td.com_velocity.head<2>() = r.touchdown_com->pd;
+  return td;
+}
+
+void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
+                                              const ReachConfig& reach, const Touchdown& td,
+                                              FootstepTransition& out) const {
+  const auto check_start = std::chrono::steady_clock::now();
+  FootstepRequest request;
+  request.stance = r.stance;
+  request.stance_foothold = out.stance_contact;
+  request.target = out.target;
+  request.q0 = out.q0;
+  request.qd0 = out.qd0;
+  if (!r.touchdown_com) request.qdf = Eigen::VectorXd::Zero(model_->nq());  // x_f at rest
+  request.touchdown_com_velocity = td.com_velocity.head<2>();
+  request.touchdown_pelvis_position = td.pelvis;
+  if (r.check_reachability) {
+    out.check = footsteps_.check(request, reach);
+  } else {
+    out.check.kinematics = kinematics_->check(r.stance, request.stance_foothold, request.target,
+                                              request.q0, td.pelvis);
+    out.check.kinematically_feasible = out.check.kinematics.feasible;
+    out.check.qdf = request.qdf;
+    out.check.reason = out.check.kinematics.feasible ? "not checked" : out.check.kinematics.reason;
+  }
+  const FootstepResult& check = out.check;
+  out.check_time_s = secondsSince(check_start);
+  out.kinematically_feasible = check.kinematically_feasible;
+  out.reachable = check.reachable;
+  out.verdict = verdictOf(check, r.check_reachability);
+  out.reason = check.reason;
+  for (const SliceComparison& c : check.reach.window)
+    out.hausdorff_distance = out.hausdorff_distance < 0.0
+                                 ? c.distance.hausdorff
+                                 : std::min(out.hausdorff_distance, c.distance.hausdorff);
+}
+
+void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
+                                                const Eigen::Isometry3d& held,
+                                                const Touchdown& td,
+                                                FootstepTransition& out) const {
+  const RobotModel& m = *model_;
+  const FootstepResult& check = out.check;
+  TransitionRequest ocp;
+  ocp.stance = r.stance;
+  ocp.stance_pose = held;
+  ocp.swing_target = out.target.pose();
+  ocp.horizon = out.horizon;
+  ocp.q0 = out.q0;
+  ocp.qd0 = out.qd0;
+  if (td.pelvis)  // a relaxed landing stands at the predicted pelvis height
+    ocp.terminal_pelvis_height = td.pelvis->z() - 0.5 * (held.translation().z() + r.target.z());
+  Eigen::Vector3d nearest_feasible = r.target;
+  if (check.kinematically_feasible) {
+    ocp.qf = check.kinematics.q_f;
+    ocp.qdf = check.qdf;
+    ocp.relaxation = relaxationFor(r.ocp_policy, check.reachable);
+  } else if (r.on_infeasible == InfeasibleFootholdPolicy::kReject) {
+    throw RequestError("kinematically infeasible foothold (" + check.kinematics.reason + ")");
+  } else if (r.on_infeasible == InfeasibleFootholdPolicy::kRelaxTowardTarget) {
+    ocp.qf = check.kinematics.q_f;
+    ocp.qdf = check.kinematics.qd_f;
+    ocp.relaxation = RelaxationMode::kRelaxed;  // land as close as the OCP can
+  } else {
+    const std::optional<NearestFoothold> near =
+        nearest_.find(r.stance, out.stance_contact, out.target, out.q0, td.pelvis);
+    if (!near) {
+      out.reason += "; no kinematically feasible foothold within " +
+                    std::to_string(nearest_.config().searchRadius()) + " m of the target";
+      out.trajectory.status = OcpStatus::kFailed;
+      out.trajectory.reason = "no kinematically feasible foothold near the target";
+      out.foothold = r.target;
+      return;
+    }
+    nearest_feasible = near->foothold.position;
+    ocp.qf = near->kinematics.q_f;
+    ocp.swing_target.translation() = nearest_feasible;
+    ocp.qdf = doubleSupportVelocity(m, ocp.qf, m.frameId(contact_.left_sole_frame),
+                                    m.frameId(contact_.right_sole_frame), td.com_velocity);
+    ocp.relaxation = RelaxationMode::kAuto;
+  }
+  seedFromWitness(check.reach, ocp);
+  const auto ocp_start = std::chrono::steady_clock::now();
+  out.trajectory = ocp_.solve(ocp);
+  out.ocp_time_s = secondsSince(ocp_start);
+  // Without a usable trajectory the swing still goes to the nearest kinematically feasible
+  // foothold (the target itself when it is feasible).
+  out.foothold = out.usable() ? out.trajectory.landing_position : nearest_feasible;
+  if (!out.trajectory.reason.empty()) out.reason += "; OCP: " + out.trajectory.reason;
+}
+
+}  // namespace reach_trajopt
