@@ -12,18 +12,14 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 
 namespace {
 
 double parseNumber(const std::string& flag, const char* text) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (end == text || *end != '\0') {
-    throw reach_trajopt::ReachError(flag + ": expected a number, got '" + text + "'");
-  }
-  return v;
+  return reach_trajopt::parseDoubleOption(flag, text);
 }
 
 template <typename M>

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -23,7 +24,44 @@ std::string describe(const YAML::Node& n) {
   return "null";
 }
 
+/// Throws naming `source`, the key path and the line of the first mapping key that appears
+/// twice: yaml-cpp keeps both entries and lookups silently take one of them.
+void rejectDuplicateKeys(const YAML::Node& n, const std::string& source, const std::string& path) {
+  if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+      rejectDuplicateKeys(n[i], source, path + "[" + std::to_string(i) + "]");
+    return;
+  }
+  if (!n.IsMap()) return;
+  std::set<std::string> seen;
+  for (const auto& kv : n) {
+    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("<non-scalar key>");
+    const std::string where = path.empty() ? key : path + "." + key;
+    if (!kv.first.IsScalar())
+      throw ReachError(source + ": " + where + ": mapping keys must be plain scalars");
+    if (!seen.insert(key).second) {
+      std::ostringstream os;
+      os << source << ": " << where << ": duplicate key (line " << kv.first.Mark().line + 1
+         << ")";
+      throw ReachError(os.str());
+    }
+    rejectDuplicateKeys(kv.second, source, where);
+  }
+}
+
+YAML::Node checkedRoot(const YAML::Node& root, const std::string& source) {
+  if (!root.IsMap()) throw ReachError("YAML " + source + ": top level is not a mapping");
+  rejectDuplicateKeys(root, source, "");
+  return root;
+}
+
 }  // namespace
+
+const std::vector<std::string>& configSections() {
+  static const std::vector<std::string> sections = {
+      "contact", "planner", "kinematic_feasibility", "reach", "wbc", "walk", "ocp", "sim"};
+  return sections;
+}
 
 YamlSection::YamlSection(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
 
@@ -38,9 +76,12 @@ YamlSection YamlSection::loadFile(const std::string& path) {
   }
   if (!root.IsMap()) throw ReachError("YAML file '" + path + "': top level is not a mapping");
   auto impl = std::make_shared<Impl>();
-  impl->node = root;
+  impl->node = checkedRoot(root, path);
   impl->source = path;
-  return YamlSection(impl);
+  YamlSection file(impl);
+  // A misspelled section would otherwise leave its component on the defaults.
+  file.requireOnlyKeys(configSections());
+  return file;
 }
 
 YamlSection YamlSection::loadString(const std::string& text, const std::string& source) {
@@ -50,9 +91,8 @@ YamlSection YamlSection::loadString(const std::string& text, const std::string& 
   } catch (const YAML::Exception& e) {
     throw ReachError("malformed YAML in " + source + ": " + e.what());
   }
-  if (!root.IsMap()) throw ReachError("YAML " + source + ": top level is not a mapping");
   auto impl = std::make_shared<Impl>();
-  impl->node = root;
+  impl->node = checkedRoot(root, source);
   impl->source = source;
   return YamlSection(impl);
 }
