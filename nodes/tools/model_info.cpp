@@ -170,6 +170,9 @@ int main(int argc, char** argv) {
   } catch (const ReachError& e) {
     std::cerr << "model_info: " << e.what() << "\n";
     return 2;
+  } catch (const std::exception& e) {  // e.g. a name that is not UTF-8 in the JSON output
+    std::cerr << "model_info: " << e.what() << "\n";
+    return 2;
   }
   return 0;
 }

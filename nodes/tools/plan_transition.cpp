@@ -158,7 +158,8 @@ int main(int argc, char** argv) {
     return res.status == OcpStatus::kFailed ? 1 : 0;
   } catch (const std::exception& e) {
     json out = {{"status", "error"}, {"reason", e.what()}};
-    std::cout << out.dump() << "\n";
+    // A message may quote bytes of the input that are not UTF-8: replace them, never throw.
+    std::cout << out.dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
     return 2;
   }
 }

@@ -109,6 +109,9 @@ int main(int argc, char** argv) {
   } catch (const reach_trajopt::ReachError& e) {
     std::cerr << "qp_solve: malformed problem: " << e.what() << "\n";
     return 2;
+  } catch (const std::exception& e) {  // e.g. std::bad_alloc: still a message, not an abort
+    std::cerr << "qp_solve: " << e.what() << "\n";
+    return 2;
   }
   return 0;
 }

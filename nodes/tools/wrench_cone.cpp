@@ -82,5 +82,8 @@ int main(int argc, char** argv) {
   } catch (const reach_trajopt::ReachError& e) {
     std::cerr << "wrench_cone: " << e.what() << "\n";
     return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "wrench_cone: " << e.what() << "\n";
+    return 2;
   }
 }

@@ -59,6 +59,9 @@ void ReachConfig::validate() const {
   }
   if (!onGrid(horizon, dt) || !onGrid(window_start, dt) || !onGrid(window_end, dt))
     bad("horizon/window_start/window_end", "must be multiples of dt");
+  if (horizon < dt * (1.0 - 1e-9))
+    bad("horizon", "must be at least one time step dt = " + std::to_string(dt) + " s, got " +
+                       std::to_string(horizon));
   using L = ReachLimits;
   if (horizon / dt > L::kMaxSteps + 0.5)
     bad("horizon", "/ dt = " + std::to_string(horizon / dt) + " steps is over the limit of " +
