@@ -99,6 +99,8 @@ int main(int argc, char** argv) {
         readReachCheckRequest(JsonReader(doc, paths[2]), model->nq(), config);
     config = req.config;
     if (!threads_arg.empty()) config.threads = parseThreadsOption("--threads", threads_arg);
+    config.validate();
+    config.requireResourcesWithinLimits(model->nq());  // before the IK and any sample
     const bool contacts = req.mode != "none";
     const ContactMode mode =
         contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};

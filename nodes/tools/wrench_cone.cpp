@@ -5,6 +5,7 @@
 /// C blkdiag(R^T, R^T)} with R = Rz(y) Ry(p) Rx(r) the sole's orientation in the world.
 /// Exit status 2 with the message on stderr for bad arguments (e.g. mu <= 0).
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -19,7 +20,8 @@
 namespace {
 
 double parseNumber(const std::string& flag, const char* text) {
-  return reach_trajopt::parseDoubleOption(flag, text);
+  // NaN / inf pass: ContactWrenchCone and --rpy's check name them ("must be positive and finite").
+  return reach_trajopt::parseDoubleOption(flag, text, -HUGE_VAL, HUGE_VAL, true);
 }
 
 template <typename M>

@@ -14,13 +14,15 @@
 namespace reach_trajopt {
 
 double parseDoubleOption(const std::string& option, const std::string& text, double lo,
-                         double hi) {
+                         double hi, bool allow_nonfinite) {
   const char* s = text.c_str();
   char* end = nullptr;
   errno = 0;
   const double v = std::strtod(s, &end);
   std::ostringstream os;
-  if (text.empty() || end == s || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
+  const bool finite = std::isfinite(v) && errno != ERANGE;
+  if (allow_nonfinite && !finite && end != s && *end == '\0') return v;
+  if (text.empty() || end == s || *end != '\0' || !finite) {
     os << option << ": expected a finite number, got '" << text << "'";
     throw ReachError(os.str());
   }

@@ -132,6 +132,15 @@ double ReachConfig::estimatedMemoryBytes(int nq) const {
 }
 
 void ReachConfig::requireResourcesWithinLimits(int nq) const {
+  const double qps = estimatedQps();
+  if (qps > ReachLimits::kMaxQps) {
+    std::ostringstream os;
+    os << "ReachConfig: the check would solve about " << qps << " QPs (initial_samples "
+       << initial_samples << ", max_boundary " << max_boundary << ", interior_samples "
+       << interior_samples << ", horizon " << horizon << " s at dt " << dt
+       << " s), over the limit of " << ReachLimits::kMaxQps << " (minutes of wall time)";
+    throw ReachError(os.str());
+  }
   const double bytes = estimatedMemoryBytes(nq);
   if (bytes > ReachLimits::kMaxMemoryBytes) {
     std::ostringstream os;
@@ -140,15 +149,6 @@ void ReachConfig::requireResourcesWithinLimits(int nq) const {
        << ", children_per_parent " << children_per_parent << ", horizon " << horizon
        << " s at dt " << dt << " s), over the limit of "
        << std::lround(ReachLimits::kMaxMemoryBytes / (1024 * 1024)) << " MiB";
-    throw ReachError(os.str());
-  }
-  const double qps = estimatedQps();
-  if (qps > ReachLimits::kMaxQps) {
-    std::ostringstream os;
-    os << "ReachConfig: the check would solve about " << qps << " QPs (initial_samples "
-       << initial_samples << ", max_boundary " << max_boundary << ", interior_samples "
-       << interior_samples << ", horizon " << horizon << " s at dt " << dt
-       << " s), over the limit of " << ReachLimits::kMaxQps << " (minutes of wall time)";
     throw ReachError(os.str());
   }
 }

@@ -104,6 +104,16 @@ CASES = [
      {"r.json": SWING_REQUEST}, ["--threads"]),
     ("crash", "reach_config_not_object", "reach_check", [BIPED, CONFIG, "{r}"],
      {"r.json": edited(SWING_REQUEST, ("config",), [1, 2])}, ["config"]),
+    # Found by fuzz_urdf (test/fuzz/regressions/urdf/massless_robot_com.urdf): a robot whose
+    # every link is massless has no centre of mass.
+    ("crash", "urdf_massless_robot", "model_info", ["{u}"],
+     {"u.urdf": urdf_with('<mass value="1.0"/>\n    <inertia ixx="0.01" ixy="0" ixz="0" '
+                          'iyy="0.01" iyz="0" izz="0.01"/>',
+                          '<mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" '
+                          'iyz="0" izz="0"/>').replace('<mass value="0.5"/>\n    <inertia '
+                          'ixx="0.002" ixy="0" ixz="0" iyy="0.002" iyz="0" izz="0.003"/>',
+                          '<mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" '
+                          'izz="0"/>')}, ["no mass"]),
     ("crash", "state_empty_states", "model_info", [BIPED, "--state", "{s}"],
      {"s.json": {"states": []}}, ["states"]),
     ("crash", "transition_seed_ragged", "plan_transition", ["{r}"],

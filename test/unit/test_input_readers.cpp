@@ -203,6 +203,9 @@ TEST(ReachLimits, BoundsThreadsAndEstimates) {
   c.children_per_parent = 500;
   c.validate();
   EXPECT_ERROR_NAMES(c.requireResourcesWithinLimits(18), "QPs");
+  c = ReachConfig();
+  c.initial_samples = 100000;
+  EXPECT_ERROR_NAMES(c.requireResourcesWithinLimits(2000), "MiB");  // a 2000-dof robot
   ReachConfig shipped;  // the defaults are the paper's: well inside the limits
   EXPECT_NO_THROW(shipped.requireResourcesWithinLimits(18));
   EXPECT_LT(shipped.estimatedMemoryBytes(18), ReachLimits::kMaxMemoryBytes / 4);

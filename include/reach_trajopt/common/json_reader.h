@@ -18,8 +18,9 @@
 
 namespace reach_trajopt {
 
-/// Upper bound on a request document [bytes]: larger inputs are rejected before parsing.
-constexpr std::size_t kMaxJsonRequestBytes = 64u << 20;
+/// Upper bound on a request document [bytes]: larger inputs are rejected before parsing (the
+/// oracle tests send qp_solve batches of 80 MB).
+constexpr std::size_t kMaxJsonRequestBytes = 256u << 20;
 
 /// Whether a number read may be NaN or infinite (qp_solve reads "nan", "inf", "-inf" and null as
 /// those values, for its invalid-input and infinite-bound tests); everything else is finite.
