@@ -46,6 +46,9 @@ using nlohmann::json;
 
 namespace {
 
+/// Upper bound on the samples --samples prints (output size, docs/limits.md): about 0.5 GB.
+constexpr double kMaxPrintedSamples = 1.0e6;
+
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json vec(const Eigen::Ref<const Eigen::VectorXd>& v) {
@@ -101,6 +104,13 @@ int main(int argc, char** argv) {
     if (!threads_arg.empty()) config.threads = parseThreadsOption("--threads", threads_arg);
     config.validate();
     config.requireResourcesWithinLimits(model->nq());  // before the IK and any sample
+    if (samples && config.estimatedQps() > kMaxPrintedSamples) {
+      std::ostringstream os;
+      os << "--samples: the check would print about " << config.estimatedQps()
+         << " samples, over the limit of " << kMaxPrintedSamples
+         << " (docs/limits.md): lower initial_samples or max_boundary";
+      throw ReachError(os.str());
+    }
     const bool contacts = req.mode != "none";
     const ContactMode mode =
         contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};
