@@ -13,8 +13,8 @@
 
 namespace reach_trajopt {
 
-double parseDoubleOption(const std::string& option, const std::string& text, double lo,
-                         double hi, bool allow_nonfinite) {
+double parseDoubleOption(const std::string& option, const std::string& text, double lo, double hi,
+                         bool allow_nonfinite) {
   const char* s = text.c_str();
   char* end = nullptr;
   errno = 0;
@@ -41,8 +41,7 @@ long long parseIntOption(const std::string& option, const std::string& text, lon
   const long long v = std::strtoll(s, &end, 10);
   if (text.empty() || end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) {
     std::ostringstream os;
-    os << option << ": expected an integer in [" << lo << ", " << hi << "], got '" << text
-       << "'";
+    os << option << ": expected an integer in [" << lo << ", " << hi << "], got '" << text << "'";
     throw ReachError(os.str());
   }
   return v;

@@ -60,15 +60,22 @@ void JsonReader::fail(const std::string& message) const {
 
 std::string JsonReader::typeName() const {
   switch (value_->type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return "a boolean";
-    case json::value_t::string: return "a string";
-    case json::value_t::array: return "a list of " + std::to_string(value_->size());
-    case json::value_t::object: return "an object";
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return "a boolean";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::array:
+      return "a list of " + std::to_string(value_->size());
+    case json::value_t::object:
+      return "an object";
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
-    case json::value_t::number_float: return "a number";
-    default: return "an unsupported value";
+    case json::value_t::number_float:
+      return "a number";
+    default:
+      return "an unsupported value";
   }
 }
 
@@ -222,7 +229,8 @@ Eigen::MatrixXd JsonReader::matrix(Eigen::Index rows, Eigen::Index cols, NonFini
     fail("expected " + std::to_string(rows) + " rows, got " + std::to_string(n));
   if (n == 0) return Eigen::MatrixXd(0, cols > 0 ? cols : 0);
   const JsonReader first = at(std::size_t{0});
-  if (!first.value().is_array()) first.fail("expected a row (list of numbers), got " + first.typeName());
+  if (!first.value().is_array())
+    first.fail("expected a row (list of numbers), got " + first.typeName());
   const Eigen::Index c = cols >= 0 ? cols : static_cast<Eigen::Index>(first.value().size());
   Eigen::MatrixXd M(n, c);
   for (Eigen::Index i = 0; i < n; ++i) {

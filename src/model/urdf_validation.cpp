@@ -3,6 +3,9 @@
 
 #include "reach_trajopt/model/urdf_validation.h"
 
+#include <tinyxml2.h>
+
+#include <Eigen/Eigenvalues>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -10,9 +13,6 @@
 #include <set>
 #include <sstream>
 #include <vector>
-
-#include <Eigen/Eigenvalues>
-#include <tinyxml2.h>
 
 #include "reach_trajopt/common/error.h"
 
@@ -32,8 +32,7 @@ void checkNumbers(const XMLElement* e, const char* attr, int count, bool require
                   const std::string& owner) {
   const char* text = e->Attribute(attr);
   if (!text) {
-    if (required)
-      throw ReachError(owner + ": <" + e->Name() + "> has no attribute '" + attr + "'");
+    if (required) throw ReachError(owner + ": <" + e->Name() + "> has no attribute '" + attr + "'");
     return;
   }
   std::istringstream in(text);
@@ -44,14 +43,14 @@ void checkNumbers(const XMLElement* e, const char* attr, int count, bool require
     errno = 0;
     const double v = std::strtod(token.c_str(), &end);
     if (end == token.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-      throw ReachError(owner + ": <" + e->Name() + " " + attr + "=\"" + text +
-                       "\">: '" + token + "' is not a finite number");
+      throw ReachError(owner + ": <" + e->Name() + " " + attr + "=\"" + text + "\">: '" + token +
+                       "' is not a finite number");
     ++n;
   }
   if (count > 0 && n != count) {
     std::ostringstream os;
-    os << owner << ": <" << e->Name() << " " << attr << "=\"" << text << "\">: expected "
-       << count << " numbers, got " << n;
+    os << owner << ": <" << e->Name() << " " << attr << "=\"" << text << "\">: expected " << count
+       << " numbers, got " << n;
     throw ReachError(os.str());
   }
 }
@@ -66,8 +65,7 @@ void checkOrigin(const XMLElement* parent, const std::string& owner) {
 
 void checkLink(const XMLElement* link, const std::string& owner) {
   for (const char* child : {"visual", "collision"})
-    for (const XMLElement* v = link->FirstChildElement(child); v;
-         v = v->NextSiblingElement(child))
+    for (const XMLElement* v = link->FirstChildElement(child); v; v = v->NextSiblingElement(child))
       checkOrigin(v, owner);
   const XMLElement* in = link->FirstChildElement("inertial");
   if (!in) return;
@@ -149,8 +147,7 @@ void validateUrdfXml(const std::string& xml, const std::string& source) {
     const char* cl = c ? c->Attribute("link") : nullptr;
     if (!pl || !cl) throw ReachError(owner + ": needs <parent link=...> and <child link=...>");
     for (const char* l : {pl, cl})
-      if (!links.count(l))
-        throw ReachError(owner + ": unknown link '" + std::string(l) + "'");
+      if (!links.count(l)) throw ReachError(owner + ": unknown link '" + std::string(l) + "'");
     if (std::string(pl) == cl)
       throw ReachError(owner + ": link '" + std::string(cl) + "' is its own parent (a loop)");
     const auto it = joint_of.find(cl);
@@ -184,7 +181,8 @@ void validateUrdfXml(const std::string& xml, const std::string& source) {
   if (roots.size() != 1) {
     std::ostringstream os;
     os << source << " has " << roots.size() << " root links (";
-    for (std::size_t i = 0; i < roots.size() && i < 5; ++i) os << (i ? ", " : "") << "'" << roots[i] << "'";
+    for (std::size_t i = 0; i < roots.size() && i < 5; ++i)
+      os << (i ? ", " : "") << "'" << roots[i] << "'";
     os << (roots.size() > 5 ? ", ..." : "") << "): every link but one needs a parent joint";
     throw ReachError(os.str());
   }
@@ -228,8 +226,9 @@ void validateUrdf(const urdf::ModelInterface& urdf, const std::string& source) {
       }
       continue;
     }
-    const Eigen::Vector3d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
-                                       I, Eigen::EigenvaluesOnly).eigenvalues();  // ascending
+    const Eigen::Vector3d lambda =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly)
+            .eigenvalues();  // ascending
     const double largest = std::max(lambda(2), 0.0);
     if (lambda(0) < -(kInertiaAbsTolerance + kInertiaRelTolerance * largest)) {
       os << owner << ": inertia is not positive semidefinite (principal moments "

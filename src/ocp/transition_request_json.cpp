@@ -12,8 +12,8 @@ namespace reach_trajopt {
 
 TransitionRequestJson readTransitionRequest(const JsonReader& r, int nq) {
   r.requireObject("a request object");
-  r.requireOnlyKeys({"stance", "stance_pose", "swing_target", "horizon", "q0", "qd0", "qf",
-                     "qdf", "relaxation", "slices", "seed"});
+  r.requireOnlyKeys({"stance", "stance_pose", "swing_target", "horizon", "q0", "qd0", "qf", "qdf",
+                     "relaxation", "slices", "seed"});
   TransitionRequestJson out;
   TransitionRequest& q = out.request;
   q.stance = r.at("stance").choice({"left", "right"}) == "left" ? Side::kLeft : Side::kRight;
@@ -25,8 +25,7 @@ TransitionRequestJson readTransitionRequest(const JsonReader& r, int nq) {
   q.horizon = h.number();
   if (!(q.horizon > 0.0) || q.horizon > kMaxTransitionHorizon) {
     std::ostringstream os;
-    os << "expected a swing duration in (0, " << kMaxTransitionHorizon << "] s, got "
-       << q.horizon;
+    os << "expected a swing duration in (0, " << kMaxTransitionHorizon << "] s, got " << q.horizon;
     h.fail(os.str());
   }
   q.q0 = r.vector("q0", nq);

@@ -67,8 +67,8 @@ ReachCheckRequest readReachCheckRequest(const JsonReader& r, int nq,
     const JsonReader c = r.at("config");
     c.requireObject("an object of reach: keys");
     // JSON is YAML: the config keys go through ReachConfig's strict reader.
-    q.config = ReachConfig::fromYaml(YamlSection::loadString(c.value().dump(), c.where()),
-                                     base_config);
+    q.config =
+        ReachConfig::fromYaml(YamlSection::loadString(c.value().dump(), c.where()), base_config);
   }
   return q;
 }

@@ -22,8 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }();
   FuzzedDataProvider in(data, size);
   const std::string frame = in.ConsumeBool() ? "world" : in.ConsumeRandomLengthString(16);
-  const std::string mode = in.ConsumeBool() ? (in.ConsumeBool() ? "SS-L" : "SS-R")
-                                            : in.ConsumeRandomLengthString(16);
+  const std::string mode =
+      in.ConsumeBool() ? (in.ConsumeBool() ? "SS-L" : "SS-R") : in.ConsumeRandomLengthString(16);
   auto vec = [&] {
     std::vector<double> v(in.ConsumeBool() ? model->nq() : in.ConsumeIntegralInRange(0, 40));
     for (double& x : v)
@@ -39,8 +39,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double duration = in.ConsumeFloatingPoint<double>();
   const uint32_t samples = in.ConsumeIntegral<uint32_t>();
   try {
-    const rb::FootholdRequest r = rb::parseFootholdRequest(*model, contact, frame, mode, q, qd, p,
-                                                           duration, 0.4, standing);
+    const rb::FootholdRequest r =
+        rb::parseFootholdRequest(*model, contact, frame, mode, q, qd, p, duration, 0.4, standing);
     ReachConfig config = rb::reachConfigForDuration(ReachConfig{}, r.duration);
     if (samples > 0 && samples <= static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
       config.initial_samples = static_cast<int>(samples);

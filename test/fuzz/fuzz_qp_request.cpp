@@ -16,8 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     p.config.max_iterations = std::min(p.config.max_iterations, 200);
     qp::DualActiveSetQp solver(static_cast<int>(p.g.size()), static_cast<int>(p.Aeq.rows()),
                                static_cast<int>(p.Ain.rows()), p.config);
-    solver.solve(p.G, p.g, p.Aeq, p.beq, p.Ain, p.bin,
-                 p.has_warm_start ? &p.warm_start : nullptr);
+    solver.solve(p.G, p.g, p.Aeq, p.beq, p.Ain, p.bin, p.has_warm_start ? &p.warm_start : nullptr);
   } catch (const ReachError&) {
   }
   return 0;

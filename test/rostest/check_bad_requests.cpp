@@ -4,6 +4,8 @@
 // stopping, and then a valid request must still be answered. Prints the BENCH line.
 
 #include <dirent.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
 
 #include <chrono>
 #include <cmath>
@@ -15,15 +17,12 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-#include <ros/ros.h>
-
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/PlanTransition.h"
 
 namespace {
 
-constexpr int kNq = 18;  // urdf/biped.urdf: 6 virtual + 12 leg joints
+constexpr int kNq = 18;      // urdf/biped.urdf: 6 virtual + 12 leg joints
 constexpr int kRounds = 12;  // rounds over all malformed kinds, per service and pass
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
@@ -59,10 +58,22 @@ double rssMiB(int pid) {
 template <typename Req>
 std::vector<std::function<void(Req&)>> kinds(std::mt19937& rng) {
   std::vector<std::function<void(Req&)>> k;
-  k.push_back([](Req& r) { r.q.assign(kNq, kNaN); r.qd.assign(kNq, 0.0); });
-  k.push_back([](Req& r) { r.q.assign(kNq, 0.0); r.qd.assign(kNq, kInf); });
-  k.push_back([](Req& r) { r.q.assign(kNq - 1, 0.0); r.qd.assign(kNq - 1, 0.0); });
-  k.push_back([](Req& r) { r.q.assign(200000, 0.0); r.qd.assign(200000, 0.0); });  // 3 MB
+  k.push_back([](Req& r) {
+    r.q.assign(kNq, kNaN);
+    r.qd.assign(kNq, 0.0);
+  });
+  k.push_back([](Req& r) {
+    r.q.assign(kNq, 0.0);
+    r.qd.assign(kNq, kInf);
+  });
+  k.push_back([](Req& r) {
+    r.q.assign(kNq - 1, 0.0);
+    r.qd.assign(kNq - 1, 0.0);
+  });
+  k.push_back([](Req& r) {
+    r.q.assign(200000, 0.0);
+    r.qd.assign(200000, 0.0);
+  });                                                 // 3 MB
   k.push_back([](Req& r) { r.q.assign(kNq, 0.0); });  // qd missing
   k.push_back([](Req& r) { r.foothold.x = kNaN; });
   k.push_back([](Req& r) { r.foothold.y = -kInf; });
@@ -107,8 +118,10 @@ void hammer(const char* service, Tally& t, std::function<void(typename Srv::Requ
         ADD_FAILURE() << service << " stopped serving at kind " << i;
         return;
       }
-      if (!srv.response.success && !srv.response.message.empty()) ++t.answered;
-      else ADD_FAILURE() << service << " kind " << i << " accepted: " << srv.response.message;
+      if (!srv.response.success && !srv.response.message.empty())
+        ++t.answered;
+      else
+        ADD_FAILURE() << service << " kind " << i << " accepted: " << srv.response.message;
     }
     Srv srv;  // a service-specific over-limit request
     srv.request.header.frame_id = "world";
@@ -132,9 +145,8 @@ TEST(BadRequests, NodesRejectEverythingAndStayFlat) {
   hammer<reach_trajopt::CheckReachability>("check_reachability", t, [](auto& r) {
     r.forward_samples = 1000000000u;  // 1e9 samples: rejected before any sample is drawn
   });
-  hammer<reach_trajopt::PlanTransition>("plan_transition", t, [](auto& r) {
-    r.swing_duration = 1e9;
-  });
+  hammer<reach_trajopt::PlanTransition>("plan_transition", t,
+                                        [](auto& r) { r.swing_duration = 1e9; });
   const double rss0 = rssMiB(pid_reach) + rssMiB(pid_ocp);
   t = Tally();
   const auto t0 = std::chrono::steady_clock::now();
@@ -159,9 +171,10 @@ TEST(BadRequests, NodesRejectEverythingAndStayFlat) {
   ok.request.forward_samples = 200;
   const bool alive = ros::service::call("check_reachability", ok) && ok.response.success &&
                      rssMiB(pid_reach) > 0 && rssMiB(pid_ocp) > 0;
-  std::printf("BENCH ros.bad_requests calls=%d answered=%d node_alive=%d rss_growth_mib=%.1f "
-              "seconds=%.1f\n",
-              t.calls, t.answered, alive ? 1 : 0, rss1 - rss0, seconds);
+  std::printf(
+      "BENCH ros.bad_requests calls=%d answered=%d node_alive=%d rss_growth_mib=%.1f "
+      "seconds=%.1f\n",
+      t.calls, t.answered, alive ? 1 : 0, rss1 - rss0, seconds);
   std::fflush(stdout);
   EXPECT_EQ(t.answered, t.calls);
   EXPECT_TRUE(alive) << ok.response.message;

@@ -3,11 +3,11 @@
 // and the URDF validation (loops, roots, axes, masses, inertias, numbers). Each bad input must
 // throw a ReachError whose message names the key, option, link or joint.
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <fstream>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
@@ -35,9 +35,9 @@ std::string errorOf(F&& f) {
   return "";
 }
 
-#define EXPECT_ERROR_NAMES(expr, word)                                          \
-  do {                                                                          \
-    const std::string msg_ = errorOf([&] { (void)(expr); });                    \
+#define EXPECT_ERROR_NAMES(expr, word)                                                    \
+  do {                                                                                    \
+    const std::string msg_ = errorOf([&] { (void)(expr); });                              \
     EXPECT_NE(msg_.find(word), std::string::npos) << "'" << word << "' not in: " << msg_; \
   } while (0)
 
@@ -98,10 +98,11 @@ TEST(RequestReaders, QpProblemSizes) {
   EXPECT_ERROR_NAMES(
       qp::readQpProblem(JsonReader(J(R"({"G": [[1]], "g": [1], "Aeq": [[1]]})"), "t")),
       "beq: missing key");
-  EXPECT_ERROR_NAMES(qp::readQpProblem(JsonReader(
-                         J(R"({"G": [[1]], "g": [1], "Ain": [[1]], "bin": [0],
-                               "warm_start": [3]})"), "t")),
-                     "warm_start");
+  EXPECT_ERROR_NAMES(
+      qp::readQpProblem(JsonReader(J(R"({"G": [[1]], "g": [1], "Ain": [[1]], "bin": [0],
+                               "warm_start": [3]})"),
+                                   "t")),
+      "warm_start");
   const auto p = qp::readQpProblem(
       JsonReader(J(R"({"G": [[2]], "g": [1], "bin": [], "options": {"max_iterations": 5}})"), "t"));
   EXPECT_EQ(p.config.max_iterations, 5);
@@ -138,8 +139,8 @@ TEST(RequestReaders, TransitionRequest) {
   auto read = [&](const std::string& horizon, const std::string& rest) {
     return readTransitionRequest(
         JsonReader(J(R"({"stance": "left", "stance_pose": {"position": [0, 0.1, 0]},
-                         "swing_target": {"position": [0.2, -0.1, 0]}, "q0": )" + q +
-                     R"(, "horizon": )" + horizon + rest + "}"),
+                         "swing_target": {"position": [0.2, -0.1, 0]}, "q0": )" +
+                     q + R"(, "horizon": )" + horizon + rest + "}"),
                    "p.json"),
         18);
   };

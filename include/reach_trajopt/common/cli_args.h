@@ -10,8 +10,8 @@ namespace reach_trajopt {
 
 /// The value of `option` as a finite number in [lo, hi]. With `allow_nonfinite`, "nan" and
 /// "inf" are returned as such (for a caller whose own validation names them).
-double parseDoubleOption(const std::string& option, const std::string& text,
-                         double lo = -1e300, double hi = 1e300, bool allow_nonfinite = false);
+double parseDoubleOption(const std::string& option, const std::string& text, double lo = -1e300,
+                         double hi = 1e300, bool allow_nonfinite = false);
 /// The value of `option` as an integer in [lo, hi] (decimal digits, optional sign).
 long long parseIntOption(const std::string& option, const std::string& text, long long lo,
                          long long hi);

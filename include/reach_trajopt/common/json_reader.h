@@ -8,11 +8,10 @@
 /// Objects are read with requireOnlyKeys() first, so an unknown (misspelled) key is an error
 /// instead of a silently used default.
 
-#include <string>
-#include <vector>
-
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/common/error.h"
 

@@ -5,9 +5,8 @@
 /// numbers, exact sizes; errors name the file and key path ("s.json: states[2].qd: expected 18
 /// numbers, got 17").
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "reach_trajopt/common/json_reader.h"
 

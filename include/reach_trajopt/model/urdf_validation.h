@@ -9,7 +9,8 @@
 ///     calibration, safety_controller) parses completely and is finite;
 ///   - link and joint names are unique, every joint names existing parent and child links;
 ///   - the links form one tree: no link is the child of two joints, no loop, exactly one root;
-///   - at most kMaxUrdfBytes of text and kMaxUrdfLinks links (bounds the recursion depth of kdl_parser and of our loader).
+///   - at most kMaxUrdfBytes of text and kMaxUrdfLinks links (bounds the recursion depth of
+///     kdl_parser and of our loader).
 /// validateUrdf (on urdfdom's model):
 ///   - the axis of a revolute, continuous or prismatic joint is finite and non-zero (a non-unit
 ///     axis is legal: it is normalized, as urdfdom and Pinocchio do);
@@ -24,19 +25,19 @@
 ///     and gross violations (diag(1, 1, 3) kg m^2 at 1 kg: 0.7 m) are rejected.
 /// Every check throws ReachError "<what> in link|joint '<name>' of <source>".
 
+#include <urdf_model/model.h>
+
 #include <cstddef>
 #include <string>
-
-#include <urdf_model/model.h>
 
 namespace reach_trajopt {
 
 constexpr int kMaxUrdfLinks = 10000;
-constexpr std::size_t kMaxUrdfBytes = 64u << 20;  ///< larger URDF texts are rejected
-constexpr double kInertiaAbsTolerance = 1e-6;   ///< [kg m^2]
-constexpr double kInertiaRelTolerance = 1e-3;   ///< of the largest principal moment
+constexpr std::size_t kMaxUrdfBytes = 64u << 20;       ///< larger URDF texts are rejected
+constexpr double kInertiaAbsTolerance = 1e-6;          ///< [kg m^2]
+constexpr double kInertiaRelTolerance = 1e-3;          ///< of the largest principal moment
 constexpr double kInertiaTriangleAbsTolerance = 1e-5;  ///< [kg m^2] (dummy links of 1e-6 kg)
-constexpr double kInertiaTriangleLength = 0.12;  ///< [m]
+constexpr double kInertiaTriangleLength = 0.12;        ///< [m]
 
 /// Checks the URDF text (numbers, names, tree structure) before it is parsed by urdfdom.
 void validateUrdfXml(const std::string& xml, const std::string& source);

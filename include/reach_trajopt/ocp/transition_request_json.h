@@ -8,14 +8,14 @@
 
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/contact/contact_mode.h"
-#include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/ocp/transition_request.h"
+#include "reach_trajopt/planner/kinematic_feasibility.h"
 
 namespace reach_trajopt {
 
 /// Upper bounds of a request (docs/limits.md): a swing lasts well under a second; the OCP's
 /// cost and output grow with the horizon (output_dt samples) and the slices.
-constexpr std::size_t kMaxRequestSlices = 10000;   ///< reachable-set slices per request
+constexpr std::size_t kMaxRequestSlices = 10000;  ///< reachable-set slices per request
 constexpr std::size_t kMaxSliceRows = 1000;       ///< half-spaces per slice
 constexpr std::size_t kMaxSeedSamples = 100000;   ///< seed path samples
 

@@ -7,9 +7,8 @@
 /// "-inf" or null (the solver reports non-finite data as invalid_input; infinite bounds are
 /// legal), everything else is an error naming the key path.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"

@@ -5,9 +5,8 @@
 /// exactly n_q (or 3) finite numbers, the "config" overrides through ReachConfig's strict YAML
 /// reader. Reading builds nothing (no IK): the tool turns the request into a ReachProblem.
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/contact/contact_mode.h"
@@ -25,10 +24,10 @@ struct ReachCheckRequest {
   Eigen::Vector3d swing_position = Eigen::Vector3d::Zero();  ///< [m] (when !has_x0)
   Eigen::Vector3d swing_velocity = Eigen::Vector3d::Zero();  ///< [m/s]
   double swing_yaw = 0.0;                                    ///< [rad]
-  Eigen::VectorXd q_init;      ///< IK start (size n_q), empty: the IK's own guess
-  bool has_xf = false;         ///< xf given, else x_f comes from the kinematic check
-  Eigen::VectorXd qf, qdf;     ///< x_f, size n_q each
-  ReachConfig config;          ///< the base config with the request's "config" overrides
+  Eigen::VectorXd q_init;   ///< IK start (size n_q), empty: the IK's own guess
+  bool has_xf = false;      ///< xf given, else x_f comes from the kinematic check
+  Eigen::VectorXd qf, qdf;  ///< x_f, size n_q each
+  ReachConfig config;       ///< the base config with the request's "config" overrides
 };
 
 /// Reads a foothold {"position": [x, y, z], "yaw": rad} (yaw optional, 0).
