@@ -44,17 +44,26 @@ class ReachabilityNode {
               req.foothold, req.swing_duration, s_.reach.horizon, s_.standing_q, s_.limits);
           // The window stays at the same fractions of the horizon (a no-op for duration 0).
           ReachConfig config = rb::reachConfigForDuration(s_.reach, r.duration);
+          if (req.forward_samples > static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
+            throw ReachError("forward_samples " + std::to_string(req.forward_samples) +
+                             " is over the limit of " +
+                             std::to_string(ReachLimits::kMaxInitialSamples));
+          if (req.backward_samples > 0 && req.backward_samples != req.forward_samples)
+            throw ReachError("backward_samples: both directions draw initial_samples; set "
+                             "forward_samples only (or equal)");
           if (req.forward_samples > 0)
             config.initial_samples = static_cast<int>(req.forward_samples);
           if (req.seed > 0) config.seed = req.seed;
           config.validate();
+          config.requireResourcesWithinLimits(s_.model->nq());  // reject before the IK runs
           const KinematicFeasibilityResult ik =
-              s_.feasibility->check(r.stance, r.stance_contact, r.target, r.q);
+              s_.planner->kinematics().check(r.stance, r.stance_contact, r.target, r.q);
           const std::string& swing_frame = rb::swingFrame(s_.contact, r.stance);
           if (!ik.feasible) {
             res.result = rb::infeasibleFootholdMsg(ik.reason, swing_frame, r.target.position, t0);
           } else {
-            const ReachResult result = s_.analyzer->check(rb::toReachProblem(r, ik), config);
+            const ReachResult result =
+                s_.planner->analyzer().check(rb::toReachProblem(r, ik), config);
             res.result = rb::toReachabilityResultMsg(result, r, swing_frame, config.delta, t0,
                                                      req.return_samples);
           }

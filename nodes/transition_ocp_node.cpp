@@ -34,11 +34,7 @@ class TransitionOcpNode {
  public:
   TransitionOcpNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
       : s_(rb::FootholdServiceSetup::load(nh, pnh)), default_horizon_(s_.reach.horizon) {
-    const TransitionOcpConfig ocp_config =
-        s_.file.has("ocp") ? TransitionOcpConfig::fromYaml(s_.file.section("ocp"))
-                           : TransitionOcpConfig{};
     pnh.getParam("default_horizon", default_horizon_);
-    ocp_ = std::make_unique<TransitionOcp>(s_.model, ocp_config, s_.contact);
     traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 10);
     reach_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 10);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("transition_markers", 10);
@@ -56,38 +52,29 @@ class TransitionOcpNode {
           const rb::FootholdRequest r = rb::parseFootholdRequest(
               *s_.model, s_.contact, req.header.frame_id, req.contact_mode, req.q, req.qd,
               req.foothold, req.swing_duration, default_horizon_, s_.standing_q, s_.limits);
-          const KinematicFeasibilityResult ik =
-              s_.feasibility->check(r.stance, r.stance_contact, r.target, r.q);
-          TransitionRequest ocp;
-          ocp.stance = r.stance;
-          ocp.stance_pose = r.stance_contact.pose();
-          ocp.swing_target = r.target.pose();
-          ocp.horizon = r.duration;
-          ocp.q0 = r.q;
-          ocp.qd0 = r.qd;
-          ocp.qf = ik.q_f;
-          ocp.qdf = ik.qd_f;
-          ocp.relaxation = req.allow_relaxation ? RelaxationMode::kAuto : RelaxationMode::kStrict;
-          if (!ik.feasible) {
-            if (!req.allow_relaxation)
-              throw ReachError("kinematically infeasible foothold (" + ik.reason +
-                               ") and allow_relaxation is false");
-            ocp.relaxation = RelaxationMode::kRelaxed;  // land as close as the OCP can
-          }
-          if (req.check_reachability && ik.feasible) {
-            const ReachConfig config = rb::reachConfigForDuration(s_.reach, r.duration);
-            const ReachResult check = s_.analyzer->check(rb::toReachProblem(r, ik), config);
+          FootstepPlanRequest step_request;
+          step_request.stance = r.stance;
+          step_request.stance_pose = r.stance_contact.pose();
+          step_request.target = r.target.position;
+          step_request.target_yaw = r.target.yaw;
+          step_request.q = r.q;
+          step_request.qd = r.qd;
+          step_request.make_contact_consistent = false;  // x_0 as requested
+          step_request.check_reachability = req.check_reachability;
+          step_request.reach = rb::reachConfigForDuration(s_.reach, r.duration);
+          step_request.horizon = r.duration;
+          step_request.ocp_policy = req.allow_relaxation ? OcpPolicy::kAuto : OcpPolicy::kStrict;
+          step_request.on_infeasible = req.allow_relaxation
+                                           ? InfeasibleFootholdPolicy::kRelaxTowardTarget
+                                           : InfeasibleFootholdPolicy::kReject;
+          const FootstepTransition step = s_.planner->plan(step_request);
+          if (req.check_reachability && step.kinematically_feasible) {
             res.reachability = rb::toReachabilityResultMsg(
-                check, r, rb::swingFrame(s_.contact, r.stance), config.delta, t0, false);
+                step.check.reach, r, rb::swingFrame(s_.contact, r.stance),
+                step_request.reach->delta, t0, false);
             reach_pub_.publish(res.reachability);
-            if (check.witness.valid) {  // seed the OCP with the witness path x_0 -> x_f
-              ocp.seed.time = Eigen::Map<const Eigen::VectorXd>(
-                  check.witness.time.data(),
-                  static_cast<Eigen::Index>(check.witness.time.size()));
-              ocp.seed.q = check.witness.q;
-            }
           }
-          const TransitionResult result = ocp_->solve(ocp);
+          const TransitionResult& result = step.trajectory;
           res.trajectory = rb::toTransitionTrajectoryMsg(
               result, *s_.model, {s_.contact.left_sole_frame, s_.contact.right_sole_frame}, t0);
           res.success = true;
@@ -108,7 +95,6 @@ class TransitionOcpNode {
 
   const rb::FootholdServiceSetup s_;
   double default_horizon_;
-  std::unique_ptr<TransitionOcp> ocp_;
   ros::Publisher traj_pub_, reach_pub_, marker_pub_;
   ros::ServiceServer server_;
 };

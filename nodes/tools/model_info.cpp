@@ -24,6 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "reach_trajopt/common/json_reader.h"
+#include "reach_trajopt/common/state_json.h"
 #include "reach_trajopt/model/robot_model.h"
 
 using reach_trajopt::ReachError;
@@ -66,20 +68,6 @@ const char* jointType(const reach_trajopt::JointInfo& j) {
   if (j.is_virtual) return "virtual";
   if (j.is_prismatic) return "prismatic";
   return j.is_continuous ? "continuous" : "revolute";
-}
-
-Eigen::VectorXd vectorFromJson(const Json& j, const std::string& what) {
-  if (!j.is_array()) throw ReachError("state file: '" + what + "' must be a list of numbers");
-  Eigen::VectorXd v(j.size());
-  for (size_t i = 0; i < j.size(); ++i) {
-    if (j[i].is_number())
-      v[i] = j[i].get<double>();
-    else if (j[i].is_string() && (j[i] == "nan" || j[i] == "NaN"))
-      v[i] = std::numeric_limits<double>::quiet_NaN();
-    else
-      throw ReachError("state file: '" + what + "' entry " + std::to_string(i) + " is not a number");
-  }
-  return v;
 }
 
 void printSummaryJson(const RobotModel& model) {
@@ -139,12 +127,10 @@ void printSummary(const RobotModel& model) {
   }
 }
 
-Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws, const Json& state,
-              const std::vector<std::string>& frames) {
-  if (!state.is_object() || !state.contains("q") || !state.contains("qd"))
-    throw ReachError("state file: each state needs 'q' and 'qd'");
-  const Eigen::VectorXd q = vectorFromJson(state["q"], "q");
-  const Eigen::VectorXd qd = vectorFromJson(state["qd"], "qd");
+Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws,
+              const reach_trajopt::JointSpaceState& state, const std::vector<std::string>& frames) {
+  const Eigen::VectorXd& q = state.q;
+  const Eigen::VectorXd& qd = state.qd;
   model.update(ws, q, qd);
   const int n = model.nq();
   Eigen::MatrixXd M(n, n);
@@ -215,14 +201,9 @@ int main(int argc, char** argv) {
         printSummary(*model);
       return 0;
     }
-    std::ifstream in(state_file);
-    if (!in) throw ReachError("cannot open state file '" + state_file + "'");
-    Json input;
-    try {
-      input = Json::parse(in);
-    } catch (const Json::exception& e) {
-      throw ReachError("state file '" + state_file + "' is not valid JSON: " + e.what());
-    }
+    const Json input = reach_trajopt::JsonReader::parseFile(state_file);
+    const auto states =
+        reach_trajopt::readStates(reach_trajopt::JsonReader(input, state_file), model->nq());
     const std::vector<std::string> frames = split(frames_arg, ',');
     for (const auto& f : frames) model->frameId(f);  // unknown frames fail before any output
     Json out;
@@ -236,14 +217,13 @@ int main(int argc, char** argv) {
     out["q_max"] = vectorToJson(model->positionUpperLimits());
     reach_trajopt::Workspace ws(*model);
     Json results = Json::array();
-    if (input.is_object() && input.contains("states")) {
-      for (const auto& s : input["states"]) results.push_back(evaluate(*model, ws, s, frames));
-    } else {
-      results.push_back(evaluate(*model, ws, input, frames));
-    }
+    for (const auto& s : states) results.push_back(evaluate(*model, ws, s, frames));
     out["results"] = results;
     std::cout << out.dump() << "\n";
   } catch (const ReachError& e) {
+    std::cerr << "model_info: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {  // e.g. a name that is not UTF-8 in the JSON output
     std::cerr << "model_info: " << e.what() << "\n";
     return 2;
   }

@@ -15,6 +15,8 @@
 ///   sample; lambda = [left f, tau; right f, tau] world), "violation": {family: value},
 ///   "cost", "iterations", "solves", "variables", "constraints", "solve_time"}.
 /// --stride k keeps every k-th sample (and the last) in the output arrays.
+/// Read by readTransitionRequest (transition_request_json.h): unknown keys, wrong sizes, a horizon
+/// over its bound and an IK-infeasible target without "qf" are errors naming the key.
 /// Bad input (unreadable JSON, wrong sizes, NaN, x_0 off its contact, ...): {"status": "error",
 /// "reason": ...} on stdout and exit status 2. A failed solve is exit status 1.
 
@@ -27,40 +29,21 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
+#include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 
 using reach_trajopt::ReachError;
 using json = nlohmann::json;
 
 namespace {
-
-Eigen::VectorXd vec(const json& j, const std::string& key) {
-  if (!j.is_array()) throw ReachError("request: '" + key + "' must be an array of numbers");
-  Eigen::VectorXd v(j.size());
-  for (size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_number()) throw ReachError("request: '" + key + "' must hold numbers");
-    v[i] = j[i].get<double>();
-  }
-  return v;
-}
-
-reach_trajopt::FlatContact contact(const json& j, const std::string& key) {
-  if (!j.is_object() || !j.contains("position")) {
-    throw ReachError("request: '" + key + "' needs {\"position\": [x, y, z], \"yaw\": rad}");
-  }
-  reach_trajopt::FlatContact c;
-  const Eigen::VectorXd p = vec(j["position"], key + ".position");
-  reach_trajopt::requireSize(("request: " + key + ".position").c_str(), p.size(), 3);
-  c.position = p;
-  c.yaw = j.value("yaw", 0.0);
-  return c;
-}
 
 /// Sample indices 0, k, 2k, ... and always the last one.
 std::vector<Eigen::Index> strided(Eigen::Index n, int stride) {
@@ -96,8 +79,7 @@ int main(int argc, char** argv) {
       } else if (a == "--config") {
         config = next();
       } else if (a == "--stride") {
-        stride = std::stoi(next());
-        if (stride < 1) throw ReachError("--stride must be >= 1");
+        stride = static_cast<int>(parseIntOption("--stride", next(), 1, 1000000));
       } else if (a == "-h" || a == "--help") {
         std::cout << "usage: plan_transition [request.json | -] [--urdf path] [--config path] "
                      "[--stride k]\n";
@@ -106,18 +88,7 @@ int main(int argc, char** argv) {
         input = a;
       }
     }
-    json req;
-    try {
-      if (input == "-") {
-        req = json::parse(std::cin);
-      } else {
-        std::ifstream f(input);
-        if (!f) throw ReachError("cannot open request file '" + input + "'");
-        req = json::parse(f);
-      }
-    } catch (const json::exception& e) {
-      throw ReachError(std::string("request is not valid JSON: ") + e.what());
-    }
+    const json doc = JsonReader::parseFile(input);
 
     const auto model = RobotModel::fromUrdfFile(urdf);
     ContactConfig contact_cfg;
@@ -132,66 +103,17 @@ int main(int argc, char** argv) {
       }
     }
 
-    TransitionRequest r;
-    try {
-      const std::string stance = req.at("stance").get<std::string>();
-      if (stance != "left" && stance != "right") {
-        throw ReachError("request: stance must be \"left\" or \"right\", got '" + stance + "'");
-      }
-      r.stance = stance == "left" ? Side::kLeft : Side::kRight;
-      const FlatContact stance_c = contact(req.at("stance_pose"), "stance_pose");
-      const FlatContact target_c = contact(req.at("swing_target"), "swing_target");
-      r.stance_pose = stance_c.pose();
-      r.swing_target = target_c.pose();
-      r.horizon = req.at("horizon").get<double>();
-      r.q0 = vec(req.at("q0"), "q0");
-      r.qd0 = req.contains("qd0") ? vec(req["qd0"], "qd0") : Eigen::VectorXd::Zero(model->nq());
-      if (req.contains("qf")) {
-        r.qf = vec(req["qf"], "qf");
-        r.qdf = req.contains("qdf") ? vec(req["qdf"], "qdf") : Eigen::VectorXd::Zero(model->nq());
-      } else {
-        const KinematicFeasibility kf(model, kf_cfg, contact_cfg);
-        const auto ik = kf.check(r.stance, stance_c, target_c);
-        r.qf = ik.q_f;
-        r.qdf = ik.qd_f;
-      }
-      const std::string mode = req.value("relaxation", std::string("auto"));
-      if (mode == "auto") {
-        r.relaxation = RelaxationMode::kAuto;
-      } else if (mode == "strict") {
-        r.relaxation = RelaxationMode::kStrict;
-      } else if (mode == "relaxed") {
-        r.relaxation = RelaxationMode::kRelaxed;
-      } else {
-        throw ReachError("request: relaxation must be auto, strict or relaxed, got '" + mode +
-                         "'");
-      }
-      for (const json& s : req.value("slices", json::array())) {
-        ReachableSlice slice;
-        slice.time = s.at("time").get<double>();
-        const json& A = s.at("A");
-        slice.A.resize(A.size(), 2);
-        for (size_t k = 0; k < A.size(); ++k) {
-          const Eigen::VectorXd row = vec(A[k], "slices.A");
-          requireSize("request: slices.A row", row.size(), 2);
-          slice.A.row(k) = row.transpose();
-        }
-        slice.b = vec(s.at("b"), "slices.b");
-        r.slices.push_back(slice);
-      }
-      if (req.contains("seed")) {
-        const json& s = req["seed"];
-        r.seed.time = vec(s.at("time"), "seed.time");
-        const json& q = s.at("q");
-        r.seed.q.resize(model->nq(), q.size());
-        for (size_t k = 0; k < q.size(); ++k) {
-          const Eigen::VectorXd col = vec(q[k], "seed.q");
-          requireSize("request: seed.q row", col.size(), model->nq());
-          r.seed.q.col(k) = col;
-        }
-      }
-    } catch (const json::exception& e) {
-      throw ReachError(std::string("request: ") + e.what());
+    TransitionRequestJson in = readTransitionRequest(JsonReader(doc, input), model->nq());
+    TransitionRequest& r = in.request;
+    if (!in.has_qf) {
+      const KinematicFeasibility kf(model, kf_cfg, contact_cfg);
+      const auto ik = kf.check(r.stance, in.stance, in.target);
+      // Planning to a foothold the IK rejected (e.g. inside the stance sole) would "succeed"
+      // with a relaxed landing elsewhere: refuse it, as the services do.
+      if (!ik.feasible)
+        throw ReachError("swing_target: kinematically infeasible foothold: " + ik.reason);
+      r.qf = ik.q_f;
+      r.qdf = ik.qd_f;
     }
 
     const TransitionOcp ocp(model, ocp_cfg, contact_cfg);
@@ -236,7 +158,8 @@ int main(int argc, char** argv) {
     return res.status == OcpStatus::kFailed ? 1 : 0;
   } catch (const std::exception& e) {
     json out = {{"status", "error"}, {"reason", e.what()}};
-    std::cout << out.dump() << "\n";
+    // A message may quote bytes of the input that are not UTF-8: replace them, never throw.
+    std::cout << out.dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
     return 2;
   }
 }

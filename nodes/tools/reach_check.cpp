@@ -21,6 +21,8 @@
 ///   "window": [per slice of [t_2, t_1]: t, hausdorff, closest, resolution, overlap, ...],
 ///   "witness": {time, output, q, qd, junction, gaps, violation}, "slices": {"forward",
 ///   "backward": [t, count, boundary outputs]} (+ every sample's output with --samples)}.
+/// Unknown keys, wrong sizes and non-finite numbers are errors naming the key path
+/// (reach_request_json.h); --threads is 0..hardware threads; the limits of docs/limits.md apply.
 /// Exit status: 0 when the check ran (reachable or not), 2 on bad input (message on stderr).
 
 #include <cmath>
@@ -31,15 +33,21 @@
 
 #include <nlohmann/json.hpp>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
+#include "reach_trajopt/reach/reach_request_json.h"
 #include "reach_trajopt/reach/swing_state.h"
 
 using namespace reach_trajopt;
 using nlohmann::json;
 
 namespace {
+
+/// Upper bound on the samples --samples prints (output size, docs/limits.md): about 0.5 GB.
+constexpr double kMaxPrintedSamples = 1.0e6;
 
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
@@ -55,37 +63,17 @@ json columns(const Eigen::Ref<const Eigen::MatrixXd>& M) {
   return a;
 }
 
-Eigen::VectorXd readVector(const json& j, const std::string& where) {
-  if (!j.is_array()) throw ReachError("request: " + where + " must be a list of numbers");
-  Eigen::VectorXd v(j.size());
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_number()) throw ReachError("request: " + where + " must hold numbers only");
-    v[i] = j[i].get<double>();
-  }
-  return v;
-}
-
-FlatContact readFoothold(const json& j, const std::string& where) {
-  if (!j.is_object() || !j.contains("position"))
-    throw ReachError("request: " + where + " needs {\"position\": [x, y, z], \"yaw\": ...}");
-  FlatContact c;
-  const Eigen::VectorXd p = readVector(j["position"], where + ".position");
-  requireSize(("request: " + where + ".position").c_str(), p.size(), 3);
-  c.position = p;
-  c.yaw = j.value("yaw", 0.0);
-  return c;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string paths[3];
-  int n_paths = 0, threads = -1;
+  int n_paths = 0;
+  std::string threads_arg;
   bool samples = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--threads" && i + 1 < argc) {
-      threads = std::atoi(argv[++i]);
+      threads_arg = argv[++i];
     } else if (a == "--samples") {
       samples = true;
     } else if (n_paths < 3) {
@@ -109,60 +97,50 @@ int main(int argc, char** argv) {
     KinematicFeasibilityConfig kf_config;
     if (yaml.has("kinematic_feasibility"))
       kf_config = KinematicFeasibilityConfig::fromYaml(yaml.section("kinematic_feasibility"));
-    std::ifstream in(paths[2]);
-    if (!in) throw ReachError("cannot open request " + paths[2]);
-    json req;
-    try {
-      req = json::parse(in);
-    } catch (const json::exception& e) {
-      throw ReachError("request " + paths[2] + " is not valid JSON: " + e.what());
+    const json doc = JsonReader::parseFile(paths[2]);
+    const ReachCheckRequest req =
+        readReachCheckRequest(JsonReader(doc, paths[2]), model->nq(), config);
+    config = req.config;
+    if (!threads_arg.empty()) config.threads = parseThreadsOption("--threads", threads_arg);
+    config.validate();
+    config.requireResourcesWithinLimits(model->nq());  // before the IK and any sample
+    if (samples && config.estimatedQps() > kMaxPrintedSamples) {
+      std::ostringstream os;
+      os << "--samples: the check would print about " << config.estimatedQps()
+         << " samples, over the limit of " << kMaxPrintedSamples
+         << " (docs/limits.md): lower initial_samples or max_boundary";
+      throw ReachError(os.str());
     }
-    if (req.contains("config"))  // JSON is YAML: reuse the strict reader
-      config = ReachConfig::fromYaml(
-          YamlSection::loadString(req["config"].dump(), paths[2] + ": config"), config);
-    if (threads >= 0) config.threads = threads;
-    const std::string mode_name = req.value("mode", std::string("SS-L"));
-    const bool contacts = mode_name != "none";
+    const bool contacts = req.mode != "none";
     const ContactMode mode =
-        contacts ? ContactMode::fromName(mode_name) : ContactMode{false, false};
-    if (contacts && !mode.isSingleSupport())
-      throw ReachError("request: mode must be SS-L, SS-R or none, got " + mode_name);
+        contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};
 
     ReachProblem p;
     p.mode = mode;
-    FlatContact stance, target;
+    const FlatContact& stance = req.stance;
+    const FlatContact& target = req.target;
     if (contacts) {
-      stance = readFoothold(req.value("stance", json()), "stance");
-      target = readFoothold(req.value("target", json()), "target");
       p.footholds[mode.stance() == Side::kLeft ? 0 : 1] = stance.pose();
       p.target = target.pose();
     }
-    if (req.contains("x0")) {
-      p.q0 = readVector(req["x0"].value("q", json()), "x0.q");
-      p.qd0 = readVector(req["x0"].value("qd", json()), "x0.qd");
-    } else if (req.contains("swing") && contacts) {
-      const json& s = req["swing"];
-      Eigen::VectorXd q_init;
-      if (s.contains("q_init")) q_init = readVector(s["q_init"], "swing.q_init");
-      const RobotState x0 = swingState(model, kf_config, contact, mode.stance(), stance,
-                                       readVector(s.value("position", json()), "swing.position"),
-                                       s.value("yaw", 0.0),
-                                       readVector(s.value("velocity", json()), "swing.velocity"),
-                                       q_init);
+    if (req.has_x0) {
+      p.q0 = req.q0;
+      p.qd0 = req.qd0;
+    } else {
+      const RobotState x0 =
+          swingState(model, kf_config, contact, mode.stance(), stance, req.swing_position,
+                     req.swing_yaw, req.swing_velocity, req.q_init);
       p.q0 = x0.q;
       p.qd0 = x0.qd;
-    } else {
-      throw ReachError("request: needs \"x0\" (or \"swing\" with a contact mode)");
     }
     json out;
     const auto analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, config);
     ReachResult r;
-    if (req.contains("xf")) {
-      p.qf = readVector(req["xf"].value("q", json()), "xf.q");
-      p.qdf = readVector(req["xf"].value("qd", json()), "xf.qd");
+    if (req.has_xf) {
+      p.qf = req.qf;
+      p.qdf = req.qdf;
       r = analyzer->check(p);
     } else {
-      if (!contacts) throw ReachError("request: mode none needs \"xf\"");
       FootstepRequest fr;
       fr.stance = mode.stance();
       fr.stance_foothold = stance;

@@ -5,6 +5,7 @@
 ///                   [--forward-speed v] [--records FILE.csv]
 ///
 /// Prints one line per step and ends with `WALK mode=<m> steps=<n> fell=<yes|no> ...`.
+/// Option values are parsed strictly (cli_args.h): "--steps 5x" is an error naming --steps.
 /// Exit status: 0 ran (fallen or not), 2 bad input.
 
 #include <cstdio>
@@ -12,10 +13,14 @@
 #include <iostream>
 #include <string>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
 using namespace reach_trajopt;
+
+/// Upper bound of --steps (docs/limits.md): each proposed step costs seconds of checks.
+constexpr long long kMaxWalkSteps = 1000;
 
 int main(int argc, char** argv) {
   std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", records_path;
@@ -49,14 +54,16 @@ int main(int argc, char** argv) {
     const WbcConfig wbc = file.has("wbc") ? WbcConfig::fromYaml(file.section("wbc")) : WbcConfig{};
     const SimConfig sim = file.has("sim") ? SimConfig::fromYaml(file.section("sim")) : SimConfig{};
     if (!mode.empty()) walk.mode = WalkConfig::parseMode(mode);
-    if (!steps.empty()) walk.steps = std::stoi(steps);
-    if (!seed.empty()) walk.seed = static_cast<unsigned>(std::stoul(seed));
-    if (!speed.empty()) walk.forward_speed = std::stod(speed);
+    if (!steps.empty())
+      walk.steps = static_cast<int>(parseIntOption("--steps", steps, 0, kMaxWalkSteps));
+    if (!seed.empty())
+      walk.seed = static_cast<unsigned>(parseIntOption("--seed", seed, 0, 4294967295LL));
+    if (!speed.empty()) walk.forward_speed = parseDoubleOption("--forward-speed", speed);
     if (!push.empty()) {
       const auto comma = push.find(',');
-      if (comma == std::string::npos) throw ReachError("--push expects vx,vy [m/s]");
-      walk.initial_com_velocity = Eigen::Vector2d(std::stod(push.substr(0, comma)),
-                                                  std::stod(push.substr(comma + 1)));
+      if (comma == std::string::npos) throw ReachError("--push: expected vx,vy [m/s], got '" + push + "'");
+      walk.initial_com_velocity = Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
+                                                  parseDoubleOption("--push", push.substr(comma + 1)));
     }
     walk.validate();
     const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);

@@ -5,6 +5,7 @@
 /// C blkdiag(R^T, R^T)} with R = Rz(y) Ry(p) Rx(r) the sole's orientation in the world.
 /// Exit status 2 with the message on stderr for bad arguments (e.g. mu <= 0).
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -12,18 +13,15 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 
 namespace {
 
 double parseNumber(const std::string& flag, const char* text) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (end == text || *end != '\0') {
-    throw reach_trajopt::ReachError(flag + ": expected a number, got '" + text + "'");
-  }
-  return v;
+  // NaN / inf pass: ContactWrenchCone and --rpy's check name them ("must be positive and finite").
+  return reach_trajopt::parseDoubleOption(flag, text, -HUGE_VAL, HUGE_VAL, true);
 }
 
 template <typename M>
@@ -84,6 +82,9 @@ int main(int argc, char** argv) {
     std::cout << out.dump() << "\n";
     return 0;
   } catch (const reach_trajopt::ReachError& e) {
+    std::cerr << "wrench_cone: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
     std::cerr << "wrench_cone: " << e.what() << "\n";
     return 2;
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -23,7 +24,45 @@ std::string describe(const YAML::Node& n) {
   return "null";
 }
 
+/// Throws naming `source`, the key path and the line of the first mapping key that appears
+/// twice: yaml-cpp keeps both entries and lookups silently take one of them.
+void rejectDuplicateKeys(const YAML::Node& n, const std::string& source, const std::string& path) {
+  if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+      rejectDuplicateKeys(n[i], source, path + "[" + std::to_string(i) + "]");
+    return;
+  }
+  if (!n.IsMap()) return;
+  std::set<std::string> seen;
+  for (const auto& kv : n) {
+    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("<non-scalar key>");
+    const std::string where = path.empty() ? key : path + "." + key;
+    if (!kv.first.IsScalar())
+      throw ConfigError(source + ": " + where + ": mapping keys must be plain scalars");
+    if (!seen.insert(key).second) {
+      std::ostringstream os;
+      os << source << ": " << where << ": duplicate key (line " << kv.first.Mark().line + 1
+         << ")";
+      throw ConfigError(os.str());
+    }
+    rejectDuplicateKeys(kv.second, source, where);
+  }
+}
+
+YAML::Node checkedRoot(const YAML::Node& root, const std::string& source) {
+  if (!root.IsMap()) throw ConfigError("YAML " + source + ": top level is not a mapping");
+  rejectDuplicateKeys(root, source, "");
+  return root;
+}
+
 }  // namespace
+
+const std::vector<std::string>& configSections() {
+  static const std::vector<std::string> sections = {
+      "contact", "planner", "kinematic_feasibility", "reach", "wbc", "walk",
+      "ocp",     "sim",     "nearest_foothold"};
+  return sections;
+}
 
 YamlSection::YamlSection(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
 
@@ -32,15 +71,18 @@ YamlSection YamlSection::loadFile(const std::string& path) {
   try {
     root = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
-    throw ReachError("cannot open YAML file '" + path + "'");
+    throw ConfigError("cannot open YAML file '" + path + "'");
   } catch (const YAML::Exception& e) {
-    throw ReachError("malformed YAML in '" + path + "': " + e.what());
+    throw ConfigError("malformed YAML in '" + path + "': " + e.what());
   }
-  if (!root.IsMap()) throw ReachError("YAML file '" + path + "': top level is not a mapping");
+  if (!root.IsMap()) throw ConfigError("YAML file '" + path + "': top level is not a mapping");
   auto impl = std::make_shared<Impl>();
-  impl->node = root;
+  impl->node = checkedRoot(root, path);
   impl->source = path;
-  return YamlSection(impl);
+  YamlSection file(impl);
+  // A misspelled section would otherwise leave its component on the defaults.
+  file.requireOnlyKeys(configSections());
+  return file;
 }
 
 YamlSection YamlSection::loadString(const std::string& text, const std::string& source) {
@@ -48,11 +90,10 @@ YamlSection YamlSection::loadString(const std::string& text, const std::string& 
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw ReachError("malformed YAML in " + source + ": " + e.what());
+    throw ConfigError("malformed YAML in " + source + ": " + e.what());
   }
-  if (!root.IsMap()) throw ReachError("YAML " + source + ": top level is not a mapping");
   auto impl = std::make_shared<Impl>();
-  impl->node = root;
+  impl->node = checkedRoot(root, source);
   impl->source = source;
   return YamlSection(impl);
 }
@@ -71,8 +112,8 @@ bool YamlSection::has(const std::string& key) const {
 
 YamlSection YamlSection::section(const std::string& key) const {
   const YAML::Node n = impl_->node[key];
-  if (!n) throw ReachError(where(key) + ": missing section");
-  if (!n.IsMap()) throw ReachError(where(key) + ": expected a mapping, got " + describe(n));
+  if (!n) throw ConfigError(where(key) + ": missing section");
+  if (!n.IsMap()) throw ConfigError(where(key) + ": expected a mapping, got " + describe(n));
   auto impl = std::make_shared<Impl>();
   impl->node = n;
   impl->source = impl_->source;
@@ -93,7 +134,7 @@ void YamlSection::requireOnlyKeys(const std::vector<std::string>& allowed) const
       os << where(k) << ": unknown key (known:";
       for (const auto& a : allowed) os << " " << a;
       os << ")";
-      throw ReachError(os.str());
+      throw ConfigError(os.str());
     }
   }
 }
@@ -106,9 +147,9 @@ bool YamlSection::read(const std::string& key, double& value) const {
     if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
     v = n.as<double>();
   } catch (const YAML::Exception&) {
-    throw ReachError(where(key) + ": expected a number, got " + describe(n));
+    throw ConfigError(where(key) + ": expected a number, got " + describe(n));
   }
-  if (std::isnan(v)) throw ReachError(where(key) + ": NaN is not allowed");
+  if (std::isnan(v)) throw ConfigError(where(key) + ": NaN is not allowed");
   value = v;
   return true;
 }
@@ -120,7 +161,7 @@ bool YamlSection::read(const std::string& key, int& value) const {
     if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
     value = n.as<int>();
   } catch (const YAML::Exception&) {
-    throw ReachError(where(key) + ": expected an integer, got " + describe(n));
+    throw ConfigError(where(key) + ": expected an integer, got " + describe(n));
   }
   return true;
 }
@@ -132,7 +173,7 @@ bool YamlSection::read(const std::string& key, bool& value) const {
     if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
     value = n.as<bool>();
   } catch (const YAML::Exception&) {
-    throw ReachError(where(key) + ": expected true or false, got " + describe(n));
+    throw ConfigError(where(key) + ": expected true or false, got " + describe(n));
   }
   return true;
 }
@@ -140,7 +181,7 @@ bool YamlSection::read(const std::string& key, bool& value) const {
 bool YamlSection::read(const std::string& key, std::string& value) const {
   const YAML::Node n = impl_->node[key];
   if (!n) return false;
-  if (!n.IsScalar()) throw ReachError(where(key) + ": expected a string, got " + describe(n));
+  if (!n.IsScalar()) throw ConfigError(where(key) + ": expected a string, got " + describe(n));
   value = n.Scalar();
   return true;
 }
@@ -149,18 +190,18 @@ bool YamlSection::read(const std::string& key, std::vector<double>& value) const
   const YAML::Node n = impl_->node[key];
   if (!n) return false;
   if (!n.IsSequence()) {
-    throw ReachError(where(key) + ": expected a sequence of numbers, got " + describe(n));
+    throw ConfigError(where(key) + ": expected a sequence of numbers, got " + describe(n));
   }
   std::vector<double> out;
   for (std::size_t i = 0; i < n.size(); ++i) {
     try {
       out.push_back(n[i].as<double>());
     } catch (const YAML::Exception&) {
-      throw ReachError(where(key) + "[" + std::to_string(i) + "]: expected a number, got " +
+      throw ConfigError(where(key) + "[" + std::to_string(i) + "]: expected a number, got " +
                        describe(n[i]));
     }
     if (std::isnan(out.back())) {
-      throw ReachError(where(key) + "[" + std::to_string(i) + "]: NaN is not allowed");
+      throw ConfigError(where(key) + "[" + std::to_string(i) + "]: NaN is not allowed");
     }
   }
   value = out;
@@ -173,7 +214,7 @@ bool YamlSection::read(const std::string& key, Eigen::Ref<Eigen::VectorXd> value
   if (static_cast<Eigen::Index>(v.size()) != value.size()) {
     std::ostringstream os;
     os << where(key) << ": expected " << value.size() << " numbers, got " << v.size();
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
   for (std::size_t i = 0; i < v.size(); ++i) value[static_cast<Eigen::Index>(i)] = v[i];
   return true;

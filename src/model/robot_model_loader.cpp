@@ -13,6 +13,7 @@
 
 #include "reach_trajopt/model/model_tree.h"
 #include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/model/urdf_validation.h"
 
 namespace reach_trajopt {
 namespace {
@@ -130,6 +131,7 @@ std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf
                                                       const std::string& source) {
   if (!options.gravity.allFinite()) throw ModelError("non-finite gravity for " + source);
   validateInertias(urdf, source);
+  validateUrdf(urdf, source);  // urdf_validation.h
   if (!urdf.root_link_) throw ModelError("URDF has no root link: " + source);
   // kdl_parser drops (and warns about) the root link's inertia; we keep it ourselves.
   const urdf::InertialSharedPtr root_inertial = urdf.root_link_->inertial;
@@ -280,6 +282,7 @@ std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& 
                                                              const std::string& source) {
   if (xml.find("<robot") == std::string::npos)
     throw ModelError("malformed URDF in " + source + ": no <robot> element");
+  validateUrdfXml(xml, source);  // before urdfdom: numbers, names, one tree (urdf_validation.h)
   const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(xml);
   if (!urdf) throw ModelError("malformed URDF in " + source + " (urdfdom could not parse it)");
   return ModelBuilder::build(*urdf, options, source);

@@ -190,6 +190,13 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
        << " s: must be finite and at least one output sample (" << config_.output_dt << " s)";
     throw ReachError(os.str());
   }
+  if (r.horizon > kMaxTransitionHorizon) {
+    // The NLP's size and each evaluation grow with the horizon (output_dt samples): a bound
+    // keeps every solve inside its time limit (docs/limits.md).
+    os << "TransitionOcp: horizon " << r.horizon << " s is over the limit of "
+       << kMaxTransitionHorizon << " s";
+    throw ReachError(os.str());
+  }
   // Poses: finite, proper rotations (ContactConstraint checks both).
   try {
     ContactConstraint(0, r.stance_pose);

@@ -3,9 +3,11 @@
 
 #include "reach_trajopt/reach/reach_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 
@@ -32,6 +34,12 @@ void requireNonNegative(const char* field, double v) {
   }
 }
 
+void requireAtMost(const char* field, long long v, long long limit) {
+  if (v > limit)
+    bad(field, "must be <= " + std::to_string(limit) + " (docs/limits.md), got " +
+                   std::to_string(v));
+}
+
 /// True when t is an integer multiple of dt (to 1e-9 of a step).
 bool onGrid(double t, double dt) { return std::abs(t / dt - std::round(t / dt)) < 1e-6; }
 
@@ -51,6 +59,13 @@ void ReachConfig::validate() const {
   }
   if (!onGrid(horizon, dt) || !onGrid(window_start, dt) || !onGrid(window_end, dt))
     bad("horizon/window_start/window_end", "must be multiples of dt");
+  if (horizon < dt * (1.0 - 1e-9))
+    bad("horizon", "must be at least one time step dt = " + std::to_string(dt) + " s, got " +
+                       std::to_string(horizon));
+  using L = ReachLimits;
+  if (horizon / dt > L::kMaxSteps + 0.5)
+    bad("horizon", "/ dt = " + std::to_string(horizon / dt) + " steps is over the limit of " +
+                       std::to_string(L::kMaxSteps));
   if (initial_samples < 1) bad("initial_samples", "must be >= 1 (zero samples)");
   if (children_per_parent < 1) bad("children_per_parent", "must be >= 1 (zero samples)");
   if (max_boundary < 1) bad("max_boundary", "must be >= 1");
@@ -58,11 +73,25 @@ void ReachConfig::validate() const {
   if (interior_samples < 0) bad("interior_samples", "must be >= 0");
   if (backward_children_per_parent < 1)
     bad("backward_children_per_parent", "must be >= 1 (zero samples)");
+  requireAtMost("initial_samples", initial_samples, L::kMaxInitialSamples);
+  requireAtMost("children_per_parent", children_per_parent, L::kMaxChildrenPerParent);
+  requireAtMost("backward_children_per_parent", backward_children_per_parent,
+                L::kMaxChildrenPerParent);
+  requireAtMost("max_boundary", max_boundary, L::kMaxBoundary);
+  requireAtMost("interior_samples", interior_samples, L::kMaxBoundary);
+  requireAtMost("angular_bins", angular_bins, L::kMaxAngularBins);
   if (boundary_lookahead.empty()) bad("boundary_lookahead", "must hold at least one value");
+  requireAtMost("boundary_lookahead (entries)", static_cast<long long>(boundary_lookahead.size()),
+                L::kMaxLookahead);
   for (double tau : boundary_lookahead) requireNonNegative("boundary_lookahead", tau);
   if (!(vertex_fraction >= 0.0 && vertex_fraction <= 1.0))
     bad("vertex_fraction", "must be in [0, 1]");
   if (threads < 0) bad("threads", "must be >= 0");
+  // Each thread owns a workspace; more threads than the machine has cannot run faster.
+  if (threads > hardwareThreads())
+    bad("threads", "must be <= the " + std::to_string(hardwareThreads()) +
+                       " hardware threads of this machine (0: OpenMP's default), got " +
+                       std::to_string(threads));
   if (forward_integrator != "semi_implicit" && forward_integrator != "explicit")
     bad("forward_integrator", "must be 'semi_implicit' or 'explicit', got '" +
                                   forward_integrator + "'");
@@ -86,6 +115,42 @@ void ReachConfig::validate() const {
   requirePositive("contact_tolerance", contact_tolerance);
   requirePositive("contact_velocity_tolerance", contact_velocity_tolerance);
   requireNonNegative("limit_tolerance", limit_tolerance);
+}
+
+double ReachConfig::estimatedQps() const {
+  const double steps = std::ceil(window_end / dt) + std::ceil((horizon - window_start) / dt);
+  const double parents = static_cast<double>(max_boundary) + interior_samples;
+  const double per_slice =
+      parents * std::max(children_per_parent, backward_children_per_parent);
+  return 2.0 * initial_samples + steps * per_slice;
+}
+
+double ReachConfig::estimatedMemoryBytes(int nq) const {
+  // output + rate (3 each), qd, u, lambda (12), kept q: doubles; parent index; QP scratch.
+  const double per_sample = 8.0 * (6 + 3.0 * nq + 12) + 16;
+  return per_sample * estimatedQps();
+}
+
+void ReachConfig::requireResourcesWithinLimits(int nq) const {
+  const double qps = estimatedQps();
+  if (qps > ReachLimits::kMaxQps) {
+    std::ostringstream os;
+    os << "ReachConfig: the check would solve about " << qps << " QPs (initial_samples "
+       << initial_samples << ", max_boundary " << max_boundary << ", interior_samples "
+       << interior_samples << ", horizon " << horizon << " s at dt " << dt
+       << " s), over the limit of " << ReachLimits::kMaxQps << " (minutes of wall time)";
+    throw ReachError(os.str());
+  }
+  const double bytes = estimatedMemoryBytes(nq);
+  if (bytes > ReachLimits::kMaxMemoryBytes) {
+    std::ostringstream os;
+    os << "ReachConfig: the check would need about " << std::lround(bytes / (1024 * 1024))
+       << " MiB (initial_samples " << initial_samples << ", max_boundary " << max_boundary
+       << ", children_per_parent " << children_per_parent << ", horizon " << horizon
+       << " s at dt " << dt << " s), over the limit of "
+       << std::lround(ReachLimits::kMaxMemoryBytes / (1024 * 1024)) << " MiB";
+    throw ReachError(os.str());
+  }
 }
 
 ReachConfig ReachConfig::fromYaml(const YamlSection& s, const ReachConfig& base) {

@@ -119,6 +119,7 @@ Eigen::VectorXd ReachabilityAnalyzer::sampleConfiguration(const ReachResult& res
 ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfig& config) const {
   const auto t_start = Clock::now();
   config.validate();
+  config.requireResourcesWithinLimits(model_->nq());  // before any sample is drawn
   const ReachContext ctx(model_, contact_, config, pb.mode, pb.footholds, pb.target);
   const RobotModel& model = *model_;
   // ---- input checks ---------------------------------------------------------------------

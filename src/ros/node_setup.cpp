@@ -57,11 +57,12 @@ FootholdServiceSetup FootholdServiceSetup::load(const ros::NodeHandle& nh,
   const ReachConfig reach = ReachConfig::fromYaml(file.section("reach"));
   const WalkConfig walk =
       file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
-  FootholdServiceSetup s{file, config_path, model, contact, reach, limits, nullptr, nullptr, {}};
-  s.feasibility = std::make_shared<KinematicFeasibility>(
-      model, KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility")),
-      contact);
-  s.analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, reach);
+  FootholdServiceSetup s{file, config_path, model, contact, reach, limits, nullptr, {}};
+  FootstepPlannerConfig planner = FootstepPlannerConfig::fromYaml(file);
+  planner.kinematics =
+      KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));  // required
+  planner.reach = reach;
+  s.planner = std::make_shared<FootstepTransitionPlanner>(model, contact, planner);
   s.standing_q = standingConfiguration(*model, walk.knee_bend, contact.left_sole_frame);
   return s;
 }

@@ -82,18 +82,21 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
     r.q = standing_q;
     r.qd = Eigen::VectorXd::Zero(model.nq());
   } else {
-    requireSize("request q", static_cast<Eigen::Index>(q.size()), model.nq());
-    requireSize("request qd", static_cast<Eigen::Index>(qd.size()), model.nq());
+    requireSize("q", static_cast<Eigen::Index>(q.size()), model.nq());
+    requireSize("qd", static_cast<Eigen::Index>(qd.size()), model.nq());
     r.q = toVector(q);
     r.qd = toVector(qd);
   }
-  requireFinite("request q", r.q);
-  requireFinite("request qd", r.qd);
+  requireFinite("q", r.q);
+  requireFinite("qd", r.qd);
   const Eigen::Vector3d target = fromPointMsg(foothold);
-  requireFinite("request foothold", target);
+  requireFinite("foothold", target);
   r.duration = duration == 0.0 ? default_duration : duration;
   if (!(r.duration > 0.0) || !std::isfinite(r.duration))
-    throw ReachError("swing duration " + std::to_string(r.duration) + " s must be positive");
+    throw ReachError("swing_duration " + std::to_string(r.duration) + " s must be positive");
+  if (r.duration > limits.max_duration)
+    throw ReachError("swing_duration " + std::to_string(r.duration) + " s is over the limit of " +
+                     std::to_string(limits.max_duration) + " s");
 
   Workspace ws(model);
   model.update(ws, r.q, r.qd);

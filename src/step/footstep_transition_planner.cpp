@@ -100,17 +100,20 @@ Eigen::Isometry3d FootstepTransitionPlanner::initialState(const FootstepPlanRequ
     out.q0 = std::move(x0.q);
     out.qd0 = std::move(x0.qd);
     held = x0.stance_sole;
+    out.stance_contact.position = held.translation();
+    out.stance_contact.yaw = yawOf(held);
   } else {
     out.q0 = r.q;
     out.qd0 = r.qd;
     Workspace ws(m);
     m.update(ws, out.q0, out.qd0);
-    held = m.framePose(ws, stance_frame);
+    const Eigen::Isometry3d sole = m.framePose(ws, stance_frame);
+    out.stance_contact.position = sole.translation();  // held flat where the sole is
+    out.stance_contact.yaw = yawOf(sole);
+    held = out.stance_contact.pose();
   }
-  out.stance_contact.position = held.translation();
-  out.stance_contact.yaw = yawOf(held);
   out.target.position = r.target;
-  out.target.yaw = yawOf(r.stance_pose);
+  out.target.yaw = r.target_yaw ? *r.target_yaw : yawOf(r.stance_pose);
   return held;
 }
 

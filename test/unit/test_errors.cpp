@@ -5,7 +5,9 @@
 
 #include <string>
 
+#include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"
 
@@ -43,6 +45,17 @@ TEST(Errors, UnknownFrameAndJointAreModelErrorsNamingThem) {
 TEST(Errors, EmptyQpIsAQpInputError) {
   const std::string msg = thrownMessage<QpInputError>([] { qp::DualActiveSetQp solver(0, 0, 0); });
   EXPECT_NE(msg.find("variables"), std::string::npos) << msg;
+}
+
+TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
+  const std::string unknown = thrownMessage<ConfigError>(
+      [] { YamlSection::loadString("contact:\n  mu: 0.7\n  mux: 1\n", "t.yaml").section("contact")
+               .requireOnlyKeys({"mu"}); });
+  EXPECT_NE(unknown.find("mux"), std::string::npos) << unknown;
+  const std::string invalid = thrownMessage<ConfigError>([] {
+    ContactConfig::fromYaml(YamlSection::loadString("contact:\n  mu: -1\n", "t.yaml").section("contact"));
+  });
+  EXPECT_NE(invalid.find("mu"), std::string::npos) << invalid;
 }
 
 TEST(Errors, EverySubclassIsAReachError) {

@@ -62,6 +62,14 @@ TEST(RosServiceRequests, RejectsMalformedRequestsWithTheReason) {
   q[7] = nan;
   expectReason([&] { f.parse("world", "SS-L", q, qd); }, "non-finite");
   expectReason([&] { f.parse("world", "SS-L", {}, {}, -0.1); }, "must be positive");
+  // Over-limit requests are rejected before any IK or check runs (docs/limits.md).
+  expectReason([&] { f.parse("world", "SS-L", {}, {}, 1000.0); }, "swing_duration");
+  expectReason([&] { f.parse("world", "SS-L", {}, {}, nan); }, "swing_duration");
+  expectReason([&] { f.parse("world", "SS-L", std::vector<double>(200000, 0.0), qd); },
+               "q: expected size");
+  const rb::FootholdRequest tiny = f.parse("world", "SS-L", {}, {}, 1e-300);
+  expectReason([&] { rb::reachConfigForDuration(ReachConfig{}, tiny.duration).validate(); },
+               "at least one time step");
   f.foothold.x = INFINITY;
   expectReason([&] { f.parse("world", "SS-L", {}, {}); }, "non-finite");
   f.foothold.x = 0.1;

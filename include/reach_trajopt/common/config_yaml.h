@@ -17,13 +17,18 @@
 
 namespace reach_trajopt {
 
+/// The top-level sections a config file may hold (config/biped.yaml, config/sim.yaml); any
+/// other top-level key of a file read by YamlSection::loadFile is an error.
+const std::vector<std::string>& configSections();
+
 /// One YAML mapping (the whole file or a nested section) with typed, checked reads.
 class YamlSection {
  public:
-  /// Parses a YAML file; throws ReachError naming the file when missing or malformed, or when
-  /// its top level is not a mapping.
+  /// Parses a config file; throws ReachError naming the file when missing or malformed, when
+  /// its top level is not a mapping of configSections(), or when a key appears twice in one
+  /// mapping (yaml-cpp would silently keep one).
   static YamlSection loadFile(const std::string& path);
-  /// Parses YAML text; `source` names it in error messages.
+  /// Parses YAML text (any top-level keys, duplicates rejected); `source` names it in errors.
   static YamlSection loadString(const std::string& text, const std::string& source = "<string>");
 
   /// True when the mapping has the key (a nested "a.b" path is not interpreted).
@@ -63,7 +68,7 @@ Config validatedIn(const YamlSection& section, Config config) {
   try {
     config.validate();
   } catch (const ReachError& e) {
-    throw ReachError(section.where() + ": " + e.what());
+    throw ConfigError(section.where() + ": " + e.what());
   }
   return config;
 }

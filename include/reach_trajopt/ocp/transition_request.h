@@ -38,6 +38,11 @@ enum class RelaxationMode {
   kAuto,     ///< strict first; if it fails, relaxed
 };
 
+/// Upper bound of TransitionRequest::horizon [s] (docs/limits.md): a swing lasts well under a
+/// second; the OCP's evaluations grow with the horizon, so longer ones could not keep their
+/// time limit.
+constexpr double kMaxTransitionHorizon = 5.0;
+
 /// One transition OCP request (eq. 22-23).
 struct TransitionRequest {
   Side stance = Side::kLeft;  ///< current mode SS-<stance>; new mode DS at t_f

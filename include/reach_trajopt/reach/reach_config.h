@@ -23,6 +23,23 @@ namespace reach_trajopt {
 
 class YamlSection;
 
+/// Upper bounds of ReachConfig (docs/limits.md), checked by validate(): a request beyond them
+/// is rejected up front instead of running for minutes or exhausting memory. The paper's
+/// values (1e4 samples, 1 ms, 0.1 s horizons) sit far inside.
+struct ReachLimits {
+  static constexpr int kMaxInitialSamples = 200000;  ///< 20 x the paper's 1e4
+  static constexpr int kMaxChildrenPerParent = 1000;  ///< also backward_children_per_parent
+  static constexpr int kMaxBoundary = 10000;          ///< also interior_samples
+  static constexpr int kMaxAngularBins = 4096;
+  static constexpr int kMaxLookahead = 16;            ///< entries of boundary_lookahead
+  static constexpr int kMaxSteps = 20000;             ///< horizon / dt
+  /// Estimated memory of one check (estimatedMemoryBytes) allowed [bytes].
+  static constexpr double kMaxMemoryBytes = 1024.0 * 1024 * 1024;
+  /// Estimated QPs of one check (estimatedQps) allowed: about 10-30 s on one core; the
+  /// shipped configuration needs 3.3e5.
+  static constexpr double kMaxQps = 2.0e6;
+};
+
 /// Configuration of ReachabilityAnalyzer. validate() throws ReachError naming a bad field.
 struct ReachConfig {
   // ---- time line -------------------------------------------------------------------------
@@ -86,7 +103,18 @@ struct ReachConfig {
   double contact_velocity_tolerance = 1e-3;  ///< |J qd| allowed at x_0 and x_f [m/s, rad/s]
   double limit_tolerance = 1e-9;    ///< slack on position / velocity / torque limits
 
+  /// Throws ReachError naming a bad field, also for values over ReachLimits and threads over
+  /// the hardware threads of this machine.
   void validate() const;
+  /// Estimated peak memory of one check for a model with `nq` coordinates [bytes]: every
+  /// slice's samples (outputs, rates, velocities, torques, wrenches, kept configurations).
+  double estimatedMemoryBytes(int nq) const;
+  /// Upper estimate of the QPs (samples) of one check: 2 initial_samples + per later step
+  /// (max_boundary + interior_samples) x max(children_per_parent, backward_children_per_parent).
+  double estimatedQps() const;
+  /// Throws ReachError when estimatedMemoryBytes(nq) > ReachLimits::kMaxMemoryBytes or
+  /// estimatedQps() > ReachLimits::kMaxQps (called before a check starts).
+  void requireResourcesWithinLimits(int nq) const;
   /// Reads the keys (same names as the fields) of a YAML section on top of `base`, then
   /// validates. Unknown keys throw.
   static ReachConfig fromYaml(const YamlSection& section, const ReachConfig& base);

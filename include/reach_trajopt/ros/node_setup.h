@@ -21,6 +21,7 @@
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/ros/service_requests.h"
 
 namespace reach_trajopt {
@@ -50,8 +51,9 @@ class TempUrdf {
 };
 
 /// @brief What check_reachability and plan_transition both build from `robot_description` and
-/// ~config (sections contact, kinematic_feasibility, reach, optionally walk for the standing
-/// posture of a request without a state), with ~ground_tolerance [m] for the requests.
+/// ~config (sections contact, kinematic_feasibility, reach, optionally ocp, nearest_foothold and
+/// walk for the standing posture of a request without a state), with ~ground_tolerance [m] for
+/// the requests.
 struct FootholdServiceSetup {
   YamlSection file;  ///< the whole ~config file, for the node's own sections (e.g. ocp)
   std::string config_path;
@@ -59,8 +61,9 @@ struct FootholdServiceSetup {
   ContactConfig contact;
   ReachConfig reach;
   FootholdRequestLimits limits;
-  std::shared_ptr<const KinematicFeasibility> feasibility;
-  std::shared_ptr<const ReachabilityAnalyzer> analyzer;
+  /// The core's step pipeline (kinematic check, reachability, OCP) built from the same
+  /// sections; its kinematics() and analyzer() serve check_reachability.
+  std::shared_ptr<const FootstepTransitionPlanner> planner;
   Eigen::VectorXd standing_q;  ///< x_0 of a request with empty q, qd (size n_q)
 
   /// Reads the parameters and builds everything.

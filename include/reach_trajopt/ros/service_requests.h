@@ -18,6 +18,7 @@
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
 #include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ocp/transition_request.h"
 #include "reach_trajopt/ocp/transition_result.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
@@ -38,6 +39,9 @@ struct FootholdRequest {
 /// Limits of what a request may ask.
 struct FootholdRequestLimits {
   double ground_tolerance = 0.02;  ///< |foothold z - stance sole z| allowed [m] (flat ground)
+  /// Longest swing_duration a request may ask [s] (the OCP's kMaxTransitionHorizon): longer
+  /// ones are rejected up front, before any IK, check or solve runs.
+  double max_duration = kMaxTransitionHorizon;
 };
 
 /// Validates a request of either service and fills a FootholdRequest.
@@ -46,7 +50,8 @@ struct FootholdRequestLimits {
 /// \param q, qd             x_0 (size n_q each), or both empty: `standing_q` with qd = 0
 /// \param duration          [s]; 0 takes `default_duration`
 /// \throws ReachError with the reason: unknown frame, unknown or empty contact set (flight),
-///         double support, wrong sizes, non-finite numbers, a non-positive duration, a foothold
+///         double support, wrong sizes, non-finite numbers, a non-positive duration or one over
+///         limits.max_duration, a foothold
 ///         above (or below) the ground.
 FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
                                      const std::string& frame_id, const std::string& contact_mode,

@@ -63,6 +63,8 @@ struct FootstepPlanRequest {
   /// The stance sole as measured (its heading is the target's heading).
   Eigen::Isometry3d stance_pose = Eigen::Isometry3d::Identity();
   Eigen::Vector3d target = Eigen::Vector3d::Zero();  ///< the planned foothold (sole centre) [m]
+  /// Heading of the foothold [rad]; none: the heading of `stance_pose`.
+  std::optional<double> target_yaw;
   Eigen::VectorXd q, qd;  ///< x_0 (size n_q) [m, rad; m/s, rad/s]
   /// The CoM's horizontal state predicted at touchdown (LIPM about the stance sole): x_f then
   /// has the pelvis where the CoM will have carried it, at its current height, and moves with

@@ -1,0 +1,213 @@
+// rostest checker of bad_requests.test (a gtest executable run by rostest): both service nodes
+// get a few thousand malformed or over-limit requests, each must be rejected (success = false,
+// a reason) without the node growing (resident memory read from /proc/<pid>/status) or
+// stopping, and then a valid request must still be answered. Prints the BENCH line.
+
+#include <dirent.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/CheckReachability.h"
+#include "reach_trajopt/PlanTransition.h"
+
+namespace {
+
+constexpr int kNq = 18;      // urdf/biped.urdf: 6 virtual + 12 leg joints
+constexpr int kRounds = 12;  // rounds over all malformed kinds, per service and pass
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+/// PID of the process whose command line names `node` (__name:=node), -1 if none.
+int pidOf(const std::string& node) {
+  DIR* proc = opendir("/proc");
+  if (!proc) return -1;
+  int found = -1;
+  while (dirent* e = readdir(proc)) {
+    const std::string name = e->d_name;
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream f("/proc/" + name + "/cmdline");
+    std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (cmd.find("__name:=" + node) != std::string::npos &&
+        cmd.find("/" + node) != std::string::npos)
+      found = std::stoi(name);
+  }
+  closedir(proc);
+  return found;
+}
+
+/// Resident memory of `pid` [MiB] (VmRSS), -1 when the process is gone.
+double rssMiB(int pid) {
+  std::ifstream f("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return -1.0;
+}
+
+/// The malformed kinds: each edits a default request (left stance, foothold on the ground).
+template <typename Req>
+std::vector<std::function<void(Req&)>> kinds(std::mt19937& rng) {
+  std::vector<std::function<void(Req&)>> k;
+  k.push_back([](Req& r) {
+    r.q.assign(kNq, kNaN);
+    r.qd.assign(kNq, 0.0);
+  });
+  k.push_back([](Req& r) {
+    r.q.assign(kNq, 0.0);
+    r.qd.assign(kNq, kInf);
+  });
+  k.push_back([](Req& r) {
+    r.q.assign(kNq - 1, 0.0);
+    r.qd.assign(kNq - 1, 0.0);
+  });
+  k.push_back([](Req& r) {
+    r.q.assign(200000, 0.0);
+    r.qd.assign(200000, 0.0);
+  });                                                 // 3 MB
+  k.push_back([](Req& r) { r.q.assign(kNq, 0.0); });  // qd missing
+  k.push_back([](Req& r) { r.foothold.x = kNaN; });
+  k.push_back([](Req& r) { r.foothold.y = -kInf; });
+  k.push_back([](Req& r) { r.foothold.z = 1e300; });
+  k.push_back([](Req& r) { r.header.frame_id = "map"; });
+  k.push_back([&](Req& r) { r.header.frame_id = std::string(1 + rng() % 64, 'a' + rng() % 26); });
+  k.push_back([](Req& r) { r.contact_mode = ""; });
+  k.push_back([](Req& r) { r.contact_mode = "DS"; });
+  k.push_back([](Req& r) { r.contact_mode = std::string("SS-\0L", 5); });
+  k.push_back([](Req& r) { r.swing_duration = -1.0; });
+  k.push_back([](Req& r) { r.swing_duration = kNaN; });
+  k.push_back([](Req& r) { r.swing_duration = 1000.0; });  // over the duration limit
+  k.push_back([](Req& r) { r.swing_duration = 1e-300; });
+  return k;
+}
+
+struct Tally {
+  int calls = 0, answered = 0;
+};
+
+template <typename Srv>
+void hammer(const char* service, Tally& t, std::function<void(typename Srv::Request&)> extra) {
+  // One persistent connection per pass: a malformed request must not break it either.
+  ros::NodeHandle nh;
+  ros::ServiceClient client = nh.serviceClient<Srv>(service, true);
+  auto call = [&](Srv& srv) {
+    if (!client.isValid()) client = nh.serviceClient<Srv>(service, true);
+    return client.call(srv);
+  };
+  std::mt19937 rng(1);
+  const auto all = kinds<typename Srv::Request>(rng);
+  for (int round = 0; round < kRounds; ++round) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      Srv srv;
+      srv.request.header.frame_id = "world";
+      srv.request.contact_mode = "SS-L";
+      srv.request.foothold.x = 0.05;
+      srv.request.foothold.y = -0.2;
+      all[i](srv.request);
+      ++t.calls;
+      if (!call(srv)) {
+        ADD_FAILURE() << service << " stopped serving at kind " << i;
+        return;
+      }
+      if (!srv.response.success && !srv.response.message.empty())
+        ++t.answered;
+      else
+        ADD_FAILURE() << service << " kind " << i << " accepted: " << srv.response.message;
+    }
+    Srv srv;  // a service-specific over-limit request
+    srv.request.header.frame_id = "world";
+    srv.request.contact_mode = "SS-L";
+    srv.request.foothold.x = 0.05;
+    srv.request.foothold.y = -0.2;
+    extra(srv.request);
+    ++t.calls;
+    if (call(srv) && !srv.response.success) ++t.answered;
+  }
+}
+
+}  // namespace
+
+TEST(BadRequests, NodesRejectEverythingAndStayFlat) {
+  const int pid_reach = pidOf("reachability_node"), pid_ocp = pidOf("transition_ocp_node");
+  ASSERT_GT(pid_reach, 0);
+  ASSERT_GT(pid_ocp, 0);
+  Tally t;
+  // Warm up (lazy allocations of the first calls are not growth), then measure.
+  hammer<reach_trajopt::CheckReachability>("check_reachability", t, [](auto& r) {
+    r.forward_samples = 1000000000u;  // 1e9 samples: rejected before any sample is drawn
+  });
+  hammer<reach_trajopt::PlanTransition>("plan_transition", t,
+                                        [](auto& r) { r.swing_duration = 1e9; });
+  const double rss0 = rssMiB(pid_reach) + rssMiB(pid_ocp);
+  t = Tally();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int rep = 0; rep < 4; ++rep) {
+    std::printf("rss after %d passes: %.1f MiB\n", rep, rssMiB(pid_reach) + rssMiB(pid_ocp));
+    hammer<reach_trajopt::CheckReachability>("check_reachability", t, [](auto& r) {
+      r.forward_samples = 10000000u;  // 1e7 samples (the 1.6 GB request)
+    });
+    hammer<reach_trajopt::PlanTransition>("plan_transition", t, [](auto& r) {
+      r.swing_duration = 1000.0;  // the 1000 s horizon
+    });
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double rss1 = rssMiB(pid_reach) + rssMiB(pid_ocp);
+  // Still serving: a valid, small check.
+  reach_trajopt::CheckReachability ok;
+  ok.request.header.frame_id = "world";
+  ok.request.contact_mode = "SS-L";
+  ok.request.foothold.x = 0.05;
+  ok.request.foothold.y = -0.2;
+  ok.request.forward_samples = 200;
+  const bool alive = ros::service::call("check_reachability", ok) && ok.response.success &&
+                     rssMiB(pid_reach) > 0 && rssMiB(pid_ocp) > 0;
+  std::printf(
+      "BENCH ros.bad_requests calls=%d answered=%d node_alive=%d rss_growth_mib=%.1f "
+      "seconds=%.1f\n",
+      t.calls, t.answered, alive ? 1 : 0, rss1 - rss0, seconds);
+  std::fflush(stdout);
+  EXPECT_EQ(t.answered, t.calls);
+  EXPECT_TRUE(alive) << ok.response.message;
+  // Flat: a leak of even 1 KiB per request would show as > 8 MiB here.
+  EXPECT_LT(rss1 - rss0, 8.0);
+}
+
+// The longest swing a request may ask (5 s, docs/limits.md) must still end within the OCP's
+// time limit (ocp.time_limit = 10 s in config/biped.yaml) plus the sampling of the answer.
+TEST(BadRequests, LongestAllowedSwingKeepsTheTimeLimit) {
+  reach_trajopt::PlanTransition srv;
+  srv.request.header.frame_id = "world";
+  srv.request.contact_mode = "SS-L";
+  srv.request.foothold.x = 0.05;
+  srv.request.foothold.y = -0.2;
+  srv.request.swing_duration = 5.0;
+  srv.request.allow_relaxation = true;
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(ros::service::call("plan_transition", srv));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("BENCH ros.longest_swing seconds=%.1f status=%s\n", seconds,
+              srv.response.trajectory.status.c_str());
+  EXPECT_LT(seconds, 10.0 + 5.0) << srv.response.message;
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "check_bad_requests");
+  if (!ros::service::waitForService("check_reachability", ros::Duration(120)) ||
+      !ros::service::waitForService("plan_transition", ros::Duration(120))) {
+    std::fprintf(stderr, "the services did not come up\n");
+    return 1;
+  }
+  return RUN_ALL_TESTS();
+}
