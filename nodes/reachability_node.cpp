@@ -49,8 +49,9 @@ class ReachabilityNode {
                              " is over the limit of " +
                              std::to_string(ReachLimits::kMaxInitialSamples));
           if (req.backward_samples > 0 && req.backward_samples != req.forward_samples)
-            throw ReachError("backward_samples: both directions draw initial_samples; set "
-                             "forward_samples only (or equal)");
+            throw ReachError(
+                "backward_samples: both directions draw initial_samples; set "
+                "forward_samples only (or equal)");
           if (req.forward_samples > 0)
             config.initial_samples = static_cast<int>(req.forward_samples);
           if (req.seed > 0) config.seed = req.seed;

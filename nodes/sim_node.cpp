@@ -32,16 +32,16 @@
 /// at most 500 per set and slice; false: boundaries only; true).
 /// The robot is read from the `robot_description` parameter (URDF text).
 
-#include <memory>
-#include <string>
-#include <vector>
-
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/String.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/ros/conversions.h"
@@ -124,13 +124,11 @@ int main(int argc, char** argv) {
     ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", kQueue);
     ros::Publisher joint_pub = nh.advertise<sensor_msgs::JointState>("joint_states", kQueue);
     ros::Publisher com_pub = nh.advertise<reach_trajopt::CenterOfMassState>("com_state", kQueue);
-    ros::Publisher contact_pub =
-        nh.advertise<reach_trajopt::ContactState>("contact_state", kQueue);
-    ros::Publisher wrench_pub[2] = {
-        nh.advertise<geometry_msgs::WrenchStamped>("contact_wrench/" + contact.left_sole_frame,
-                                                   kQueue),
-        nh.advertise<geometry_msgs::WrenchStamped>("contact_wrench/" + contact.right_sole_frame,
-                                                   kQueue)};
+    ros::Publisher contact_pub = nh.advertise<reach_trajopt::ContactState>("contact_state", kQueue);
+    ros::Publisher wrench_pub[2] = {nh.advertise<geometry_msgs::WrenchStamped>(
+                                        "contact_wrench/" + contact.left_sole_frame, kQueue),
+                                    nh.advertise<geometry_msgs::WrenchStamped>(
+                                        "contact_wrench/" + contact.right_sole_frame, kQueue)};
     ros::Publisher step_pub = nh.advertise<reach_trajopt::StepReport>("step_report", 100);
     ros::Publisher marker_pub = nh.advertise<visualization_msgs::MarkerArray>("markers", 100);
     ros::Publisher result_pub = nh.advertise<std_msgs::String>("walk_result", 1, true);
@@ -140,8 +138,7 @@ int main(int argc, char** argv) {
     ros::Publisher reach_pub, reach_marker_pub, traj_pub, traj_marker_pub;  // proposed only
     if (proposed_mode) {
       reach_pub = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
-      reach_marker_pub =
-          nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 100);
+      reach_marker_pub = nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 100);
       traj_pub = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
       traj_marker_pub = nh.advertise<visualization_msgs::MarkerArray>("transition_markers", 100);
       pubs.insert(pubs.end(), {&reach_pub, &reach_marker_pub, &traj_pub, &traj_marker_pub});
@@ -160,8 +157,8 @@ int main(int argc, char** argv) {
       if (!ready()) ROS_WARN("sim_node: starting before every subscriber connected");
       ros::WallDuration(0.5).sleep();  // let /tf's subscribers connect as well
     }
-    ROS_INFO("sim_node: %s walk of %d steps, seed %u, robot '%s'",
-             WalkConfig::modeName(walk.mode), walk.steps, walk.seed, model.name().c_str());
+    ROS_INFO("sim_node: %s walk of %d steps, seed %u, robot '%s'", WalkConfig::modeName(walk.mode),
+             walk.steps, walk.seed, model.name().c_str());
 
     std::vector<Eigen::Vector3d> planned, executed, com_path, swing_path;
     visualization_msgs::MarkerArray swing_paths;  // one LINE_STRIP per finished step
@@ -247,9 +244,8 @@ int main(int argc, char** argv) {
       const ros::Time stamp(last_tick_time + sim.time_step);
       const Eigen::Vector3d foothold =
           rb::checkedFoothold(r, sole_z[static_cast<int>(opposite(r.swing))]);
-      const rb::ProposedStepMsgs msgs =
-          rb::toProposedStepMsgs(model, contact, r, step, foothold, proposed.reach.delta, stamp,
-                                 reachability_samples);
+      const rb::ProposedStepMsgs msgs = rb::toProposedStepMsgs(
+          model, contact, r, step, foothold, proposed.reach.delta, stamp, reachability_samples);
       reach_pub.publish(msgs.reachability);
       reach_marker_pub.publish(msgs.markers);
       traj_pub.publish(msgs.trajectory);

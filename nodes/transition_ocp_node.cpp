@@ -12,10 +12,10 @@
 /// (t_f - t_0 when the request gives 0; default: the reach horizon), ~ground_tolerance [m].
 /// The robot is read from the `robot_description` parameter (URDF text).
 
+#include <ros/ros.h>
+
 #include <memory>
 #include <string>
-
-#include <ros/ros.h>
 
 #include "reach_trajopt/PlanTransition.h"
 #include "reach_trajopt/ocp/ocp_config.h"
@@ -69,9 +69,9 @@ class TransitionOcpNode {
                                            : InfeasibleFootholdPolicy::kReject;
           const FootstepTransition step = s_.planner->plan(step_request);
           if (req.check_reachability && step.kinematically_feasible) {
-            res.reachability = rb::toReachabilityResultMsg(
-                step.check.reach, r, rb::swingFrame(s_.contact, r.stance),
-                step_request.reach->delta, t0, false);
+            res.reachability = rb::toReachabilityResultMsg(step.check.reach, r,
+                                                           rb::swingFrame(s_.contact, r.stance),
+                                                           step_request.reach->delta, t0, false);
             reach_pub_.publish(res.reachability);
           }
           const TransitionResult& result = step.trajectory;

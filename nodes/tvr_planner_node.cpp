@@ -10,11 +10,11 @@
 /// ~forward_speed [m/s] (desired CoM speed along x, drives p_des of eq. 11).
 /// The LIPM height is the CoM height measured at the first message, as in the walking loop.
 
-#include <memory>
-#include <string>
-
 #include <ros/package.h>
 #include <ros/ros.h>
+
+#include <memory>
+#include <string>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/ros/conversions.h"
@@ -75,8 +75,7 @@ class TvrPlannerNode {
                                0.5 * (soles[0].y() + soles[1].y()));
     const TvrStep step = planner_->plan(in);
     plan_pub_.publish(rb::toContactPlanMsg(in, step, T, walk_.double_support_duration,
-                                           soles[static_cast<int>(stance)].z(),
-                                           com.header.stamp));
+                                           soles[static_cast<int>(stance)].z(), com.header.stamp));
   }
 
   TvrConfig tvr_;

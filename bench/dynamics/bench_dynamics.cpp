@@ -35,11 +35,6 @@
 #include <cstdlib>
 #include <functional>
 #include <memory>
-#include <random>
-#include <sstream>
-#include <string>
-#include <vector>
-
 #include <pinocchio/algorithm/center-of-mass.hpp>
 #include <pinocchio/algorithm/crba.hpp>
 #include <pinocchio/algorithm/frames.hpp>
@@ -48,6 +43,10 @@
 #include <pinocchio/algorithm/rnea.hpp>
 #include <pinocchio/multibody.hpp>
 #include <pinocchio/serialization.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/model/robot_model.h"
 
@@ -316,17 +315,18 @@ int main(int argc, char** argv) try {
     const double e_b = relErr(b, P.transpose() * pr.data.nle);
     const double e_j = std::max(relErr(J0, pr.J0 * P), relErr(J1, pr.J1 * P));
     const double e_a = std::max(relErr(a0, pr.jdotQd(0)), relErr(a1, pr.jdotQd(1)));
-    std::printf("check: relative difference ours vs pinocchio at one state: M %.1e, b %.1e, "
-                "J %.1e, Jdot*qd %.1e%s\n",
-                e_m, e_b, e_j, e_a,
-                std::max({e_m, e_b, e_j, e_a}) > 1e-8 ? "  (WARNING: they disagree)" : "");
+    std::printf(
+        "check: relative difference ours vs pinocchio at one state: M %.1e, b %.1e, "
+        "J %.1e, Jdot*qd %.1e%s\n",
+        e_m, e_b, e_j, e_a,
+        std::max({e_m, e_b, e_j, e_a}) > 1e-8 ? "  (WARNING: they disagree)" : "");
   }
 
   // ---- interleaved timing -------------------------------------------------------------------
   using Clock = std::chrono::steady_clock;
   struct Pair {
     const char* name;
-    std::function<void(int)> ours, ref, alt;  // alt: the FreeFlyer reference, if any
+    std::function<void(int)> ours, ref, alt;   // alt: the FreeFlyer reference, if any
     std::vector<double> t_ours, t_ref, t_alt;  // microseconds per call, one per round
   };
   std::vector<Pair> pairs = {{"dynamics.full", oursFull, refFull, ffFull, {}, {}, {}},
@@ -366,8 +366,10 @@ int main(int argc, char** argv) try {
   for (const auto& p : pairs) {
     if (!ff) break;
     const double t_ours = median(p.t_ours), t_alt = median(p.t_alt);
-    std::printf("info: %s vs Pinocchio with a FreeFlyer root: ours_us=%.3f freeflyer_us=%.3f "
-                "ratio=%.2f\n", p.name, t_ours, t_alt, t_ours / t_alt);
+    std::printf(
+        "info: %s vs Pinocchio with a FreeFlyer root: ours_us=%.3f freeflyer_us=%.3f "
+        "ratio=%.2f\n",
+        p.name, t_ours, t_alt, t_ours / t_alt);
   }
   if (!std::isfinite(sink)) std::printf("(non-finite checksum)\n");
   return 0;

@@ -12,10 +12,10 @@
 /// relaxed flag as our final solve), from its initial guess (where our first SLSQP run
 /// starts). It must also have the sample set our solver ended with: refinements only add
 /// samples or hulls, each adding rows, so equal variable and row counts prove it; otherwise
-/// IPOPT is not run (ref_status=different_nlp) rather than run on another NLP. IPOPT runs with a limited-memory Hessian, stops
-/// on its own KKT test or on the counterpart of SLSQP's ftol_rel test, and has SLSQP's budget
-/// (max_evaluations iterations, time_limit CPU seconds); see ipopt_transition_nlp.h.
-/// Prints per case, medians over `repeats` solves (default 3):
+/// IPOPT is not run (ref_status=different_nlp) rather than run on another NLP. IPOPT runs with a
+/// limited-memory Hessian, stops on its own KKT test or on the counterpart of SLSQP's ftol_rel
+/// test, and has SLSQP's budget (max_evaluations iterations, time_limit CPU seconds); see
+/// ipopt_transition_nlp.h. Prints per case, medians over `repeats` solves (default 3):
 ///   BENCH ocp.<case> ours_s=<wall s> iters=<gradient evaluations> solves=<SLSQP runs>
 ///         variables=<n> constraints=<m> violation=<max family, 1 ms re-check> status=<...>
 ///         ref=ipopt ref_s=<wall s> ref_iters=<IPOPT iterations> ref_evals=<gradient evals>
@@ -127,7 +127,8 @@ int main(int argc, char** argv) {
     double target, start;
     bool hull;
   };
-  const Case cases[] = {{"step_015", 0.15, 0.15, false}, {"step_025", 0.25, 0.25, false},
+  const Case cases[] = {{"step_015", 0.15, 0.15, false},
+                        {"step_025", 0.25, 0.25, false},
                         {"relaxed_055", 0.55, 0.25, true}};
   for (const Case& c : cases) {
     TransitionRequest req = stepRequest(model, c.target, c.start);

@@ -1,13 +1,12 @@
 #include "ipopt_transition_nlp.h"
 
+#include <IpIpoptApplication.hpp>
+#include <IpSolveStatistics.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <exception>
-
-#include <IpIpoptApplication.hpp>
-#include <IpSolveStatistics.hpp>
 
 namespace reach_trajopt {
 
@@ -18,25 +17,44 @@ constexpr double kNoBound = 2.0e19;
 
 const char* statusName(Ipopt::ApplicationReturnStatus s) {
   switch (s) {
-    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed: return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option: return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
-    case Ipopt::Internal_Error: return "Internal_Error";
+    case Ipopt::Solve_Succeeded:
+      return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level:
+      return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected:
+      return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates:
+      return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop:
+      return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found:
+      return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed:
+      return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation:
+      return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+      return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition:
+      return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option:
+      return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected:
+      return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception:
+      return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+      return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory:
+      return "Insufficient_Memory";
+    case Ipopt::Internal_Error:
+      return "Internal_Error";
   }
   return "UNKNOWN";
 }
@@ -57,8 +75,7 @@ bool IpoptTransitionNlp::get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::I
 }
 
 bool IpoptTransitionNlp::get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Number* x_u,
-                                         Ipopt::Index m, Ipopt::Number* g_l,
-                                         Ipopt::Number* g_u) {
+                                         Ipopt::Index m, Ipopt::Number* g_l, Ipopt::Number* g_u) {
   for (Ipopt::Index i = 0; i < n; ++i) {
     x_l[i] = std::max(nlp_.lowerBounds()[i], -kNoBound);
     x_u[i] = std::min(nlp_.upperBounds()[i], kNoBound);
@@ -125,9 +142,9 @@ bool IpoptTransitionNlp::eval_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipop
   return true;
 }
 
-bool IpoptTransitionNlp::eval_jac_g(Ipopt::Index n, const Ipopt::Number* x, bool,
-                                    Ipopt::Index m, Ipopt::Index, Ipopt::Index* iRow,
-                                    Ipopt::Index* jCol, Ipopt::Number* values) {
+bool IpoptTransitionNlp::eval_jac_g(Ipopt::Index n, const Ipopt::Number* x, bool, Ipopt::Index m,
+                                    Ipopt::Index, Ipopt::Index* iRow, Ipopt::Index* jCol,
+                                    Ipopt::Number* values) {
   if (values == nullptr) {  // structure: every entry, row-major
     for (Ipopt::Index r = 0; r < m; ++r) {
       for (Ipopt::Index c = 0; c < n; ++c) {
@@ -147,9 +164,9 @@ bool IpoptTransitionNlp::eval_jac_g(Ipopt::Index n, const Ipopt::Number* x, bool
 
 void IpoptTransitionNlp::finalize_solution(Ipopt::SolverReturn, Ipopt::Index n,
                                            const Ipopt::Number* x, const Ipopt::Number*,
-                                           const Ipopt::Number*, Ipopt::Index,
-                                           const Ipopt::Number*, const Ipopt::Number*,
-                                           Ipopt::Number, const Ipopt::IpoptData*,
+                                           const Ipopt::Number*, Ipopt::Index, const Ipopt::Number*,
+                                           const Ipopt::Number*, Ipopt::Number,
+                                           const Ipopt::IpoptData*,
                                            Ipopt::IpoptCalculatedQuantities*) {
   solution_ = Eigen::Map<const Eigen::VectorXd>(x, n);
 }
@@ -177,13 +194,11 @@ IpoptBenchResult solveWithIpopt(TransitionNlp& nlp, const Eigen::VectorXd& x0,
   if (status == Ipopt::Solve_Succeeded) {
     const auto start = std::chrono::steady_clock::now();
     status = app->OptimizeTNLP(tnlp);
-    r.wall_time =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   r.status = statusName(status);
   r.error = tnlp->error();
-  r.succeeded =
-      status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level;
+  r.succeeded = status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level;
   if (Ipopt::IsValid(app->Statistics())) r.iterations = app->Statistics()->IterationCount();
   r.gradient_evaluations = tnlp->gradientEvaluations();
   r.x = tnlp->solution();

@@ -10,10 +10,9 @@
 /// As in TransitionOcp's NLopt bridge, one TransitionNlp::evaluate() serves all callbacks at a
 /// point, so `gradientEvaluations()` counts the same thing as TransitionResult::iterations.
 
-#include <string>
-
 #include <Eigen/Core>
 #include <IpTNLP.hpp>
+#include <string>
 
 #include "reach_trajopt/ocp/transition_nlp.h"
 
@@ -33,21 +32,21 @@ struct IpoptBenchSettings {
   double acceptable_obj_change_tol = 1.0e-6;
   double acceptable_constr_viol_tol = 1.0e-6;  ///< as constr_viol_tol
   double acceptable_compl_inf_tol = 1.0e-6;    ///< max |s z|: the barrier parameter is small
-  int acceptable_iter = 1;          ///< SLSQP stops on one iterate passing its test
-  int max_iter = 400;               ///< = TransitionOcpConfig::max_evaluations
-  double max_cpu_time = 10.0;       ///< [s] = TransitionOcpConfig::time_limit (3.11: CPU time)
+  int acceptable_iter = 1;                     ///< SLSQP stops on one iterate passing its test
+  int max_iter = 400;                          ///< = TransitionOcpConfig::max_evaluations
+  double max_cpu_time = 10.0;  ///< [s] = TransitionOcpConfig::time_limit (3.11: CPU time)
 };
 
 /// Outcome of one IPOPT solve of a TransitionNlp.
 struct IpoptBenchResult {
-  std::string status;        ///< IPOPT's ApplicationReturnStatus, e.g. "Solve_Succeeded"
-  bool succeeded = false;    ///< Solve_Succeeded or Solved_To_Acceptable_Level
-  std::string error;         ///< last exception of TransitionNlp::evaluate (IPOPT backtracked)
-  double wall_time = 0.0;    ///< OptimizeTNLP wall time [s]
-  int iterations = 0;        ///< IPOPT iterations
+  std::string status;            ///< IPOPT's ApplicationReturnStatus, e.g. "Solve_Succeeded"
+  bool succeeded = false;        ///< Solve_Succeeded or Solved_To_Acceptable_Level
+  std::string error;             ///< last exception of TransitionNlp::evaluate (IPOPT backtracked)
+  double wall_time = 0.0;        ///< OptimizeTNLP wall time [s]
+  int iterations = 0;            ///< IPOPT iterations
   int gradient_evaluations = 0;  ///< evaluate(x, gradients = true) at distinct points
-  Eigen::VectorXd x;         ///< final point (n)
-  double cost = 0.0;         ///< TransitionNlp cost at x
+  Eigen::VectorXd x;             ///< final point (n)
+  double cost = 0.0;             ///< TransitionNlp cost at x
   /// max(|equality|, max(inequality, 0), bound excess) at x, in the NLP's row units.
   double nlp_violation = 0.0;
 };
@@ -62,8 +61,8 @@ class IpoptTransitionNlp : public Ipopt::TNLP {
   bool get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Number* x_u, Ipopt::Index m,
                        Ipopt::Number* g_l, Ipopt::Number* g_u) override;
   bool get_starting_point(Ipopt::Index n, bool init_x, Ipopt::Number* x, bool init_z,
-                          Ipopt::Number* z_L, Ipopt::Number* z_U, Ipopt::Index m,
-                          bool init_lambda, Ipopt::Number* lambda) override;
+                          Ipopt::Number* z_L, Ipopt::Number* z_U, Ipopt::Index m, bool init_lambda,
+                          Ipopt::Number* lambda) override;
   bool eval_f(Ipopt::Index n, const Ipopt::Number* x, bool new_x,
               Ipopt::Number& obj_value) override;
   bool eval_grad_f(Ipopt::Index n, const Ipopt::Number* x, bool new_x,

@@ -15,11 +15,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <eiquadprog/eiquadprog-fast.hpp>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <eiquadprog/eiquadprog-fast.hpp>
 
 #include "contact_problems.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"
@@ -94,9 +93,8 @@ void runGroup(const std::vector<QpData>& children, Family& fam) {
     const Eigen::VectorXd ce0 = -q.beq, ci0 = -q.bin, minus_g = -q.g;
     int status_ref = 0;
     // cold
-    fam.cold.ref.push_back(bestOfUs([&] {
-      status_ref = eiq.solve_quadprog(q.G, q.g, q.Aeq, ce0, q.Ain, ci0, x_ref);
-    }));
+    fam.cold.ref.push_back(bestOfUs(
+        [&] { status_ref = eiq.solve_quadprog(q.G, q.g, q.Aeq, ce0, q.Ain, ci0, x_ref); }));
     fam.cold.ours.push_back(bestOfUs([&] { ours.solve(q.G, q.g, q.Aeq, q.beq, q.Ain, q.bin); }));
     auto check = [&](Series& s) {
       const auto& r = ours.result();
@@ -111,9 +109,9 @@ void runGroup(const std::vector<QpData>& children, Family& fam) {
     check(fam.cold);
     // factor given
     // eiquadprog works in m_J, so the inverse factor is copied back before each solve.
-    fam.factor.ref.push_back(bestOfUs([&] { eiq_j.m_J = factor.J0(); }, [&] {
-      status_ref = eiq_j.solve_quadprog(q.G, minus_g, q.Aeq, ce0, q.Ain, ci0, x_ref);
-    }));
+    fam.factor.ref.push_back(bestOfUs(
+        [&] { eiq_j.m_J = factor.J0(); },
+        [&] { status_ref = eiq_j.solve_quadprog(q.G, minus_g, q.Aeq, ce0, q.Ain, ci0, x_ref); }));
     fam.factor.ours.push_back(
         bestOfUs([&] { ours.solve(factor, q.g, q.Aeq, q.beq, q.Ain, q.bin); }));
     check(fam.factor);
@@ -180,8 +178,8 @@ int main(int argc, char** argv) {
     }
     print(fam);
   }
-  for (auto [n, m_in] : {std::pair{30, 60}, std::pair{30, 40}, std::pair{45, 60},
-                         std::pair{60, 80}}) {
+  for (auto [n, m_in] :
+       {std::pair{30, 60}, std::pair{30, 40}, std::pair{45, 60}, std::pair{60, 80}}) {
     Family fam;
     fam.name = "random_" + std::to_string(n) + "_18_" + std::to_string(m_in);
     for (int p = 0; p < parents; ++p) {

@@ -1,19 +1,20 @@
 #pragma once
 /// \file contact_problems.h
 /// Benchmark problem families for the bundled QP, all feasible by construction:
-///  - contact QP of eq. (15) (docs/method.md Sec. 4): x = [qdd (18); du (12); lambda (6 per contact)],
+///  - contact QP of eq. (15) (docs/method.md Sec. 4): x = [qdd (18); du (12); lambda (6 per
+///  contact)],
 ///    min |qdd|^2_Wq + |du|^2_Wu + |lambda|^2_Wl s.t. M qdd - S^T du - J^T lambda = S^T u - b,
 ///    J_i qdd = -Jdot_i qd, u_min <= u + du <= u_max, C lambda_i >= 0 (16-row surface contact
 ///    wrench cone of Caron et al. 2015). Children of one parent share M, J, b and G and differ
 ///    by the random torque u ~ U(u_min, u_max).
 ///  - backward feasibility QP (19): min |lambda|^2 s.t. J_b^T lambda = M_b qdd + b_b (6 rows),
 ///    cone rows, torque bounds on u = M_a qdd + b_a - J_a^T lambda. Children differ by qdd.
-///  - random dense QPs of the same size class as eiquadprog's reference figures on this machine type (bench/qp/README.md).
+///  - random dense QPs of the same size class as eiquadprog's reference figures on this machine
+///  type (bench/qp/README.md).
 /// Problem form as in dual_active_set_qp.h: A_eq x = b_eq, A_in x >= b_in.
 
-#include <random>
-
 #include <Eigen/Dense>
+#include <random>
 
 namespace bench {
 
@@ -64,11 +65,11 @@ inline Eigen::Matrix<double, 16, 6> wrenchCone(double mu = 0.7, double X = 0.1, 
 /// A parent state of the contact QP (15): M, J, b and the weights.
 struct ContactParent {
   int nc;
-  Eigen::MatrixXd M, J;   // 18 x 18, 6nc x 18
-  Eigen::VectorXd b;      // 18
-  Eigen::VectorXd jdqd;   // -Jdot qd, 6nc
+  Eigen::MatrixXd M, J;  // 18 x 18, 6nc x 18
+  Eigen::VectorXd b;     // 18
+  Eigen::VectorXd jdqd;  // -Jdot qd, 6nc
   Eigen::VectorXd u_min, u_max;
-  Eigen::MatrixXd G;      // constant weights
+  Eigen::MatrixXd G;  // constant weights
 };
 
 inline ContactParent contactParent(std::mt19937& rng, int nc) {
@@ -91,9 +92,9 @@ inline ContactParent contactParent(std::mt19937& rng, int nc) {
   p.b.tail(kNu) += u0;
   p.jdqd = p.J * qdd0;
   p.G = Eigen::MatrixXd::Zero(n, n);
-  p.G.diagonal().head(kNv).setConstant(1.0);        // Wq
+  p.G.diagonal().head(kNv).setConstant(1.0);           // Wq
   p.G.diagonal().segment(kNv, kNu).setConstant(10.0);  // Wu
-  p.G.diagonal().tail(6 * nc).setConstant(1e-3);    // Wl
+  p.G.diagonal().tail(6 * nc).setConstant(1e-3);       // Wl
   return p;
 }
 

@@ -70,8 +70,10 @@ int main(int argc, char** argv) {
     int threads;
     bool bidirectional;
   };
-  const Case cases[] = {{"bidirectional", 1, true}, {"bidirectional", 2, true},
-                        {"forward_only", 1, false}, {"forward_only", 2, false}};
+  const Case cases[] = {{"bidirectional", 1, true},
+                        {"bidirectional", 2, true},
+                        {"forward_only", 1, false},
+                        {"forward_only", 2, false}};
   double total_1 = 0.0;
   for (const Case& c : cases) {
     ReachConfig cfg = base;

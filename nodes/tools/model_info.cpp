@@ -8,21 +8,20 @@
 ///    "joint_names" (q order), "joints": [{"name", "type" (virtual|revolute|continuous|prismatic),
 ///    "q_min", "q_max" [m|rad], "qd_max" [m/s|rad/s], "effort_max" [N|Nm]}] (null = unlimited),
 ///    "frames": [{"name", "parent" (parent link, "" for the root), "position" [m]}]}
-/// (positions at the neutral configuration, floating base at the origin). With --state FILE ({"q": [...], "qd": [...]} or {"states": [{...}, ...]},
-/// our coordinates: floating base [x y z yaw pitch roll] then the joints): JSON with M, b, the
-/// CoM and its Jacobian, and for each frame of --frames its pose, Jacobian and Jdot*qd
-/// (6 x n_q at the frame origin, world orientation, rows [linear; angular]).
-/// Exit status: 0 ok, 2 bad input (the message on stderr names the problem).
+/// (positions at the neutral configuration, floating base at the origin). With --state FILE ({"q":
+/// [...], "qd": [...]} or {"states": [{...}, ...]}, our coordinates: floating base [x y z yaw pitch
+/// roll] then the joints): JSON with M, b, the CoM and its Jacobian, and for each frame of --frames
+/// its pose, Jacobian and Jdot*qd (6 x n_q at the frame origin, world orientation, rows [linear;
+/// angular]). Exit status: 0 ok, 2 bad input (the message on stderr names the problem).
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/state_json.h"
@@ -35,7 +34,8 @@ using Json = nlohmann::json;
 namespace {
 
 void usage() {
-  std::cerr << "usage: model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]\n";
+  std::cerr
+      << "usage: model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]\n";
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -96,7 +96,8 @@ void printSummaryJson(const RobotModel& model) {
   Json frames = Json::array();
   for (const auto& name : model.frameNames()) {
     const Eigen::Vector3d p = model.framePose(ws, model.frameId(name)).translation();
-    frames.push_back({{"name", name}, {"parent", model.parentLink(name)}, {"position", vectorToJson(p)}});
+    frames.push_back(
+        {{"name", name}, {"parent", model.parentLink(name)}, {"position", vectorToJson(p)}});
   }
   out["frames"] = frames;
   std::cout << out.dump() << "\n";
@@ -116,9 +117,8 @@ void printSummary(const RobotModel& model) {
   std::printf("joints (index, name, type, q range [m|rad], |qd| max, |effort| max):\n");
   for (int i = 0; i < model.nq(); ++i) {
     const auto& j = model.joints()[i];
-    std::printf("  %2d %-18s %-10s [%8.3f, %8.3f] %8.3g %8.3g\n", i, j.name.c_str(),
-                jointType(j), j.q_min,
-                j.q_max, j.qd_max, j.effort_max);
+    std::printf("  %2d %-18s %-10s [%8.3f, %8.3f] %8.3g %8.3g\n", i, j.name.c_str(), jointType(j),
+                j.q_min, j.q_max, j.qd_max, j.effort_max);
   }
   std::printf("frames:\n");
   for (const auto& name : model.frameNames()) {

@@ -20,19 +20,18 @@
 /// Bad input (unreadable JSON, wrong sizes, NaN, x_0 off its contact, ...): {"status": "error",
 /// "reason": ...} on stdout and exit status 2. A failed solve is exit status 1.
 
+#include <Eigen/Geometry>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
-#include <nlohmann/json.hpp>
-
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
-#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/ocp_config.h"
@@ -136,18 +135,12 @@ int main(int argc, char** argv) {
     out["qdd"] = matrixRows(res.qdd, stride);
     out["u"] = matrixRows(res.u, stride);
     out["lambda"] = matrixRows(res.lambda, stride);
-    out["violation"] = {{"dynamics", v.dynamics},
-                        {"stance_contact", v.stance_contact},
-                        {"stance_cone", v.stance_cone},
-                        {"new_contact", v.new_contact},
-                        {"new_cone", v.new_cone},
-                        {"torque", v.torque},
-                        {"joint_limits", v.joint_limits},
-                        {"velocity_limits", v.velocity_limits},
-                        {"reachable_set", v.reachable_set},
-                        {"initial_state", v.initial_state},
-                        {"final_state", v.final_state},
-                        {"max", v.max()}};
+    out["violation"] = {{"dynamics", v.dynamics},           {"stance_contact", v.stance_contact},
+                        {"stance_cone", v.stance_cone},     {"new_contact", v.new_contact},
+                        {"new_cone", v.new_cone},           {"torque", v.torque},
+                        {"joint_limits", v.joint_limits},   {"velocity_limits", v.velocity_limits},
+                        {"reachable_set", v.reachable_set}, {"initial_state", v.initial_state},
+                        {"final_state", v.final_state},     {"max", v.max()}};
     out["cost"] = res.cost;
     out["iterations"] = res.iterations;
     out["solves"] = res.solves;

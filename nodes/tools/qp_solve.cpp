@@ -20,17 +20,16 @@
 /// Exit status: 0 when every problem was read (whatever its solve status), 2 when the input is not
 /// valid JSON or a problem is malformed (message on stderr).
 
+#include <Eigen/Core>
 #include <cmath>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
@@ -40,8 +39,8 @@
 namespace {
 
 using nlohmann::json;
-using reach_trajopt::qp::DualActiveSetQp;
 using reach_trajopt::JsonReader;
+using reach_trajopt::qp::DualActiveSetQp;
 using reach_trajopt::qp::QpSolverConfig;
 
 /// At most this many problems in one batch (docs/limits.md).
@@ -54,9 +53,13 @@ json vectorJson(const Eigen::Ref<const Eigen::VectorXd>& v) {
 }
 
 json invalidResult(const std::string& message) {
-  return json{{"status", "invalid_input"}, {"x", json::array()},        {"objective", 0.0},
-              {"multipliers", json::array()}, {"active_set", json::array()},
-              {"iterations", 0},             {"message", message}};
+  return json{{"status", "invalid_input"},
+              {"x", json::array()},
+              {"objective", 0.0},
+              {"multipliers", json::array()},
+              {"active_set", json::array()},
+              {"iterations", 0},
+              {"message", message}};
 }
 
 json solveOne(const JsonReader& reader) {

@@ -28,15 +28,14 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
-#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reach_request_json.h"
 #include "reach_trajopt/reach/swing_state.h"
@@ -112,8 +111,7 @@ int main(int argc, char** argv) {
       throw ReachError(os.str());
     }
     const bool contacts = req.mode != "none";
-    const ContactMode mode =
-        contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};
+    const ContactMode mode = contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};
 
     ReachProblem p;
     p.mode = mode;

@@ -32,15 +32,24 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     try {
-      if (a == "--config") config_path = next();
-      else if (a == "--urdf") urdf = next();
-      else if (a == "--mode") mode = next();
-      else if (a == "--steps") steps = next();
-      else if (a == "--seed") seed = next();
-      else if (a == "--push") push = next();
-      else if (a == "--forward-speed") speed = next();
-      else if (a == "--records") records_path = next();
-      else throw std::runtime_error("unknown argument '" + a + "'");
+      if (a == "--config")
+        config_path = next();
+      else if (a == "--urdf")
+        urdf = next();
+      else if (a == "--mode")
+        mode = next();
+      else if (a == "--steps")
+        steps = next();
+      else if (a == "--seed")
+        seed = next();
+      else if (a == "--push")
+        push = next();
+      else if (a == "--forward-speed")
+        speed = next();
+      else if (a == "--records")
+        records_path = next();
+      else
+        throw std::runtime_error("unknown argument '" + a + "'");
     } catch (const std::exception& e) {
       std::cerr << "walk_experiment: " << e.what() << "\n";
       return 2;
@@ -61,23 +70,25 @@ int main(int argc, char** argv) {
     if (!speed.empty()) walk.forward_speed = parseDoubleOption("--forward-speed", speed);
     if (!push.empty()) {
       const auto comma = push.find(',');
-      if (comma == std::string::npos) throw ReachError("--push: expected vx,vy [m/s], got '" + push + "'");
-      walk.initial_com_velocity = Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
-                                                  parseDoubleOption("--push", push.substr(comma + 1)));
+      if (comma == std::string::npos)
+        throw ReachError("--push: expected vx,vy [m/s], got '" + push + "'");
+      walk.initial_com_velocity =
+          Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
+                          parseDoubleOption("--push", push.substr(comma + 1)));
     }
     walk.validate();
     const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
     WalkingExperiment experiment(urdf, walk, tvr, contact, wbc, sim, &proposed);
     const WalkResult r = experiment.run({}, [](const StepRecord& s) {
-      std::printf("step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
-                  "executed=(%.3f, %.3f) err=%.4f m verdict=%s d_H=%.4g check_s=%.3f "
-                  "ocp_s=%.3f ocp=%s%s%s\n",
-                  s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(),
-                  s.planned_tvr.y(), s.planned.x(), s.planned.y(),
-                  s.offset_clipped ? " clipped" : "", s.executed.x(), s.executed.y(),
-                  s.touchdown_error, s.verdict.c_str(), s.hausdorff_distance, s.check_time_s,
-                  s.ocp_time_s, s.ocp_status.c_str(), s.reason.empty() ? "" : " reason: ",
-                  s.reason.c_str());
+      std::printf(
+          "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
+          "executed=(%.3f, %.3f) err=%.4f m verdict=%s d_H=%.4g check_s=%.3f "
+          "ocp_s=%.3f ocp=%s%s%s\n",
+          s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
+          s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
+          s.executed.y(), s.touchdown_error, s.verdict.c_str(), s.hausdorff_distance,
+          s.check_time_s, s.ocp_time_s, s.ocp_status.c_str(),
+          s.reason.empty() ? "" : " reason: ", s.reason.c_str());
       std::fflush(stdout);
     });
     if (!records_path.empty()) {
@@ -86,11 +97,10 @@ int main(int argc, char** argv) {
       out << "index,swing,plan_time,touchdown_time,planned_tvr_x,planned_tvr_y,planned_x,"
              "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict\n";
       for (const StepRecord& s : r.records)
-        out << s.index << "," << sideName(s.swing) << "," << s.plan_time << ","
-            << s.touchdown_time << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << ","
-            << s.planned.x() << "," << s.planned.y() << "," << s.executed.x() << ","
-            << s.executed.y() << "," << s.touchdown_error << "," << s.offset_clipped << ","
-            << s.verdict << "\n";
+        out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
+            << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
+            << s.planned.y() << "," << s.executed.x() << "," << s.executed.y() << ","
+            << s.touchdown_error << "," << s.offset_clipped << "," << s.verdict << "\n";
     }
     std::printf("%s\n", r.summaryLine().c_str());
   } catch (const std::exception& e) {

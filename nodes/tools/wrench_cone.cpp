@@ -5,13 +5,12 @@
 /// C blkdiag(R^T, R^T)} with R = Rz(y) Ry(p) Rx(r) the sole's orientation in the world.
 /// Exit status 2 with the message on stderr for bad arguments (e.g. mu <= 0).
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
-#include <string>
-
-#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/error.h"

@@ -1,11 +1,11 @@
 #include "reach_trajopt/common/config_yaml.h"
 
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
-
-#include <yaml-cpp/yaml.h>
 
 namespace reach_trajopt {
 
@@ -35,14 +35,14 @@ void rejectDuplicateKeys(const YAML::Node& n, const std::string& source, const s
   if (!n.IsMap()) return;
   std::set<std::string> seen;
   for (const auto& kv : n) {
-    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("<non-scalar key>");
+    const std::string key =
+        kv.first.IsScalar() ? kv.first.Scalar() : std::string("<non-scalar key>");
     const std::string where = path.empty() ? key : path + "." + key;
     if (!kv.first.IsScalar())
       throw ConfigError(source + ": " + where + ": mapping keys must be plain scalars");
     if (!seen.insert(key).second) {
       std::ostringstream os;
-      os << source << ": " << where << ": duplicate key (line " << kv.first.Mark().line + 1
-         << ")";
+      os << source << ": " << where << ": duplicate key (line " << kv.first.Mark().line + 1 << ")";
       throw ConfigError(os.str());
     }
     rejectDuplicateKeys(kv.second, source, where);
@@ -58,9 +58,9 @@ YAML::Node checkedRoot(const YAML::Node& root, const std::string& source) {
 }  // namespace
 
 const std::vector<std::string>& configSections() {
-  static const std::vector<std::string> sections = {
-      "contact", "planner", "kinematic_feasibility", "reach", "wbc", "walk",
-      "ocp",     "sim",     "nearest_foothold"};
+  static const std::vector<std::string> sections = {"contact", "planner", "kinematic_feasibility",
+                                                    "reach",   "wbc",     "walk",
+                                                    "ocp",     "sim",     "nearest_foothold"};
   return sections;
 }
 
@@ -106,9 +106,7 @@ std::string YamlSection::where(const std::string& key) const {
   return impl_->source + ": " + (impl_->path.empty() ? key : impl_->path + "." + key);
 }
 
-bool YamlSection::has(const std::string& key) const {
-  return static_cast<bool>(impl_->node[key]);
-}
+bool YamlSection::has(const std::string& key) const { return static_cast<bool>(impl_->node[key]); }
 
 YamlSection YamlSection::section(const std::string& key) const {
   const YAML::Node n = impl_->node[key];
@@ -198,7 +196,7 @@ bool YamlSection::read(const std::string& key, std::vector<double>& value) const
       out.push_back(n[i].as<double>());
     } catch (const YAML::Exception&) {
       throw ConfigError(where(key) + "[" + std::to_string(i) + "]: expected a number, got " +
-                       describe(n[i]));
+                        describe(n[i]));
     }
     if (std::isnan(out.back())) {
       throw ConfigError(where(key) + "[" + std::to_string(i) + "]: NaN is not allowed");

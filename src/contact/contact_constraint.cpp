@@ -41,8 +41,7 @@ ContactConstraint::ContactConstraint(const RobotModel& model, const std::string&
                                      const Eigen::Isometry3d& planned_pose)
     : ContactConstraint(model.frameId(frame_name), planned_pose) {}
 
-Vector6d ContactConstraint::error(const Eigen::Isometry3d& pose,
-                                  const Eigen::Isometry3d& planned) {
+Vector6d ContactConstraint::error(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& planned) {
   Vector6d e;
   e.head<3>() = pose.translation() - planned.translation();
   const Eigen::AngleAxisd aa(Eigen::Matrix3d(pose.linear() * planned.linear().transpose()));

@@ -45,8 +45,8 @@ void ContactSequence::append(const ContactPhase& phase) {
     }
     const bool keeps_contact = (prev.left && phase.mode.left) || (prev.right && phase.mode.right);
     if (!keeps_contact) {
-      throw ReachError("contact sequence phase " + std::to_string(i) + ": switch " +
-                       prev.name() + " -> " + phase.mode.name() +
+      throw ReachError("contact sequence phase " + std::to_string(i) + ": switch " + prev.name() +
+                       " -> " + phase.mode.name() +
                        " has no sole in contact through it (insert a DS phase)");
     }
   }
@@ -80,8 +80,10 @@ int ContactSequence::phaseIndexAt(double t) const {
   }
   int lo = 0;
   for (int i = 1; i < size(); ++i) {
-    if (start_times_[i] <= t) lo = i;
-    else break;
+    if (start_times_[i] <= t)
+      lo = i;
+    else
+      break;
   }
   return lo;
 }

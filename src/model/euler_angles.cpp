@@ -3,10 +3,9 @@
 
 #include "reach_trajopt/model/euler_angles.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <sstream>
-
-#include <Eigen/Geometry>
 
 namespace reach_trajopt {
 

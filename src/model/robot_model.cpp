@@ -5,19 +5,35 @@
 /// Dynamics Algorithms, 2008, ch. 5-6). Spatial vectors are kept as pairs of 3-vectors in body
 /// coordinates, [angular; linear] internally; the public API returns [linear; angular].
 
+#include "reach_trajopt/model/robot_model.h"
+
 #include <cmath>
 #include <limits>
 
 #include "reach_trajopt/model/model_tree.h"
-#include "reach_trajopt/model/robot_model.h"
 
 namespace reach_trajopt {
 
 /// Per-body scratch of one thread. Body-frame quantities unless the name says world.
 struct Workspace::Buffers {
   explicit Buffers(int n)
-      : R(n), p(n), R_world(n), p_world(n), w(n), v(n), dw(n), dv(n), fn(n), ff(n),
-        Ic_m(n), Ic_h(n), Ic_I(n), sub_m(n), sub_mc(n), q(n), qd(n) {}
+      : R(n),
+        p(n),
+        R_world(n),
+        p_world(n),
+        w(n),
+        v(n),
+        dw(n),
+        dv(n),
+        fn(n),
+        ff(n),
+        Ic_m(n),
+        Ic_h(n),
+        Ic_I(n),
+        sub_m(n),
+        sub_mc(n),
+        q(n),
+        qd(n) {}
   template <typename T>
   using Vec = std::vector<T, Eigen::aligned_allocator<T>>;
   Vec<Eigen::Matrix3d> R;        ///< body rotation in its parent
@@ -199,8 +215,7 @@ Eigen::Isometry3d RobotModel::framePose(const Workspace& ws, FrameId frame) cons
   return T * f.placement;
 }
 
-void RobotModel::frameJacobian(const Workspace& ws, FrameId frame,
-                               Eigen::Ref<Matrix6Xd> J) const {
+void RobotModel::frameJacobian(const Workspace& ws, FrameId frame, Eigen::Ref<Matrix6Xd> J) const {
   const Workspace::Buffers& d = requireUpdated(ws);
   requireSize("frameJacobian: columns of J", J.cols(), nq());
   J.setZero();

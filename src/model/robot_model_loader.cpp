@@ -1,15 +1,15 @@
 /// \file robot_model_loader.cpp
 /// URDF -> urdfdom -> KDL tree (kdl_parser) -> the flattened ModelTree of RobotModel.
 
+#include <urdf_parser/urdf_parser.h>
+
 #include <cmath>
 #include <fstream>
+#include <kdl/tree.hpp>
+#include <kdl_parser/kdl_parser.hpp>
 #include <limits>
 #include <map>
 #include <sstream>
-
-#include <kdl/tree.hpp>
-#include <kdl_parser/kdl_parser.hpp>
-#include <urdf_parser/urdf_parser.h>
 
 #include "reach_trajopt/model/model_tree.h"
 #include "reach_trajopt/model/robot_model.h"
@@ -77,20 +77,6 @@ void linkInertia(const urdf::InertialSharedPtr& inertial, double& m, Eigen::Vect
   I0 = T.linear() * Ic * T.linear().transpose() - m * skew(c) * skew(c);
 }
 
-void validateInertias(const urdf::ModelInterface& urdf, const std::string& source) {
-  for (const auto& kv : urdf.links_) {
-    const auto& link = kv.second;
-    if (!link->inertial) continue;
-    const urdf::Inertial& in = *link->inertial;
-    const double vals[] = {in.mass, in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
-    for (double v : vals)
-      if (!std::isfinite(v))
-        throw ModelError("non-finite inertial value in link '" + link->name + "' of " + source);
-    if (in.mass < 0.0)
-      throw ModelError("negative mass in link '" + link->name + "' of " + source);
-  }
-}
-
 }  // namespace
 
 /// Builds a RobotModel from a URDF and its KDL tree; friend of RobotModel so it can fill the
@@ -130,8 +116,7 @@ std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf
                                                       const ModelOptions& options,
                                                       const std::string& source) {
   if (!options.gravity.allFinite()) throw ModelError("non-finite gravity for " + source);
-  validateInertias(urdf, source);
-  validateUrdf(urdf, source);  // urdf_validation.h
+  validateUrdf(urdf, source);  // axes, masses, inertias (urdf_validation.h)
   if (!urdf.root_link_) throw ModelError("URDF has no root link: " + source);
   // kdl_parser drops (and warns about) the root link's inertia; we keep it ourselves.
   const urdf::InertialSharedPtr root_inertial = urdf.root_link_->inertial;

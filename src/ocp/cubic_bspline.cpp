@@ -92,11 +92,9 @@ CubicBSplineBasis::Row CubicBSplineBasis::evaluate(double t) const {
 }
 
 void CubicBSplineBasis::boundaryControlPoints(double h, const Eigen::VectorXd& q0,
-                                              const Eigen::VectorXd& qd0,
-                                              const Eigen::VectorXd& qT,
+                                              const Eigen::VectorXd& qd0, const Eigen::VectorXd& qT,
                                               const Eigen::VectorXd& qdT, Eigen::VectorXd& c0,
-                                              Eigen::VectorXd& c1,
-                                              Eigen::VectorXd& c_second_last,
+                                              Eigen::VectorXd& c1, Eigen::VectorXd& c_second_last,
                                               Eigen::VectorXd& c_last) {
   // qd(0) = 3 (c1 - c0) / h and qd(T) = 3 (c_last - c_second_last) / h for clamped knots.
   c0 = q0;

@@ -26,8 +26,7 @@ void requireNonNegative(const char* name, double v) {
 
 void TransitionOcpConfig::validate() const {
   if (segments < 2) {
-    throw ReachError("TransitionOcpConfig: segments must be >= 2, got " +
-                     std::to_string(segments));
+    throw ReachError("TransitionOcpConfig: segments must be >= 2, got " + std::to_string(segments));
   }
   requirePositive("check_interval", check_interval);
   requirePositive("output_dt", output_dt);
@@ -56,11 +55,30 @@ void TransitionOcpConfig::validate() const {
 }
 
 TransitionOcpConfig TransitionOcpConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"segments", "check_interval", "output_dt", "w_torque", "w_wrench",
-                     "w_position", "w_velocity", "w_eps", "terminal_pelvis_height", "cone_margin", "torque_margin",
-                     "ground_clearance", "swing_clearance", "tolerance", "input_tolerance", "max_refinements",
-                     "max_evaluations", "time_limit", "ftol_rel", "relaxed_ftol_rel", "xtol_rel", "fd_step",
-                     "central_differences", "fit_regularization"});
+  s.requireOnlyKeys({"segments",
+                     "check_interval",
+                     "output_dt",
+                     "w_torque",
+                     "w_wrench",
+                     "w_position",
+                     "w_velocity",
+                     "w_eps",
+                     "terminal_pelvis_height",
+                     "cone_margin",
+                     "torque_margin",
+                     "ground_clearance",
+                     "swing_clearance",
+                     "tolerance",
+                     "input_tolerance",
+                     "max_refinements",
+                     "max_evaluations",
+                     "time_limit",
+                     "ftol_rel",
+                     "relaxed_ftol_rel",
+                     "xtol_rel",
+                     "fd_step",
+                     "central_differences",
+                     "fit_regularization"});
   TransitionOcpConfig c;
   s.read("segments", c.segments);
   s.read("check_interval", c.check_interval);

@@ -1,21 +1,18 @@
 #include "reach_trajopt/ocp/spline_fit.h"
 
-#include <cmath>
-#include <sstream>
-
 #include <Eigen/SPQRSupport>
 #include <Eigen/SparseCore>
+#include <cmath>
+#include <sstream>
 
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
 
-Eigen::MatrixXd fitSplineControlPoints(const CubicBSplineBasis& basis,
-                                       const Eigen::VectorXd& times,
+Eigen::MatrixXd fitSplineControlPoints(const CubicBSplineBasis& basis, const Eigen::VectorXd& times,
                                        const Eigen::MatrixXd& samples,
                                        const std::vector<bool>& fixed,
-                                       const Eigen::MatrixXd& fixed_values,
-                                       double regularization) {
+                                       const Eigen::MatrixXd& fixed_values, double regularization) {
   const int K = basis.controlPoints();
   const int n = static_cast<int>(times.size());
   const int d = static_cast<int>(samples.cols());

@@ -1,8 +1,7 @@
 #include "reach_trajopt/ocp/stance_reduced_dynamics.h"
 
-#include <cmath>
-
 #include <Eigen/LU>
+#include <cmath>
 
 #include "reach_trajopt/common/error.h"
 
@@ -79,11 +78,9 @@ void StanceReducedDynamics::kinematics(Scratch& s, const Eigen::Ref<const Eigen:
 
   // The stance sole does not move: omega_b = -R omega_rel, v_b = -R v_rel - omega_b x (p_s - p_b).
   const Eigen::Vector3d w_b = -R * v_rel.tail<3>();
-  const Eigen::Vector3d v_b =
-      -R * v_rel.head<3>() - w_b.cross(stance_pose_.translation() - p_b);
+  const Eigen::Vector3d v_b = -R * v_rel.head<3>() - w_b.cross(stance_pose_.translation() - p_b);
   // omega = E [yawd; pitchd; rolld], E = [e_z, Rz e_y, Rz Ry e_x].
-  const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch),
-               sp = std::sin(pitch);
+  const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch), sp = std::sin(pitch);
   Eigen::Matrix3d E;
   E << 0.0, -sy, cy * cp, 0.0, cy, sy * cp, 1.0, 0.0, -sp;
   s.qd.head<3>() = v_b;

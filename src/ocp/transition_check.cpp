@@ -82,13 +82,14 @@ class SampleCheck {
     // Eq. (8), stance cone; torque bounds.
     const double cone_v = std::max(0.0, -(C_s_ * ls).minCoeff() / W_);
     v.stance_cone = std::max(v.stance_cone, cone_v);
-    const double tq = std::max(
-        0.0, (traj_.u.col(k).cwiseAbs() - u_max_).cwiseQuotient(u_max_).maxCoeff());
+    const double tq =
+        std::max(0.0, (traj_.u.col(k).cwiseAbs() - u_max_).cwiseQuotient(u_max_).maxCoeff());
     v.torque = std::max(v.torque, tq);
     // A wrench on the new contact before t_f would be an error.
     if (k + 1 < n) v.new_cone = std::max(v.new_cone, ln.cwiseAbs().maxCoeff() / W_);
     // Joint and velocity limits.
-    v.joint_limits = std::max({v.joint_limits, (q_lo_ - q).maxCoeff(), (q - q_hi_).maxCoeff(), 0.0});
+    v.joint_limits =
+        std::max({v.joint_limits, (q_lo_ - q).maxCoeff(), (q - q_hi_).maxCoeff(), 0.0});
     for (int i = 0; i < nq; ++i) {
       if (std::isfinite(qd_max_[i]) && qd_max_[i] > 0) {
         v.velocity_limits =
@@ -97,9 +98,9 @@ class SampleCheck {
     }
     if (k + 1 == n) {  // new mode at t_f: eq. (5) and (8) for the new contact
       c_new_.evaluate(model_, ws_, terms_);
-      v.new_contact = std::max({terms_.phi.cwiseAbs().maxCoeff(),
-                                terms_.phidot.cwiseAbs().maxCoeff(),
-                                terms_.phiddot(qdd).cwiseAbs().maxCoeff()});
+      v.new_contact =
+          std::max({terms_.phi.cwiseAbs().maxCoeff(), terms_.phidot.cwiseAbs().maxCoeff(),
+                    terms_.phiddot(qdd).cwiseAbs().maxCoeff()});
       v.new_cone = std::max(v.new_cone, std::max(0.0, -(C_n_ * ln).minCoeff() / W_));
     }
     return std::max(cone_v, tq);

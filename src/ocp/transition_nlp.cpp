@@ -9,9 +9,7 @@
 
 namespace reach_trajopt {
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
                              const TransitionOcpConfig& config, const ContactConfig& contact,
@@ -24,11 +22,10 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
       nu_(model_->nu()),
       basis_(request.horizon, config.segments),
       pelvis_posture_(relaxed && config.terminal_pelvis_height > 0.0),
-      pelvis_height_target_(0.5 * (request.stance_pose.translation().z() +
-                                   request.swing_target.translation().z()) +
-                            (std::isnan(request.terminal_pelvis_height)
-                                 ? config.terminal_pelvis_height
-                                 : request.terminal_pelvis_height)) {
+      pelvis_height_target_(
+          0.5 * (request.stance_pose.translation().z() + request.swing_target.translation().z()) +
+          (std::isnan(request.terminal_pelvis_height) ? config.terminal_pelvis_height
+                                                      : request.terminal_pelvis_height)) {
   const RobotModel& m = *model_;
   const Side swing = opposite(request.stance);
   dyn_ = std::make_unique<StanceReducedDynamics>(
@@ -75,8 +72,7 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   Eigen::VectorXd q_start(nq_);
   dyn_->configuration(*scratch_, request.q0.tail(nu_), q_start);
   ground_clearance_ = config.ground_clearance;
-  ground_floor_ =
-      std::min(request.swing_target.translation().z(), scratch_->swing_position.z());
+  ground_floor_ = std::min(request.swing_target.translation().z(), scratch_->swing_position.z());
 
   // Hulls with unit normals (violations in metres).
   for (const ReachableSlice& s : request.slices) {
@@ -131,7 +127,7 @@ void TransitionNlp::rebuildSamples() {
   for (double t : times) {
     if (unique.empty() || t - unique.back() > merge) unique.push_back(t);
   }
-  unique.back() = T;  // t_f in single support (just before touchdown)
+  unique.back() = T;    // t_f in single support (just before touchdown)
   unique.push_back(T);  // t_f in double support
   sample_times_ = unique;
   sample_times_.pop_back();
@@ -288,8 +284,7 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
   CubicBSplineBasis::Row brow;
   // Adds a local gradient (over the 4 control points of this sample and lambda_2) to a row.
   using StridedRow = Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
-  auto scatter = [&](Eigen::Ref<Eigen::RowVectorXd> target, const StridedRow& local,
-                     bool final) {
+  auto scatter = [&](Eigen::Ref<Eigen::RowVectorXd> target, const StridedRow& local, bool final) {
     for (int j = 0; j < 4; ++j) {
       const int idx = freeIndex(brow.first + j);
       if (idx >= 0) target.segment(idx, nu_) += local.segment(j * nu_, nu_);
@@ -307,8 +302,7 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
     splineInput(x, brow, input_);
     input_.tail<6>() = final ? lambdaNew(x) : Vector6d::Zero();
     if (gradients) {
-      d.evaluate(*scratch_, input_, signals_, jin_, config_.fd_step,
-                 config_.central_differences);
+      d.evaluate(*scratch_, input_, signals_, jin_, config_.fd_step, config_.central_differences);
       for (int j = 0; j < 4; ++j) {
         jloc_.middleCols(j * nu_, nu_) = brow.value[j] * jin_.leftCols(nu_);
         jloc_.middleCols(j * nu_, nu_) += brow.d1[j] * jin_.middleCols(nu_, nu_);
@@ -345,8 +339,7 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
       const Vector6d xl = x.segment<6>(lambda_index_);
       out.cost += smp.weight * config_.w_wrench * xl.squaredNorm();
       if (gradients) {
-        out.cost_gradient.segment<6>(lambda_index_) +=
-            smp.weight * 2.0 * config_.w_wrench * xl;
+        out.cost_gradient.segment<6>(lambda_index_) += smp.weight * 2.0 * config_.w_wrench * xl;
       }
     }
 

@@ -4,10 +4,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <nlopt.hpp>
 #include <sstream>
 #include <vector>
-
-#include <nlopt.hpp>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_constraint.h"
@@ -22,18 +21,30 @@ using Clock = std::chrono::steady_clock;
 
 const char* nloptResultName(nlopt::result r) {
   switch (r) {
-    case nlopt::FAILURE: return "FAILURE";
-    case nlopt::INVALID_ARGS: return "INVALID_ARGS";
-    case nlopt::OUT_OF_MEMORY: return "OUT_OF_MEMORY";
-    case nlopt::ROUNDOFF_LIMITED: return "ROUNDOFF_LIMITED";
-    case nlopt::FORCED_STOP: return "FORCED_STOP";
-    case nlopt::SUCCESS: return "SUCCESS";
-    case nlopt::STOPVAL_REACHED: return "STOPVAL_REACHED";
-    case nlopt::FTOL_REACHED: return "FTOL_REACHED";
-    case nlopt::XTOL_REACHED: return "XTOL_REACHED";
-    case nlopt::MAXEVAL_REACHED: return "MAXEVAL_REACHED";
-    case nlopt::MAXTIME_REACHED: return "MAXTIME_REACHED";
-    default: return "UNKNOWN";
+    case nlopt::FAILURE:
+      return "FAILURE";
+    case nlopt::INVALID_ARGS:
+      return "INVALID_ARGS";
+    case nlopt::OUT_OF_MEMORY:
+      return "OUT_OF_MEMORY";
+    case nlopt::ROUNDOFF_LIMITED:
+      return "ROUNDOFF_LIMITED";
+    case nlopt::FORCED_STOP:
+      return "FORCED_STOP";
+    case nlopt::SUCCESS:
+      return "SUCCESS";
+    case nlopt::STOPVAL_REACHED:
+      return "STOPVAL_REACHED";
+    case nlopt::FTOL_REACHED:
+      return "FTOL_REACHED";
+    case nlopt::XTOL_REACHED:
+      return "XTOL_REACHED";
+    case nlopt::MAXEVAL_REACHED:
+      return "MAXEVAL_REACHED";
+    case nlopt::MAXTIME_REACHED:
+      return "MAXTIME_REACHED";
+    default:
+      return "UNKNOWN";
   }
 }
 
@@ -107,7 +118,9 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, doub
   NloptBridge bridge;
   bridge.nlp = &nlp;
   bridge.opt = &opt;
-  auto toStd = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  auto toStd = [](const Eigen::VectorXd& v) {
+    return std::vector<double>(v.data(), v.data() + v.size());
+  };
   opt.set_lower_bounds(toStd(nlp.lowerBounds()));
   opt.set_upper_bounds(toStd(nlp.upperBounds()));
   opt.set_min_objective(&NloptBridge::objective, &bridge);
@@ -150,8 +163,8 @@ std::string worstFamily(const ConstraintViolations& v) {
       {"new_cone", v.new_cone},           {"torque", v.torque},
       {"joint_limits", v.joint_limits},   {"reachable_set", v.reachable_set},
       {"initial_state", v.initial_state}, {"final_state", v.final_state}};
-  const auto* w = std::max_element(std::begin(f), std::end(f),
-                                   [](const auto& a, const auto& b) { return a.second < b.second; });
+  const auto* w = std::max_element(
+      std::begin(f), std::end(f), [](const auto& a, const auto& b) { return a.second < b.second; });
   std::ostringstream os;
   os << w->first << " violated by " << w->second;
   return os.str();
@@ -328,9 +341,8 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
 
 TransitionResult TransitionOcp::solve(const TransitionRequest& request) const {
   const Clock::time_point start = Clock::now();
-  const Clock::time_point deadline =
-      start + std::chrono::duration_cast<Clock::duration>(
-                  std::chrono::duration<double>(config_.time_limit));
+  const Clock::time_point deadline = start + std::chrono::duration_cast<Clock::duration>(
+                                                 std::chrono::duration<double>(config_.time_limit));
   validate(request);
   TransitionResult res;
   switch (request.relaxation) {

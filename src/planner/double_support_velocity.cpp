@@ -1,10 +1,9 @@
 #include "reach_trajopt/planner/double_support_velocity.h"
 
-#include <string>
-#include <vector>
-
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/common/error.h"
 
@@ -14,8 +13,7 @@ Eigen::VectorXd doubleSupportVelocity(const RobotModel& model, const Eigen::Vect
                                       FrameId left_sole, FrameId right_sole,
                                       const Eigen::Vector3d& com_velocity) {
   const int n = model.nq(), nu = model.nu();
-  if (n - nu != 6)
-    throw ReachError("doubleSupportVelocity: needs a floating-base model");
+  if (n - nu != 6) throw ReachError("doubleSupportVelocity: needs a floating-base model");
   requireSize("doubleSupportVelocity: q", q.size(), n);
   requireFinite("doubleSupportVelocity: q", q);
   requireFinite("doubleSupportVelocity: com_velocity", com_velocity);
@@ -42,14 +40,12 @@ Eigen::VectorXd doubleSupportVelocity(const RobotModel& model, const Eigen::Vect
   const Eigen::Matrix3d JcZ = Jc * Z;
   const Eigen::Vector3d v_base = JcZ.fullPivLu().solve(com_velocity);
   Eigen::VectorXd qd = Z * v_base;
-  if (!qd.allFinite())
-    throw ReachError("doubleSupportVelocity: no finite solution at q");
+  if (!qd.allFinite()) throw ReachError("doubleSupportVelocity: no finite solution at q");
   return qd;
 }
 
 Eigen::VectorXd doubleSupportBaseVelocity(const RobotModel& model, const Eigen::VectorXd& q,
-                                          FrameId left, FrameId right,
-                                          const Eigen::Vector2d& v) {
+                                          FrameId left, FrameId right, const Eigen::Vector2d& v) {
   const int n = model.nq();
   requireSize("doubleSupportBaseVelocity: q", q.size(), n);
   requireFinite("doubleSupportBaseVelocity: base velocity", v);

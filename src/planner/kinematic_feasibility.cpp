@@ -1,12 +1,11 @@
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <sstream>
-
-#include <Eigen/Cholesky>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
@@ -17,7 +16,7 @@ namespace reach_trajopt {
 namespace {
 
 constexpr int kTaskRows = 18;  // left sole 6, right sole 6, pelvis position 3 (x, y zeroed when
-                                // free), pelvis rotation 3
+                               // free), pelvis rotation 3
 
 void requirePositive(const char* name, double v) {
   requirePositiveFinite("KinematicFeasibilityConfig", name, v);
@@ -74,10 +73,9 @@ void KinematicFeasibilityConfig::validate() const {
 }
 
 KinematicFeasibilityConfig KinematicFeasibilityConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"pelvis_frame", "pelvis_height", "position_tolerance",
-                     "orientation_tolerance", "max_iterations", "damping", "max_joint_step",
-                     "sole_clearance", "min_lateral_offset", "workspace_radius",
-                     "workspace_height"});
+  s.requireOnlyKeys({"pelvis_frame", "pelvis_height", "position_tolerance", "orientation_tolerance",
+                     "max_iterations", "damping", "max_joint_step", "sole_clearance",
+                     "min_lateral_offset", "workspace_radius", "workspace_height"});
   KinematicFeasibilityConfig c;
   s.read("pelvis_frame", c.pelvis_frame);
   s.read("pelvis_height", c.pelvis_height);
@@ -111,26 +109,25 @@ std::string geometricRejection(const KinematicFeasibilityConfig& config,
   const double margin = 0.5 * config.sole_clearance;
   if (rectanglesOverlap(current.position.head<2>(), current.yaw, planned.position.head<2>(),
                         planned.yaw, contact.half_length + margin, contact.half_width + margin))
-    return "planned " + swing_name + " overlaps the stance sole " + stance_name +
-           " (clearance " + fmt(config.sole_clearance) +
-           " m): one foot would pass through the other";
+    return "planned " + swing_name + " overlaps the stance sole " + stance_name + " (clearance " +
+           fmt(config.sole_clearance) + " m): one foot would pass through the other";
   const Eigen::Vector3d delta = planned.position - current.position;
   const Eigen::Vector2d offset =
       Eigen::Rotation2Dd(-current.yaw) * delta.head<2>();  // stance heading frame
   const double toward_swing = (opposite(stance) == Side::kLeft ? 1.0 : -1.0) * offset.y();
   if (toward_swing < config.min_lateral_offset)
-    return "planned " + swing_name + " crosses to the far side of the stance sole " +
-           stance_name + " (lateral offset " + fmt(toward_swing) + " m < " +
-           fmt(config.min_lateral_offset) + " m): the swing leg would pass through the stance leg";
+    return "planned " + swing_name + " crosses to the far side of the stance sole " + stance_name +
+           " (lateral offset " + fmt(toward_swing) + " m < " + fmt(config.min_lateral_offset) +
+           " m): the swing leg would pass through the stance leg";
   return "";
 }
 
 /// One damped least-squares step toward e = 0 whose joints stay within [q_lo, q_hi]: a joint
 /// that would cross its limit is clamped to it and the step is re-solved for the others.
 void clampedStep(const Eigen::MatrixXd& J, const Eigen::Matrix<double, kTaskRows, 1>& e,
-                 const Eigen::VectorXd& q, const Eigen::VectorXd& q_lo,
-                 const Eigen::VectorXd& q_hi, double lambda, double max_step,
-                 std::vector<bool>& locked, Eigen::MatrixXd& Jf, Eigen::VectorXd& dq) {
+                 const Eigen::VectorXd& q, const Eigen::VectorXd& q_lo, const Eigen::VectorXd& q_hi,
+                 double lambda, double max_step, std::vector<bool>& locked, Eigen::MatrixXd& Jf,
+                 Eigen::VectorXd& dq) {
   const int n = static_cast<int>(q.size());
   Eigen::Matrix<double, kTaskRows, kTaskRows> JJt;
   std::fill(locked.begin(), locked.end(), false);
@@ -232,9 +229,9 @@ std::string infeasibleReason(const RobotModel& model, const KinematicFeasibility
   }
   std::ostringstream os;
   os << "kinematically infeasible: after " << ik.iterations << " IK iterations " << names[worst]
-     << " misses its target by " << fmt(ik.task_pos[worst]) << " m and "
-     << fmt(ik.task_rot[worst]) << " rad (tolerances " << config.position_tolerance << " m, "
-     << config.orientation_tolerance << " rad)";
+     << " misses its target by " << fmt(ik.task_pos[worst]) << " m and " << fmt(ik.task_rot[worst])
+     << " rad (tolerances " << config.position_tolerance << " m, " << config.orientation_tolerance
+     << " rad)";
   const Eigen::VectorXd q_lo = model.positionLowerLimits();
   const Eigen::VectorXd q_hi = model.positionUpperLimits();
   std::string at_limits;
@@ -267,11 +264,9 @@ KinematicFeasibility::KinematicFeasibility(std::shared_ptr<const RobotModel> mod
   pelvis_ = model_->frameId(config_.pelvis_frame);
 }
 
-KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatContact& current,
-                                                       const FlatContact& planned,
-                                                       const Eigen::VectorXd& q_init,
-                                                       const std::optional<Eigen::Vector3d>&
-                                                           pelvis_position) const {
+KinematicFeasibilityResult KinematicFeasibility::check(
+    Side stance, const FlatContact& current, const FlatContact& planned,
+    const Eigen::VectorXd& q_init, const std::optional<Eigen::Vector3d>& pelvis_position) const {
   const RobotModel& model = *model_;
   const int n = model.nq();
   requireFinite("KinematicFeasibility: current contact position", current.position);
@@ -317,8 +312,8 @@ KinematicFeasibilityResult KinematicFeasibility::check(Side stance, const FlatCo
   }
 
   // One foot through the other.
-  result.reason = geometricRejection(config_, contact_, stance, current, planned, stance_name,
-                                     swing_name);
+  result.reason =
+      geometricRejection(config_, contact_, stance, current, planned, stance_name, swing_name);
   if (!result.reason.empty()) {
     result.position_residual = result.orientation_residual =
         std::numeric_limits<double>::infinity();

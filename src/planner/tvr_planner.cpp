@@ -1,10 +1,9 @@
 #include "reach_trajopt/planner/tvr_planner.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-
-#include <Eigen/Geometry>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
@@ -53,20 +52,20 @@ void TvrConfig::validate() const {
   requireInterval("foot_offset_y", foot_offset_y_min, foot_offset_y_max);
   requireInterval("com_speed", com_speed_min, com_speed_max);
   if (foot_offset_y_min < 0.0) {
-    throw ReachError("TvrConfig: foot_offset_y_min is a distance towards the swing side, "
-                     "must be >= 0, got " + std::to_string(foot_offset_y_min));
+    throw ReachError(
+        "TvrConfig: foot_offset_y_min is a distance towards the swing side, "
+        "must be >= 0, got " +
+        std::to_string(foot_offset_y_min));
   }
   if (com_speed_min < 0.0) {
-    throw ReachError("TvrConfig: com_speed_min must be >= 0, got " +
-                     std::to_string(com_speed_min));
+    throw ReachError("TvrConfig: com_speed_min must be >= 0, got " + std::to_string(com_speed_min));
   }
 }
 
 TvrConfig TvrConfig::fromYaml(const YamlSection& s) {
   s.requireOnlyKeys({"com_height", "gravity", "t_s", "step_duration", "kappa_x", "kappa_y",
                      "heuristic_bounds", "foot_offset_x_min", "foot_offset_x_max",
-                     "foot_offset_y_min", "foot_offset_y_max", "com_speed_min",
-                     "com_speed_max"});
+                     "foot_offset_y_min", "foot_offset_y_max", "com_speed_min", "com_speed_max"});
   TvrConfig c;
   s.read("com_height", c.com_height);
   s.read("gravity", c.gravity);
@@ -172,8 +171,8 @@ std::string TvrStabilityReport::summary() const {
   os << "TVR step map (12): eigenvalues";
   for (int i = 0; i < 4; ++i) {
     os << " " << eigenvalues[i].real();
-    if (eigenvalues[i].imag() != 0.0) os << (eigenvalues[i].imag() > 0 ? "+" : "") <<
-                                          eigenvalues[i].imag() << "i";
+    if (eigenvalues[i].imag() != 0.0)
+      os << (eigenvalues[i].imag() > 0 ? "+" : "") << eigenvalues[i].imag() << "i";
   }
   os << ", spectral radius " << spectral_radius << " -> ";
   if (stable) {

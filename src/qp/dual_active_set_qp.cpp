@@ -1,13 +1,12 @@
 #include "reach_trajopt/qp/dual_active_set_qp.h"
 
+#include <Eigen/Householder>
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <limits>
 #include <string>
-
-#include <Eigen/Householder>
 
 #include "reach_trajopt/common/error.h"
 
@@ -21,7 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 int checkedVariables(int n) {
   if (n <= 0)
     throw QpInputError("DualActiveSetQp: number of variables must be > 0, got " +
-                     std::to_string(n));
+                       std::to_string(n));
   return n;
 }
 
@@ -57,16 +56,16 @@ const char* toString(QpStatus status) {
 void QpSolverConfig::validate() const {
   if (max_iterations < 0)
     throw ConfigError("QpSolverConfig.max_iterations must be >= 0, got " +
-                     std::to_string(max_iterations));
+                      std::to_string(max_iterations));
   if (!std::isfinite(feasibility_tol) || feasibility_tol < 0.0)
     throw ConfigError("QpSolverConfig.feasibility_tol must be finite and >= 0, got " +
-                     std::to_string(feasibility_tol));
+                      std::to_string(feasibility_tol));
   if (!std::isfinite(dependence_tol) || dependence_tol < 0.0 || dependence_tol >= 1.0)
     throw ConfigError("QpSolverConfig.dependence_tol must be in [0, 1), got " +
-                     std::to_string(dependence_tol));
+                      std::to_string(dependence_tol));
   if (!std::isfinite(regularization) || regularization < 0.0)
     throw ConfigError("QpSolverConfig.regularization must be finite and >= 0, got " +
-                     std::to_string(regularization));
+                      std::to_string(regularization));
 }
 
 DualActiveSetQp::DualActiveSetQp(int n, int m_eq_max, int m_in_max, const QpSolverConfig& config)
@@ -77,7 +76,7 @@ DualActiveSetQp::DualActiveSetQp(int n, int m_eq_max, int m_in_max, const QpSolv
       own_factor_(n) {
   if (m_eq_max < 0 || m_in_max < 0)
     throw QpInputError("DualActiveSetQp: row maxima must be >= 0, got m_eq_max " +
-                     std::to_string(m_eq_max) + ", m_in_max " + std::to_string(m_in_max));
+                       std::to_string(m_eq_max) + ", m_in_max " + std::to_string(m_in_max));
   config_.validate();
   result_.x = Eigen::VectorXd::Zero(n);
   result_.multipliers = Eigen::VectorXd::Zero(m_eq_max + m_in_max);
@@ -154,11 +153,16 @@ bool DualActiveSetQp::checkInput(const VectorRef& g, const MatrixRef& A_eq, cons
     return false;
   }
   const char* bad = nullptr;
-  if (!g.allFinite()) bad = "g";
-  else if (m_eq > 0 && !A_eq.allFinite()) bad = "A_eq";
-  else if (!b_eq.allFinite()) bad = "b_eq";
-  else if (m_in > 0 && !A_in.allFinite()) bad = "A_in";
-  else if (!b_in.allFinite()) bad = "b_in";
+  if (!g.allFinite())
+    bad = "g";
+  else if (m_eq > 0 && !A_eq.allFinite())
+    bad = "A_eq";
+  else if (!b_eq.allFinite())
+    bad = "b_eq";
+  else if (m_in > 0 && !A_in.allFinite())
+    bad = "A_in";
+  else if (!b_in.allFinite())
+    bad = "b_in";
   if (bad != nullptr) {
     fail(QpStatus::kInvalidInput, "%s contains a non-finite value (NaN or inf)", bad);
     return false;

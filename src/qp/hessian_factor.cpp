@@ -1,10 +1,9 @@
 #include "reach_trajopt/qp/hessian_factor.h"
 
+#include <Eigen/Cholesky>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
-
-#include <Eigen/Cholesky>
 
 #include "reach_trajopt/common/error.h"
 
@@ -15,14 +14,16 @@ namespace {
 std::atomic<unsigned long long> g_next_factor_id{1};
 
 int checkedSize(int n) {
-  if (n <= 0) throw ReachError("HessianFactor: number of variables must be > 0, got " +
-                               std::to_string(n));
+  if (n <= 0)
+    throw ReachError("HessianFactor: number of variables must be > 0, got " + std::to_string(n));
   return n;
 }
 }  // namespace
 
 HessianFactor::HessianFactor(int n)
-    : n_(checkedSize(n)), L_(Eigen::MatrixXd::Zero(n, n)), J0_(Eigen::MatrixXd::Zero(n, n)),
+    : n_(checkedSize(n)),
+      L_(Eigen::MatrixXd::Zero(n, n)),
+      J0_(Eigen::MatrixXd::Zero(n, n)),
       J0t_(Eigen::MatrixXd::Zero(n, n)),
       Lt_(Eigen::MatrixXd::Zero(n, n)) {
   message_.reserve(256);

@@ -11,9 +11,7 @@ namespace reach_trajopt {
 
 namespace {
 /// Rows of (19): the cone and the two torque bounds.
-int inequalityRows(const ReachContext& c) {
-  return ContactWrenchCone::kRows * c.nc + 2 * c.nu;
-}
+int inequalityRows(const ReachContext& c) { return ContactWrenchCone::kRows * c.nc + 2 * c.nu; }
 }  // namespace
 
 BackwardStep::BackwardStep(const ReachContext& context)
@@ -103,7 +101,7 @@ bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
       r += ContactWrenchCone::kRows;
     }
     const int off = n_ - nu_;
-    A_in_.block(r, 0, nu_, m_) = Jc_.middleCols(off, nu_).transpose();  // u <= u_max
+    A_in_.block(r, 0, nu_, m_) = Jc_.middleCols(off, nu_).transpose();         // u <= u_max
     A_in_.block(r + nu_, 0, nu_, m_) = -Jc_.middleCols(off, nu_).transpose();  // u >= -u_max
   } else {
     N_.setIdentity();

@@ -21,12 +21,12 @@ FootstepResult FootstepReachability::check(const FootstepRequest& request) const
 FootstepResult FootstepReachability::check(const FootstepRequest& r,
                                            const ReachConfig& config) const {
   FootstepResult out;
-  out.kinematics = kinematics_->check(r.stance, r.stance_foothold, r.target, r.q0,
-                                       r.touchdown_pelvis_position);
+  out.kinematics =
+      kinematics_->check(r.stance, r.stance_foothold, r.target, r.q0, r.touchdown_pelvis_position);
   out.kinematically_feasible = out.kinematics.feasible;
   if (!out.kinematics.feasible) {
-    out.reason = "unreachable: the foothold is kinematically infeasible (" +
-                 out.kinematics.reason + ")";
+    out.reason =
+        "unreachable: the foothold is kinematically infeasible (" + out.kinematics.reason + ")";
     return out;
   }
   ReachProblem p;
@@ -39,10 +39,9 @@ FootstepResult FootstepReachability::check(const FootstepRequest& r,
   } else {
     const RobotModel& m = analyzer_->model();
     const ContactConfig& c = analyzer_->contactConfig();
-    p.qdf = doubleSupportVelocity(m, p.qf, m.frameId(c.left_sole_frame),
-                                  m.frameId(c.right_sole_frame),
-                                  Eigen::Vector3d(r.touchdown_com_velocity.x(),
-                                                  r.touchdown_com_velocity.y(), 0.0));
+    p.qdf = doubleSupportVelocity(
+        m, p.qf, m.frameId(c.left_sole_frame), m.frameId(c.right_sole_frame),
+        Eigen::Vector3d(r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y(), 0.0));
   }
   out.qdf = p.qdf;
   p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();

@@ -5,7 +5,6 @@
 
 #include <cstdint>
 #include <memory>
-
 #include <nanoflann.hpp>
 
 #include "reach_trajopt/common/error.h"

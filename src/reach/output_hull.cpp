@@ -5,9 +5,8 @@
 
 #include <LinearMath/btConvexHullComputer.h>
 
-#include <cmath>
-
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/reach/boundary_selection.h"

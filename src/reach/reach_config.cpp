@@ -36,8 +36,8 @@ void requireNonNegative(const char* field, double v) {
 
 void requireAtMost(const char* field, long long v, long long limit) {
   if (v > limit)
-    bad(field, "must be <= " + std::to_string(limit) + " (docs/limits.md), got " +
-                   std::to_string(v));
+    bad(field,
+        "must be <= " + std::to_string(limit) + " (docs/limits.md), got " + std::to_string(v));
 }
 
 /// True when t is an integer multiple of dt (to 1e-9 of a step).
@@ -93,8 +93,8 @@ void ReachConfig::validate() const {
                        " hardware threads of this machine (0: OpenMP's default), got " +
                        std::to_string(threads));
   if (forward_integrator != "semi_implicit" && forward_integrator != "explicit")
-    bad("forward_integrator", "must be 'semi_implicit' or 'explicit', got '" +
-                                  forward_integrator + "'");
+    bad("forward_integrator",
+        "must be 'semi_implicit' or 'explicit', got '" + forward_integrator + "'");
   requirePositive("w_qdd", w_qdd);
   requirePositive("w_du", w_du);
   requirePositive("w_lambda", w_lambda);
@@ -120,8 +120,7 @@ void ReachConfig::validate() const {
 double ReachConfig::estimatedQps() const {
   const double steps = std::ceil(window_end / dt) + std::ceil((horizon - window_start) / dt);
   const double parents = static_cast<double>(max_boundary) + interior_samples;
-  const double per_slice =
-      parents * std::max(children_per_parent, backward_children_per_parent);
+  const double per_slice = parents * std::max(children_per_parent, backward_children_per_parent);
   return 2.0 * initial_samples + steps * per_slice;
 }
 
@@ -146,22 +145,43 @@ void ReachConfig::requireResourcesWithinLimits(int nq) const {
     std::ostringstream os;
     os << "ReachConfig: the check would need about " << std::lround(bytes / (1024 * 1024))
        << " MiB (initial_samples " << initial_samples << ", max_boundary " << max_boundary
-       << ", children_per_parent " << children_per_parent << ", horizon " << horizon
-       << " s at dt " << dt << " s), over the limit of "
+       << ", children_per_parent " << children_per_parent << ", horizon " << horizon << " s at dt "
+       << dt << " s), over the limit of "
        << std::lround(ReachLimits::kMaxMemoryBytes / (1024 * 1024)) << " MiB";
     throw ReachError(os.str());
   }
 }
 
 ReachConfig ReachConfig::fromYaml(const YamlSection& s, const ReachConfig& base) {
-  s.requireOnlyKeys({"dt", "horizon", "window_start", "window_end", "initial_samples",
-                     "children_per_parent", "max_boundary", "angular_bins", "interior_samples",
-                     "backward_children_per_parent", "boundary_lookahead",
-                     "vertex_fraction", "seed", "threads", "forward_integrator", "w_qdd", "w_du",
-                     "w_lambda", "contact_stabilization", "backward_joint_accel",
-                     "backward_base_accel", "delta", "overlap_gap_max", "output_frame",
-                     "output_axes", "swing_ground_margin", "contact_tolerance",
-                     "contact_velocity_tolerance", "limit_tolerance"});
+  s.requireOnlyKeys({"dt",
+                     "horizon",
+                     "window_start",
+                     "window_end",
+                     "initial_samples",
+                     "children_per_parent",
+                     "max_boundary",
+                     "angular_bins",
+                     "interior_samples",
+                     "backward_children_per_parent",
+                     "boundary_lookahead",
+                     "vertex_fraction",
+                     "seed",
+                     "threads",
+                     "forward_integrator",
+                     "w_qdd",
+                     "w_du",
+                     "w_lambda",
+                     "contact_stabilization",
+                     "backward_joint_accel",
+                     "backward_base_accel",
+                     "delta",
+                     "overlap_gap_max",
+                     "output_frame",
+                     "output_axes",
+                     "swing_ground_margin",
+                     "contact_tolerance",
+                     "contact_velocity_tolerance",
+                     "limit_tolerance"});
   ReachConfig c = base;
   s.read("dt", c.dt);
   s.read("horizon", c.horizon);

@@ -7,9 +7,8 @@
 
 namespace reach_trajopt {
 
-ReachContext::ReachContext(std::shared_ptr<const RobotModel> model_in,
-                           const ContactConfig& contact, const ReachConfig& config_in,
-                           const ContactMode& mode_in,
+ReachContext::ReachContext(std::shared_ptr<const RobotModel> model_in, const ContactConfig& contact,
+                           const ReachConfig& config_in, const ContactMode& mode_in,
                            const std::optional<Eigen::Isometry3d> footholds[2],
                            const std::optional<Eigen::Isometry3d>& target)
     : model(std::move(model_in)), config(config_in), mode(mode_in), cone(contact) {
@@ -21,8 +20,10 @@ ReachContext::ReachContext(std::shared_ptr<const RobotModel> model_in,
   floating = md.floatingBase();
   nc = mode.contactCount();
   if (floating && nc == 0)
-    throw ReachError("reachability: the mode has no contact (flight is not handled) for the "
-                     "floating-base model " + md.source());
+    throw ReachError(
+        "reachability: the mode has no contact (flight is not handled) for the "
+        "floating-base model " +
+        md.source());
   for (int s = 0; s < 2; ++s) {
     const Side side = s == 0 ? Side::kLeft : Side::kRight;
     if (!mode.inContact(side)) continue;

@@ -31,9 +31,8 @@ std::string fmt(double v, int precision = 3) {
 }
 
 /// Throws ReachError when (q, qd) violates the limits or the held contacts.
-void validateState(const ReachContext& ctx, const char* which,
-                   const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                   const std::vector<ContactConstraint>& contacts) {
+void validateState(const ReachContext& ctx, const char* which, const Eigen::VectorXd& q,
+                   const Eigen::VectorXd& qd, const std::vector<ContactConstraint>& contacts) {
   const RobotModel& model = *ctx.model;
   try {
     model.checkState(q, qd);
@@ -78,26 +77,25 @@ std::string verdictReason(const ReachConfig& config, const std::vector<SliceComp
   const SliceComparison& c = window[best];
   std::ostringstream os;
   if (best_ok && c.overlap)
-    os << "reachable: the forward and backward output sets overlap at t = " << fmt(c.time)
-       << " s (" << c.backward_inside_forward << " backward samples inside the forward hull, "
+    os << "reachable: the forward and backward output sets overlap at t = " << fmt(c.time) << " s ("
+       << c.backward_inside_forward << " backward samples inside the forward hull, "
        << c.forward_inside_backward << " forward samples inside the backward hull, closest "
        << "pair " << fmt(c.distance.closest) << " m)";
   else if (best_ok)
-    os << "reachable: d_H = " << fmt(c.distance.hausdorff) << " m <= min(delta, K) at t = "
-       << fmt(c.time) << " s (Prop. 2)";
+    os << "reachable: d_H = " << fmt(c.distance.hausdorff)
+       << " m <= min(delta, K) at t = " << fmt(c.time) << " s (Prop. 2)";
   else
-    os << "unreachable: the forward and backward output sets stay apart over the window [" 
-       << fmt(config.window_start) << ", " << fmt(config.window_end)
-       << "] s; closest approach " << fmt(c.distance.closest) << " m at t = " << fmt(c.time)
-       << " s (tolerance " << fmt(c.overlap_tolerance) << " m)";
+    os << "unreachable: the forward and backward output sets stay apart over the window ["
+       << fmt(config.window_start) << ", " << fmt(config.window_end) << "] s; closest approach "
+       << fmt(c.distance.closest) << " m at t = " << fmt(c.time) << " s (tolerance "
+       << fmt(c.overlap_tolerance) << " m)";
   return os.str();
 }
 
 }  // namespace
 
 ReachabilityAnalyzer::ReachabilityAnalyzer(std::shared_ptr<const RobotModel> model,
-                                           const ContactConfig& contact,
-                                           const ReachConfig& config)
+                                           const ContactConfig& contact, const ReachConfig& config)
     : model_(std::move(model)), contact_(contact), config_(config) {
   if (!model_) throw ReachError("ReachabilityAnalyzer: null model");
   contact_.validate();
@@ -148,8 +146,8 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   res.counts.threads = threads;
 
   // ---- forward set (15)-(16) and backward set (17)-(20) ----------------------------------
-  const PropagationStats fwd = propagateSet(ctx, PropagationDirection::kForward, 0, pb.q0,
-                                            pb.qd0, n_fwd, threads, res.forward);
+  const PropagationStats fwd = propagateSet(ctx, PropagationDirection::kForward, 0, pb.q0, pb.qd0,
+                                            n_fwd, threads, res.forward);
   const PropagationStats bwd = propagateSet(ctx, PropagationDirection::kBackward, i_t, pb.qf,
                                             pb.qdf, n_bwd, threads, res.backward);
   res.counts.forward_samples = fwd.samples;

@@ -94,8 +94,8 @@ void propagate(const ReachContext& ctx, Direction dir, int step_index, int n_chi
       bool good;
       if constexpr (std::is_same<Step, ForwardStep>::value) {
         drawBox(seed, dir, step_index, parent, c, n_vertex, ctx.u_max, s.u);
-        good = s.step.child(s.u, s.q, qd.col(col), y.col(col), yr.col(col), u.col(col),
-                            lam.col(col));
+        good =
+            s.step.child(s.u, s.q, qd.col(col), y.col(col), yr.col(col), u.col(col), lam.col(col));
       } else {
         drawBox(seed, dir, step_index, parent, c, n_vertex, s.step.drawBound(), s.draw);
         good = s.step.child(s.draw, s.q, qd.col(col), y.col(col), yr.col(col), u.col(col),
@@ -220,17 +220,16 @@ PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_i
 }  // namespace
 
 PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
-                              int root_index, const Eigen::VectorXd& q,
-                              const Eigen::VectorXd& qd, int steps, int threads,
-                              std::vector<SampleSlice>& slices) {
+                              int root_index, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                              int steps, int threads, std::vector<SampleSlice>& slices) {
   if (direction == PropagationDirection::kForward)
     return propagateWith<ForwardStep>(ctx, true, root_index, q, qd, steps, threads, slices);
   return propagateWith<BackwardStep>(ctx, false, root_index, q, qd, steps, threads, slices);
 }
 
 Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,
-                                      PropagationDirection direction, double dt,
-                                      bool semi_implicit, int slice, int index) {
+                                      PropagationDirection direction, double dt, bool semi_implicit,
+                                      int slice, int index) {
   const bool forward = direction == PropagationDirection::kForward;
   const bool semi = semi_implicit;
   const SampleSlice& s = slices.at(slice);
@@ -240,12 +239,11 @@ Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,
   const int p = s.parent[index];
   Eigen::VectorXd q(s.qd.rows());
   if (forward)
-    forwardConfiguration(prev.q_kept.col(prev.kept_column[p]), prev.qd.col(p),
-                         s.qd.col(index), dt, semi, q);
+    forwardConfiguration(prev.q_kept.col(prev.kept_column[p]), prev.qd.col(p), s.qd.col(index), dt,
+                         semi, q);
   else
     backwardConfiguration(prev.q_kept.col(prev.kept_column[p]), prev.qd.col(p), dt, q);
   return q;
 }
-
 
 }  // namespace reach_trajopt

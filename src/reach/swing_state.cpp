@@ -3,10 +3,9 @@
 
 #include "reach_trajopt/reach/swing_state.h"
 
-#include <vector>
-
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <vector>
 
 #include "reach_trajopt/common/error.h"
 

@@ -19,18 +19,16 @@ double PathViolation::max() const {
 }
 
 WitnessPath buildWitnessPath(const ReachContext& ctx, const std::vector<SampleSlice>& forward,
-                             const std::vector<SampleSlice>& backward,
-                             const SliceComparison& c, bool semi_implicit) {
+                             const std::vector<SampleSlice>& backward, const SliceComparison& c,
+                             bool semi_implicit) {
   // Witness: x_0 -> a (forward chain), b -> x_f (backward chain).
   WitnessPath w;
   const double dt = ctx.config.dt;
   std::vector<std::pair<int, int>> fchain, bchain;
-  for (int s = c.forward_slice, i = c.distance.closest_a; s >= 0;
-       i = forward[s].parent[i], --s)
+  for (int s = c.forward_slice, i = c.distance.closest_a; s >= 0; i = forward[s].parent[i], --s)
     fchain.push_back({s, i});
   std::reverse(fchain.begin(), fchain.end());
-  for (int s = c.backward_slice, i = c.distance.closest_b; s >= 0;
-       i = backward[s].parent[i], --s)
+  for (int s = c.backward_slice, i = c.distance.closest_b; s >= 0; i = backward[s].parent[i], --s)
     bchain.push_back({s, i});
   const int L = static_cast<int>(fchain.size() + bchain.size());
   const int n = ctx.n;
@@ -44,7 +42,8 @@ WitnessPath buildWitnessPath(const ReachContext& ctx, const std::vector<SampleSl
   int k = 0;
   for (const auto& [s, i] : fchain) {
     w.time.push_back(forward[s].time);
-    w.q.col(k) = sampleConfigurationOf(forward, PropagationDirection::kForward, dt, semi_implicit, s, i);
+    w.q.col(k) =
+        sampleConfigurationOf(forward, PropagationDirection::kForward, dt, semi_implicit, s, i);
     w.qd.col(k) = forward[s].qd.col(i);
     w.output.col(k) = forward[s].output.col(i);
     if (k > 0) {
@@ -115,8 +114,7 @@ void measurePath(const ReachContext& ctx, WitnessPath& w) {
       v.cone = std::max(v.cone, -(C * lam).minCoeff());
     }
     v.dynamics = std::max(v.dynamics, r.cwiseAbs().maxCoeff());
-    for (int i = 0; i < nu; ++i)
-      v.torque = std::max(v.torque, std::abs(w.u(i, k)) - ctx.u_max[i]);
+    for (int i = 0; i < nu; ++i) v.torque = std::max(v.torque, std::abs(w.u(i, k)) - ctx.u_max[i]);
     Eigen::VectorXd qn(n);
     forwardConfiguration(q, qd, w.qd.col(k + 1), dt, w.semi_implicit_step[k] != 0, qn);
     v.integration = std::max(v.integration, (w.q.col(k + 1) - qn).cwiseAbs().maxCoeff());

@@ -20,7 +20,7 @@ constexpr Rgba kReachableColor{0.1f, 0.8f, 0.2f, 1.0f};
 constexpr Rgba kUnreachableColor{0.9f, 0.1f, 0.1f, 1.0f};
 constexpr Rgba kRelaxedColor{1.0f, 0.6f, 0.0f, 1.0f};
 constexpr Rgba kTransitionColor{0.5f, 0.1f, 0.9f, 1.0f};
-constexpr double kSoleThickness = 0.005;  // [m], drawn height of a sole rectangle
+constexpr double kSoleThickness = 0.005;    // [m], drawn height of a sole rectangle
 constexpr double kSamplePointSize = 0.004;  // [m]
 constexpr double kBoundaryWidth = 0.002;    // [m]
 
@@ -47,8 +47,8 @@ void requireFinitePoints(const char* what, const std::vector<Eigen::Vector3d>& p
 }
 
 visualization_msgs::Marker soleCubes(const std::vector<Eigen::Vector3d>& pts, const char* ns,
-                                     double half_length, double half_width,
-                                     const ros::Time& stamp, const Rgba& c) {
+                                     double half_length, double half_width, const ros::Time& stamp,
+                                     const Rgba& c) {
   requireFinitePoints(ns, pts);
   visualization_msgs::Marker m =
       baseMarker(ns, 0, visualization_msgs::Marker::CUBE_LIST, kWorldFrame, stamp, c);
@@ -147,9 +147,9 @@ visualization_msgs::MarkerArray reachabilityMarkers(const reach_trajopt::Reachab
     a.markers.push_back(m);
   }
   if (checked) {
-    auto m = baseMarker(kNsCheckedFoothold, 0, visualization_msgs::Marker::SPHERE, frame,
-                        r.header.stamp,
-                        r.verdict == "reachable" ? kReachableColor : kUnreachableColor);
+    auto m =
+        baseMarker(kNsCheckedFoothold, 0, visualization_msgs::Marker::SPHERE, frame, r.header.stamp,
+                   r.verdict == "reachable" ? kReachableColor : kUnreachableColor);
     m.scale.x = m.scale.y = m.scale.z = 0.04;
     m.pose.position = r.foothold;
     a.markers.push_back(m);

@@ -1,11 +1,10 @@
 #include "reach_trajopt/ros/node_setup.h"
 
+#include <ros/package.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
-
-#include <ros/package.h>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/walk/standing_pose.h"

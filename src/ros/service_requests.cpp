@@ -109,8 +109,8 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
   if (std::abs(height) > limits.ground_tolerance) {
     std::ostringstream os;
     os << "foothold at z = " << target.z() << " m is " << height
-       << " m from the ground (stance sole at z = " << stance.translation().z()
-       << " m, tolerance " << limits.ground_tolerance << " m): a foothold must lie on the ground";
+       << " m from the ground (stance sole at z = " << stance.translation().z() << " m, tolerance "
+       << limits.ground_tolerance << " m): a foothold must lie on the ground";
     throw ReachError(os.str());
   }
   r.target.position = target;
@@ -160,8 +160,8 @@ reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_re
                                                         const std::string& swing_frame,
                                                         const Eigen::Vector3d& foothold,
                                                         const ros::Time& t0) {
-  reach_trajopt::ReachabilityResult m = reachabilityVerdictMsg(
-      "unreachable", "kinematically infeasible foothold: " + ik_reason, t0);
+  reach_trajopt::ReachabilityResult m =
+      reachabilityVerdictMsg("unreachable", "kinematically infeasible foothold: " + ik_reason, t0);
   m.swing_frame = swing_frame;
   m.foothold = toPointMsg(foothold);
   return m;
@@ -224,8 +224,10 @@ reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
     m.witness_distance = c.distance.closest;
     const SampleSlice& f = r.forward.at(c.forward_slice);
     const SampleSlice& b = r.backward.at(c.backward_slice);
-    if (c.distance.closest_a >= 0) m.witness_forward = columnsToPoints(f.output, {c.distance.closest_a})[0];
-    if (c.distance.closest_b >= 0) m.witness_backward = columnsToPoints(b.output, {c.distance.closest_b})[0];
+    if (c.distance.closest_a >= 0)
+      m.witness_forward = columnsToPoints(f.output, {c.distance.closest_a})[0];
+    if (c.distance.closest_b >= 0)
+      m.witness_backward = columnsToPoints(b.output, {c.distance.closest_b})[0];
   }
   if (r.witness.valid) {
     m.witness_max_violation = r.witness.violation.max();

@@ -1,15 +1,15 @@
 #include "reach_trajopt/sim/bullet_world.h"
 
-#include <algorithm>
-#include <cmath>
-#include <sstream>
-
-#include <btBulletDynamicsCommon.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
 
 #include "reach_trajopt/model/robot_model.h"
 
@@ -153,7 +153,7 @@ void BulletWorld::Bullet::addMultiBody(const SimBodyTree& tree, const SimConfig&
   const int n_links = static_cast<int>(tree.bodies.size()) - 1;
   const SimBody& root = tree.bodies[0];
   multibody = std::make_unique<btMultiBody>(n_links, root.mass, toBt(root.principal_inertia),
-                                                /*fixedBase=*/!floating, /*canSleep=*/false);
+                                            /*fixedBase=*/!floating, /*canSleep=*/false);
   btMultiBody& mb = *multibody;
   for (int k = 1; k <= n_links; ++k) {
     const SimBody& b = tree.bodies[k];
@@ -167,13 +167,13 @@ void BulletWorld::Bullet::addMultiBody(const SimBodyTree& tree, const SimConfig&
         b.principal.linear().transpose() * b.principal.translation();
     const Eigen::Vector3d axis_in_K = b.principal.linear().transpose() * b.axis;
     if (b.joint_type == SimBody::JointType::kPrismatic) {
-      mb.setupPrismatic(k - 1, b.mass, toBt(b.principal_inertia), b.parent - 1,
-                        rot_parent_to_this, toBt(axis_in_K), toBt(pivot_in_P),
-                        toBt(pivot_to_com_in_K), /*disableParentCollision=*/true);
+      mb.setupPrismatic(k - 1, b.mass, toBt(b.principal_inertia), b.parent - 1, rot_parent_to_this,
+                        toBt(axis_in_K), toBt(pivot_in_P), toBt(pivot_to_com_in_K),
+                        /*disableParentCollision=*/true);
     } else {
-      mb.setupRevolute(k - 1, b.mass, toBt(b.principal_inertia), b.parent - 1,
-                       rot_parent_to_this, toBt(axis_in_K), toBt(pivot_in_P),
-                       toBt(pivot_to_com_in_K), /*disableParentCollision=*/true);
+      mb.setupRevolute(k - 1, b.mass, toBt(b.principal_inertia), b.parent - 1, rot_parent_to_this,
+                       toBt(axis_in_K), toBt(pivot_in_P), toBt(pivot_to_com_in_K),
+                       /*disableParentCollision=*/true);
     }
   }
   mb.finalizeMultiDof();
@@ -183,7 +183,6 @@ void BulletWorld::Bullet::addMultiBody(const SimBodyTree& tree, const SimConfig&
   mb.setUseGyroTerm(true);
   mb.setHasSelfCollision(false);
   dynamics.addMultiBody(&mb);
-
 }
 
 void BulletWorld::Bullet::addColliders(const SimBodyTree& tree, const SimConfig& config) {
@@ -205,8 +204,8 @@ void BulletWorld::Bullet::addColliders(const SimBodyTree& tree, const SimConfig&
           child = std::make_unique<btSphereShape>(s.size[0]);
           break;
         case SimShape::Type::kCylinder:
-          child = std::make_unique<btCylinderShapeZ>(
-              btVector3(s.size[0], s.size[0], 0.5 * s.size[1]));
+          child =
+              std::make_unique<btCylinderShapeZ>(btVector3(s.size[0], s.size[0], 0.5 * s.size[1]));
           child->setMargin(config.collision_margin);
           break;
       }
@@ -229,7 +228,6 @@ void BulletWorld::Bullet::addColliders(const SimBodyTree& tree, const SimConfig&
     }
     colliders[k] = std::move(collider);
   }
-
 }
 
 void BulletWorld::Bullet::addJointLimits(const SimBodyTree& tree) {

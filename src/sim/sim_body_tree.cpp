@@ -1,11 +1,11 @@
 #include "reach_trajopt/sim/sim_body_tree.h"
 
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <fstream>
 #include <sstream>
-
-#include <Eigen/Eigenvalues>
-#include <urdf_parser/urdf_parser.h>
 
 #include "reach_trajopt/common/error.h"
 
@@ -16,10 +16,9 @@ namespace {
 Eigen::Isometry3d toIsometry(const urdf::Pose& p) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
-  T.linear() =
-      Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
-          .normalized()
-          .toRotationMatrix();
+  T.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
   return T;
 }
 

@@ -9,9 +9,7 @@
 namespace reach_trajopt {
 
 namespace {
-void requirePositive(const char* name, double v) {
-  requirePositiveFinite("SimConfig", name, v);
-}
+void requirePositive(const char* name, double v) { requirePositiveFinite("SimConfig", name, v); }
 }  // namespace
 
 void SimConfig::validate() const {
@@ -38,8 +36,8 @@ void SimConfig::validate() const {
 
 SimConfig SimConfig::fromYaml(const YamlSection& s) {
   s.requireOnlyKeys({"time_step", "mu", "gravity", "contacts", "joint_limits", "clamp_torques",
-                     "left_sole_frame", "right_sole_frame", "solver_iterations",
-                     "collision_margin", "max_coordinate_velocity"});
+                     "left_sole_frame", "right_sole_frame", "solver_iterations", "collision_margin",
+                     "max_coordinate_velocity"});
   SimConfig c;
   s.read("time_step", c.time_step);
   s.read("mu", c.mu);

@@ -19,18 +19,19 @@ Eigen::Vector3d orientationError(const Eigen::Matrix3d& R_des, const Eigen::Matr
 }  // namespace
 
 void WbcConfig::validate() const {
-  const double vals[] = {w_com, w_com_xy, kp_com,     kd_com,     w_pelvis, kp_pelvis, kd_pelvis,
-                         w_swing,  kp_swing,   kd_swing,   w_posture, kp_posture, kd_posture};
+  const double vals[] = {w_com,   w_com_xy, kp_com,   kd_com,    w_pelvis,   kp_pelvis, kd_pelvis,
+                         w_swing, kp_swing, kd_swing, w_posture, kp_posture, kd_posture};
   for (double v : vals)
     if (!std::isfinite(v) || v < 0.0) throw ReachError("WbcConfig: weights and gains must be >= 0");
   if (!(w_qdd > 0.0) || !(w_lambda > 0.0) || !std::isfinite(w_qdd) || !std::isfinite(w_lambda))
-    throw ReachError("WbcConfig: w_qdd and w_lambda must be > 0 (they keep the QP strictly convex)");
+    throw ReachError(
+        "WbcConfig: w_qdd and w_lambda must be > 0 (they keep the QP strictly convex)");
 }
 
 WbcConfig WbcConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"w_com", "w_com_xy", "kp_com", "kd_com", "w_pelvis", "kp_pelvis", "kd_pelvis", "w_swing",
-                     "kp_swing", "kd_swing", "w_posture", "kp_posture", "kd_posture", "w_qdd",
-                     "w_lambda"});
+  s.requireOnlyKeys({"w_com", "w_com_xy", "kp_com", "kd_com", "w_pelvis", "kp_pelvis", "kd_pelvis",
+                     "w_swing", "kp_swing", "kd_swing", "w_posture", "kp_posture", "kd_posture",
+                     "w_qdd", "w_lambda"});
   WbcConfig c;
   s.read("w_com", c.w_com);
   s.read("w_com_xy", c.w_com_xy);
@@ -134,7 +135,8 @@ void WholeBodyController::addTasks(const Eigen::VectorXd& q, const Eigen::Vector
     m.frameJacobian(ws_, pelvis_, J_pelvis_);
     const Eigen::Matrix3d R = m.framePose(ws_, pelvis_).linear();
     const Eigen::Vector3d w = J_pelvis_.bottomRows<3>() * qd;
-    const Eigen::Vector3d a = -c.kd_pelvis * w + c.kp_pelvis * orientationError(ref.pelvis_rotation, R);
+    const Eigen::Vector3d a =
+        -c.kd_pelvis * w + c.kp_pelvis * orientationError(ref.pelvis_rotation, R);
     addTask(J_pelvis_.bottomRows<3>(), m.frameJdotQd(ws_, pelvis_).tail<3>(), a, c.w_pelvis);
   }
   for (int s = 0; s < 2; ++s) m.frameJacobian(ws_, s == 0 ? left_sole_ : right_sole_, J_sole_[s]);
@@ -146,13 +148,14 @@ void WholeBodyController::addTasks(const Eigen::VectorXd& q, const Eigen::Vector
     Vector6d a;
     a.head<3>() = ref.swing_acceleration + c.kd_swing * (ref.swing_velocity - v.head<3>()) +
                   c.kp_swing * (ref.swing_position - T.translation());
-    a.tail<3>() = -c.kd_swing * v.tail<3>() +
-                  c.kp_swing * orientationError(ref.swing_rotation, T.linear());
+    a.tail<3>() =
+        -c.kd_swing * v.tail<3>() + c.kp_swing * orientationError(ref.swing_rotation, T.linear());
     addTask(J_sole_[sw], m.frameJdotQd(ws_, id), a, c.w_swing);
   }
   {
     const bool ff = ref.q_ff.size() == n;
-    const Eigen::VectorXd& q_ref = ff ? ref.q_ff : (ref.posture.size() == n ? ref.posture : posture_);
+    const Eigen::VectorXd& q_ref =
+        ff ? ref.q_ff : (ref.posture.size() == n ? ref.posture : posture_);
     const int off = n - nu;
     Eigen::VectorXd& a = posture_acc_;
     a.noalias() = c.kp_posture * (q_ref.tail(nu) - q.tail(nu)) - c.kd_posture * qd.tail(nu);
@@ -163,7 +166,6 @@ void WholeBodyController::addTasks(const Eigen::VectorXd& q, const Eigen::Vector
   }
   G_.topLeftCorner(n, n).diagonal().array() += c.w_qdd;
   G_.block(n, n, 6 * nc, 6 * nc).diagonal().array() += c.w_lambda;
-
 }
 
 void WholeBodyController::addConstraints(const ContactMode& mode) {
@@ -199,11 +201,10 @@ void WholeBodyController::addConstraints(const ContactMode& mode) {
   b_in_.head(ContactWrenchCone::kRows * nc).setZero();
   const int t0 = ContactWrenchCone::kRows * nc;
   const Eigen::VectorXd& u_max = u_max_;
-  Ain.block(t0, 0, nu, n) = -M_.bottomRows(nu);          // u <= u_max
+  Ain.block(t0, 0, nu, n) = -M_.bottomRows(nu);  // u <= u_max
   b_in_.segment(t0, nu) = b_.tail(nu) - u_max;
-  Ain.block(t0 + nu, 0, nu, n) = M_.bottomRows(nu);      // u >= -u_max
+  Ain.block(t0 + nu, 0, nu, n) = M_.bottomRows(nu);  // u >= -u_max
   b_in_.segment(t0 + nu, nu) = -u_max - b_.tail(nu);
-
 }
 
 const WbcOutput& WholeBodyController::solveQp(const ContactMode& mode) {
@@ -217,9 +218,8 @@ const WbcOutput& WholeBodyController::solveQp(const ContactMode& mode) {
   auto Ain = A_in_.topLeftCorner(m_in, nx);
   qp::DualActiveSetQp& solver = nc == 1 ? qp_single_ : qp_double_;
   std::vector<int>& warm = nc == 1 ? warm_single_ : warm_double_;
-  const qp::QpResult& r = solver.solve(G_.topLeftCorner(nx, nx), g_.head(nx), Aeq,
-                                       b_eq_.head(m_eq), Ain, b_in_.head(m_in),
-                                       warm.empty() ? nullptr : &warm);
+  const qp::QpResult& r = solver.solve(G_.topLeftCorner(nx, nx), g_.head(nx), Aeq, b_eq_.head(m_eq),
+                                       Ain, b_in_.head(m_in), warm.empty() ? nullptr : &warm);
   out_.status = r.status;
   out_.message = r.message;
   if (r.status == qp::QpStatus::kInfeasible) {

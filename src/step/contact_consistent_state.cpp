@@ -3,9 +3,8 @@
 
 #include "reach_trajopt/step/contact_consistent_state.h"
 
-#include <cmath>
-
 #include <Eigen/Cholesky>
+#include <cmath>
 
 #include "reach_trajopt/model/euler_angles.h"
 
@@ -14,8 +13,7 @@ namespace reach_trajopt {
 double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
 
 ContactConsistentState contactConsistentState(const RobotModel& m, FrameId stance_frame,
-                                              const Eigen::VectorXd& q,
-                                              const Eigen::VectorXd& qd) {
+                                              const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   m.checkState(q, qd);
   ContactConsistentState out;
   out.q = q.cwiseMax(m.positionLowerLimits()).cwiseMin(m.positionUpperLimits());

@@ -66,8 +66,7 @@ FootstepTransitionPlanner::FootstepTransitionPlanner(std::shared_ptr<const Robot
       contact_(contact),
       config_(config),
       kinematics_(std::make_shared<KinematicFeasibility>(model, config.kinematics, contact)),
-      footsteps_(std::make_shared<ReachabilityAnalyzer>(model, contact, config.reach),
-                 kinematics_),
+      footsteps_(std::make_shared<ReachabilityAnalyzer>(model, contact, config.reach), kinematics_),
       nearest_(kinematics_, config.nearest_foothold),
       ocp_(model, config.ocp, contact) {}
 
@@ -169,8 +168,7 @@ void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
 }
 
 void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
-                                                const Eigen::Isometry3d& held,
-                                                const Touchdown& td,
+                                                const Eigen::Isometry3d& held, const Touchdown& td,
                                                 FootstepTransition& out) const {
   const RobotModel& m = *model_;
   const FootstepResult& check = out.check;

@@ -11,7 +11,10 @@ constexpr double kLateDescentSpeed = 0.2;  // [m/s] after the nominal end, until
 
 SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& start, const Eigen::Vector3d& target,
                                  double duration, double apex_height, double touchdown_depth)
-    : start_(start), target_(target), duration_(duration), apex_(apex_height),
+    : start_(start),
+      target_(target),
+      duration_(duration),
+      apex_(apex_height),
       depth_(touchdown_depth) {
   requireFinite("SwingTrajectory: start", start);
   requireFinite("SwingTrajectory: target", target);

@@ -4,18 +4,17 @@
 
 #include "reach_trajopt/walk/walking_experiment.h"
 
+#include <Eigen/LU>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include <Eigen/LU>
-
 #include "reach_trajopt/common/config_yaml.h"
-#include "reach_trajopt/sim/bullet_world.h"
-#include "reach_trajopt/walk/standing_pose.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
+#include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/walk/com_reference.h"
+#include "reach_trajopt/walk/standing_pose.h"
 #include "reach_trajopt/walk/swing_trajectory.h"
 #include "reach_trajopt/walk/transition_tracking.h"
 
@@ -67,8 +66,9 @@ void WalkConfig::validate() const {
 WalkConfig WalkConfig::fromYaml(const YamlSection& s) {
   s.requireOnlyKeys({"mode", "steps", "single_support_duration", "double_support_duration",
                      "settle_duration", "swing_height", "touchdown_depth", "touchdown_force",
-                     "late_touchdown", "check_horizon", "replan_fraction", "knee_bend", "forward_speed", "initial_com_velocity",
-                     "first_swing", "fall_pelvis_height", "seed", "max_sim_time"});
+                     "late_touchdown", "check_horizon", "replan_fraction", "knee_bend",
+                     "forward_speed", "initial_com_velocity", "first_swing", "fall_pelvis_height",
+                     "seed", "max_sim_time"});
   WalkConfig c;
   std::string mode = modeName(c.mode), first = c.first_swing == Side::kLeft ? "left" : "right";
   s.read("mode", mode);
@@ -214,8 +214,8 @@ struct WalkingExperiment::Loop {
   double ground_z_ = 0.0;
   std::unique_ptr<SwingTrajectory> swing_traj_;
   StepRecord current_;
-  bool checked_ = false;       ///< this swing's footstep check has run
-  TransitionResult tracked_;   ///< the OCP trajectory tracked (empty when none)
+  bool checked_ = false;      ///< this swing's footstep check has run
+  TransitionResult tracked_;  ///< the OCP trajectory tracked (empty when none)
   double tracked_start_ = 0.0;
   WbcReference ref_;
   WalkResult result_;
@@ -317,8 +317,7 @@ bool WalkingExperiment::Loop::singleSupport(double t) {
     planStep(t, ts);
     swing_traj_->retarget(target3());
   }
-  if (impl_.proposed && !checked_ &&
-      ts >= wc_.single_support_duration - impl_.proposed->horizon())
+  if (impl_.proposed && !checked_ && ts >= wc_.single_support_duration - impl_.proposed->horizon())
     checkStep(t, ts);
   const SoleContact& sc = world_->soleContacts()[static_cast<int>(swing_)];
   if (ts > 0.5 * wc_.single_support_duration && sc.in_contact &&
@@ -338,8 +337,10 @@ void WalkingExperiment::Loop::beginSingleSupport(double t) {
   phase_start_ = t;
   mode_ = ContactMode::singleSupport(opposite(swing_));
   const Side stance = opposite(swing_);
-  const Eigen::Vector3d stance_pos = m_.framePose(ws_, sole_[static_cast<int>(stance)]).translation();
-  const Eigen::Vector3d swing_pos = m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();
+  const Eigen::Vector3d stance_pos =
+      m_.framePose(ws_, sole_[static_cast<int>(stance)]).translation();
+  const Eigen::Vector3d swing_pos =
+      m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();
   current_ = StepRecord();
   current_.index = result_.steps + 1;
   current_.swing = swing_;
@@ -361,7 +362,8 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
   current_.com_at_plan.pd = xy(vcom_);
   current_.plan_time = t;
   const double remaining = std::max(0.0, wc_.single_support_duration - time_in_swing);
-  current_.com_predicted = planner_.lipm().propagate(current_.com_at_plan, current_.stance, remaining);
+  current_.com_predicted =
+      planner_.lipm().propagate(current_.com_at_plan, current_.stance, remaining);
   TvrInput in;
   in.com = current_.com_predicted;
   in.p_des = Eigen::Vector2d(com0_.x() + wc_.forward_speed * (t + remaining), feet_mid_.y());
@@ -387,9 +389,9 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
     request.qd = world_->qd();
     // The CoM velocity at touchdown: the LIPM about the stance sole from the measured CoM
     // state, over the time left to the nominal touchdown.
-    request.touchdown_com = planner_.lipm().propagate(
-        LipmState{xy(com_), xy(vcom_)}, current_.stance,
-        std::max(0.0, wc_.single_support_duration - ts));
+    request.touchdown_com =
+        planner_.lipm().propagate(LipmState{xy(com_), xy(vcom_)}, current_.stance,
+                                  std::max(0.0, wc_.single_support_duration - ts));
     const FootstepTransition step = impl_.proposed->plan(request);
     current_.verdict = step.verdict;
     current_.hausdorff_distance = step.hausdorff_distance;
@@ -433,9 +435,9 @@ void WalkingExperiment::Loop::references(double t) {
   if (phase_ == Phase::kSettle) {
     com_ref_.hold(ref_);
   } else {
-    const double transfer =
-        phase_ == Phase::kDouble ? std::min(1.0, (t - phase_start_) / wc_.double_support_duration)
-                                 : 1.0;
+    const double transfer = phase_ == Phase::kDouble
+                                ? std::min(1.0, (t - phase_start_) / wc_.double_support_duration)
+                                : 1.0;
     com_ref_.advance(dt_, transfer, ref_);
   }
   ref_.q_ff.resize(0);

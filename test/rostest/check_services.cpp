@@ -2,15 +2,15 @@
 // check_reachability and plan_transition get success = false with the reason, the nodes keep
 // serving, and a round trip of each service on our robot returns a well-formed answer.
 
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <urdf_parser/urdf_parser.h>
+
 #include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <ros/ros.h>
-#include <urdf_parser/urdf_parser.h>
 
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/PlanTransition.h"
@@ -40,8 +40,14 @@ std::vector<std::pair<std::string, Req>> malformed() {
     edit(r);
     cases.emplace_back(reason, r);
   };
-  add("non-finite", [](Req& r) { r.q.assign(g_nq, kNaN); r.qd.assign(g_nq, 0.0); });
-  add("expected size", [](Req& r) { r.q.assign(3, 0.0); r.qd.assign(3, 0.0); });
+  add("non-finite", [](Req& r) {
+    r.q.assign(g_nq, kNaN);
+    r.qd.assign(g_nq, 0.0);
+  });
+  add("expected size", [](Req& r) {
+    r.q.assign(3, 0.0);
+    r.qd.assign(3, 0.0);
+  });
   add("non-finite", [](Req& r) { r.foothold.x = kNaN; });
   add("unknown frame 'map'", [](Req& r) { r.header.frame_id = "map"; });
   add("empty contact set", [](Req& r) { r.contact_mode = ""; });
@@ -81,7 +87,7 @@ TEST(Services, PlanTransitionRejectsMalformedRequests) {
 
 TEST(Services, CheckReachabilityRoundTrip) {
   reach_trajopt::CheckReachability srv;
-  fillDefaults(srv.request);  // empty q: the node's standing pose, left sole the stance
+  fillDefaults(srv.request);          // empty q: the node's standing pose, left sole the stance
   srv.request.forward_samples = 300;  // a small check: this tests the plumbing
   srv.request.return_samples = true;
   ASSERT_TRUE(ros::service::call("check_reachability", srv));

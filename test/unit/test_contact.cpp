@@ -1,11 +1,11 @@
 // Contact modes and sequences, the contact wrench cone (eq. 7-8) on cases with known answers,
 // the orientation error of eq. (5) and its Jacobian against finite differences, config/YAML.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include <Eigen/Geometry>
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
@@ -97,12 +97,12 @@ TEST(ContactWrenchCone, KnownWrenches) {
   const double mu = 0.7, X = 0.135, Y = 0.08, fz = 600.0;
   const ContactWrenchCone cone(mu, X, Y);
   using W = ContactWrenchCone::Wrench;
-  EXPECT_TRUE(cone.contains(W(0, 0, fz, 0, 0, 0)));                    // pure weight
-  EXPECT_FALSE(cone.contains(W(0, 0, -1, 0, 0, 0)));                   // pulling
+  EXPECT_TRUE(cone.contains(W(0, 0, fz, 0, 0, 0)));   // pure weight
+  EXPECT_FALSE(cone.contains(W(0, 0, -1, 0, 0, 0)));  // pulling
   EXPECT_TRUE(cone.contains(W(mu * fz * 0.99, 0, fz, 0, 0, 0)));
-  EXPECT_FALSE(cone.contains(W(mu * fz * 1.01, 0, fz, 0, 0, 0)));      // slipping
-  EXPECT_TRUE(cone.contains(W(0, 0, fz, Y * fz * 0.99, 0, 0)));        // CoP near the edge
-  EXPECT_FALSE(cone.contains(W(0, 0, fz, Y * fz * 1.01, 0, 0)));       // CoP off the sole
+  EXPECT_FALSE(cone.contains(W(mu * fz * 1.01, 0, fz, 0, 0, 0)));  // slipping
+  EXPECT_TRUE(cone.contains(W(0, 0, fz, Y * fz * 0.99, 0, 0)));    // CoP near the edge
+  EXPECT_FALSE(cone.contains(W(0, 0, fz, Y * fz * 1.01, 0, 0)));   // CoP off the sole
   EXPECT_FALSE(cone.contains(W(0, 0, fz, 0, -X * fz * 1.01, 0)));
   // Pure yaw torque: |tz| <= mu (X + Y) fz exactly.
   EXPECT_TRUE(cone.contains(W(0, 0, fz, 0, 0, mu * (X + Y) * fz * 0.999)));
@@ -147,8 +147,8 @@ TEST(ContactConstraint, OrientationErrorAndInverseLeftJacobian) {
   EXPECT_LT(ContactConstraint::error(planned, planned).norm(), 1e-15);
   // A known error: rotate the sole by 0.3 rad about world z and shift it 1 cm.
   Eigen::Isometry3d pose = planned;
-  pose.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                  planned.linear();
+  pose.linear() =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix() * planned.linear();
   pose.translation() += Eigen::Vector3d(0.01, 0, 0);
   Vector6d expected;
   expected << 0.01, 0, 0, 0, 0, 0.3;
@@ -158,16 +158,17 @@ TEST(ContactConstraint, OrientationErrorAndInverseLeftJacobian) {
   const Eigen::Vector3d omega(0.3, -0.7, 0.5);
   for (const double angle : {1e-6, 0.2, 1.0, 2.5}) {
     Eigen::Isometry3d p0 = planned;
-    p0.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d(1, 2, -1).normalized())
-                      .toRotationMatrix() * planned.linear();
+    p0.linear() =
+        Eigen::AngleAxisd(angle, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix() *
+        planned.linear();
     const Vector6d e0 = ContactConstraint::error(p0, planned);
     const double h = 1e-6;
     Eigen::Isometry3d pp = p0, pm = p0;
     pp.linear() = Eigen::AngleAxisd(h * omega.norm(), omega.normalized()) * p0.linear();
     pm.linear() = Eigen::AngleAxisd(-h * omega.norm(), omega.normalized()) * p0.linear();
     const Eigen::Vector3d fd =
-        (ContactConstraint::error(pp, planned) - ContactConstraint::error(pm, planned))
-            .tail<3>() / (2 * h);
+        (ContactConstraint::error(pp, planned) - ContactConstraint::error(pm, planned)).tail<3>() /
+        (2 * h);
     const Eigen::Vector3d an = ContactConstraint::inverseLeftJacobian(e0.tail<3>()) * omega;
     EXPECT_LT((fd - an).norm(), 1e-7) << "angle " << angle;
   }
@@ -209,8 +210,8 @@ TEST(ContactConfig, YamlReadAndErrors) {
 }
 
 TEST(ContactConfig, ShippedYamlLoads) {
-  const auto file = YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) +
-                                          "/config/biped.yaml");
+  const auto file =
+      YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   const auto c = ContactConfig::fromYaml(file.section("contact"));
   EXPECT_EQ(c.half_length, 0.135);
   EXPECT_EQ(c.half_width, 0.08);
@@ -268,6 +269,7 @@ TEST(ContactConstraint, JacobianAndDriftMatchFiniteDifferences) {
   c_at.evaluate(m, wm, tm);
   const Vector6d fd_phiddot = (tp.phidot - tm.phidot) / (2 * h);
   EXPECT_LT((fd_phiddot - t0.phiddot(qdd)).norm(), 1e-5 * (1 + fd_phiddot.norm()))
-      << fd_phiddot.transpose() << "\n" << t0.phiddot(qdd).transpose();
+      << fd_phiddot.transpose() << "\n"
+      << t0.phiddot(qdd).transpose();
   EXPECT_THROW(ContactConstraint(m, "no_such_frame", off), ReachError);
 }

@@ -1,9 +1,9 @@
 // The terminal velocity qd_f from the LIPM touchdown CoM velocity (planner/
 // double_support_velocity.h) on the shipped biped, checked with the model's Jacobians: both
 // soles still, base not rotating, CoM at the requested velocity; bad input throws.
-#include <limits>
-
 #include <gtest/gtest.h>
+
+#include <limits>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/model/robot_model.h"

@@ -29,17 +29,19 @@ std::string thrownMessage(F&& f) {
 }
 
 TEST(Errors, MissingUrdfIsAModelErrorNamingTheFile) {
-  const std::string msg = thrownMessage<ModelError>(
-      [] { RobotModel::fromUrdfFile("/nonexistent/robot_xyz.urdf"); });
+  const std::string msg =
+      thrownMessage<ModelError>([] { RobotModel::fromUrdfFile("/nonexistent/robot_xyz.urdf"); });
   EXPECT_NE(msg.find("robot_xyz.urdf"), std::string::npos) << msg;
 }
 
 TEST(Errors, UnknownFrameAndJointAreModelErrorsNamingThem) {
   const auto model = RobotModel::fromUrdfFile(REACH_TRAJOPT_SOURCE_DIR "/urdf/biped.urdf");
-  EXPECT_NE(thrownMessage<ModelError>([&] { model->frameId("no_such_frame"); }).find("no_such_frame"),
-            std::string::npos);
-  EXPECT_NE(thrownMessage<ModelError>([&] { model->jointIndex("no_such_joint"); }).find("no_such_joint"),
-            std::string::npos);
+  EXPECT_NE(
+      thrownMessage<ModelError>([&] { model->frameId("no_such_frame"); }).find("no_such_frame"),
+      std::string::npos);
+  EXPECT_NE(
+      thrownMessage<ModelError>([&] { model->jointIndex("no_such_joint"); }).find("no_such_joint"),
+      std::string::npos);
 }
 
 TEST(Errors, EmptyQpIsAQpInputError) {
@@ -48,12 +50,15 @@ TEST(Errors, EmptyQpIsAQpInputError) {
 }
 
 TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
-  const std::string unknown = thrownMessage<ConfigError>(
-      [] { YamlSection::loadString("contact:\n  mu: 0.7\n  mux: 1\n", "t.yaml").section("contact")
-               .requireOnlyKeys({"mu"}); });
+  const std::string unknown = thrownMessage<ConfigError>([] {
+    YamlSection::loadString("contact:\n  mu: 0.7\n  mux: 1\n", "t.yaml")
+        .section("contact")
+        .requireOnlyKeys({"mu"});
+  });
   EXPECT_NE(unknown.find("mux"), std::string::npos) << unknown;
   const std::string invalid = thrownMessage<ConfigError>([] {
-    ContactConfig::fromYaml(YamlSection::loadString("contact:\n  mu: -1\n", "t.yaml").section("contact"));
+    ContactConfig::fromYaml(
+        YamlSection::loadString("contact:\n  mu: -1\n", "t.yaml").section("contact"));
   });
   EXPECT_NE(invalid.find("mu"), std::string::npos) << invalid;
 }

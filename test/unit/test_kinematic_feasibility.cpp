@@ -1,11 +1,11 @@
 // Kinematic feasibility of Sec. III-B on the shipped biped: a normal step is feasible with both
 // soles on target (checked by forward kinematics at q_f) and joints within limits; a too long
 // step and a foot through the other foot are infeasible with a reason; bad input throws.
-#include <cmath>
-#include <limits>
+#include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
+#include <cmath>
+#include <limits>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
@@ -137,8 +137,7 @@ TEST(KinematicFeasibility, BadInput) {
   }
   EXPECT_THROW(kf.check(Side::kRight, ok, contact(0.3, 0.1, 1.0)), ReachError);
   // q_init of the wrong size or with a NaN.
-  EXPECT_THROW(kf.check(Side::kRight, ok, contact(0.3, 0.1), Eigen::VectorXd::Zero(3)),
-               ReachError);
+  EXPECT_THROW(kf.check(Side::kRight, ok, contact(0.3, 0.1), Eigen::VectorXd::Zero(3)), ReachError);
   Eigen::VectorXd q = biped()->neutralConfiguration();
   q[7] = kNaN;
   EXPECT_THROW(kf.check(Side::kRight, ok, contact(0.3, 0.1), q), ReachError);
@@ -173,8 +172,8 @@ TEST(KinematicFeasibility, WarmStartFromTheCurrentConfiguration) {
 }
 
 TEST(KinematicFeasibility, ShippedYaml) {
-  const auto file = YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) +
-                                          "/config/biped.yaml");
+  const auto file =
+      YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   const auto c = KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));
   EXPECT_EQ(c.pelvis_frame, "pelvis");
   EXPECT_NO_THROW(KinematicFeasibility(biped(), c));
@@ -187,19 +186,21 @@ TEST(KinematicFeasibility, HeldPelvisPositionIsReachedWithSolesOnTarget) {
   const auto m = biped();
   const KinematicFeasibility kf(m);
   const Eigen::Vector3d pelvis(0.08, 0.03, kf.config().pelvis_height + 0.05);
-  const auto r = kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1), Eigen::VectorXd(),
-                          pelvis);
+  const auto r =
+      kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1), Eigen::VectorXd(), pelvis);
   ASSERT_TRUE(r.feasible) << r.reason;
   Workspace ws(*m);
   m->update(ws, r.q_f, Eigen::VectorXd::Zero(m->nq()));
   EXPECT_LT((m->framePose(ws, m->frameId("pelvis")).translation() - pelvis).norm(), 1e-5);
-  EXPECT_LT((m->framePose(ws, m->frameId("l_sole")).translation() - Eigen::Vector3d(0, 0.1, 0))
-                .norm(), 1e-5);
-  EXPECT_LT((m->framePose(ws, m->frameId("r_sole")).translation() -
-             Eigen::Vector3d(0.1, -0.1, 0)).norm(), 1e-5);
+  EXPECT_LT(
+      (m->framePose(ws, m->frameId("l_sole")).translation() - Eigen::Vector3d(0, 0.1, 0)).norm(),
+      1e-5);
+  EXPECT_LT(
+      (m->framePose(ws, m->frameId("r_sole")).translation() - Eigen::Vector3d(0.1, -0.1, 0)).norm(),
+      1e-5);
   // A pelvis held far from the soles cannot be reached: infeasible with a reason.
-  const auto far = kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1),
-                            Eigen::VectorXd(), Eigen::Vector3d(0.6, 0.0, 1.0));
+  const auto far = kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1), Eigen::VectorXd(),
+                            Eigen::Vector3d(0.6, 0.0, 1.0));
   EXPECT_FALSE(far.feasible);
   EXPECT_NE(far.reason.find("pelvis"), std::string::npos) << far.reason;
   EXPECT_THROW(kf.check(Side::kLeft, contact(0.0, 0.1), contact(0.1, -0.1), Eigen::VectorXd(),

@@ -2,10 +2,10 @@
 // shipped biped: a target inside the stance sole is replaced by the first feasible ring point,
 // which the kinematic check itself accepts (an independent re-check), no closer ring holds a
 // feasible point, and a search too small to leave the infeasible region finds nothing.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <memory>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_config.h"

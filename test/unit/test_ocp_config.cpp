@@ -1,8 +1,8 @@
 // TransitionOcpConfig: the shipped config/biped.yaml section loads and validates; bad values
 // and unknown keys are rejected with the key named.
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"

@@ -3,11 +3,11 @@
 // respect to (q_a, qd_a, qdd_a, lambda_2), and the NLP's cost, equality and inequality
 // Jacobians with respect to its variables, for the strict and the relaxed problem. Also checks
 // that the reduced coordinates hold the stance contact and eq. (1) exactly (full model).
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/model/robot_model.h"
@@ -182,8 +182,8 @@ TEST_P(TransitionNlpGradient, MatchesCentralDifferences) {
   cfg.central_differences = true;
   cfg.fd_step = 1e-5;
   TransitionNlp nlp(m, cfg, ContactConfig(), r, relaxed);
-  ASSERT_EQ(nlp.variableCount(), relaxed ? 12 * (cfg.segments + 1) + 8
-                                         : 12 * (cfg.segments - 1) + 6);
+  ASSERT_EQ(nlp.variableCount(),
+            relaxed ? 12 * (cfg.segments + 1) + 8 : 12 * (cfg.segments - 1) + 6);
   // A point away from the initial guess, with lambda_2 and eps non-zero.
   Eigen::VectorXd x = nlp.initialGuess();
   for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += 0.02 * std::sin(1.7 * i + 0.3);

@@ -1,9 +1,9 @@
 // The cubic B-spline basis of the transition OCP and the SPQR least-squares fit of a seed path:
 // partition of unity, derivatives against central differences, clamped boundary values, exact
 // reproduction of a spline from its samples, and held control points.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ocp/cubic_bspline.h"
@@ -34,8 +34,8 @@ TEST(CubicBSpline, PartitionOfUnityAndDerivatives) {
     const double h = 1e-6;
     if (t > h && t < 0.3 - h) {
       EXPECT_NEAR(curve(B, c, t, 1), (curve(B, c, t + h) - curve(B, c, t - h)) / (2 * h), 1e-6);
-      EXPECT_NEAR(curve(B, c, t, 2),
-                  (curve(B, c, t + h, 1) - curve(B, c, t - h, 1)) / (2 * h), 1e-4);
+      EXPECT_NEAR(curve(B, c, t, 2), (curve(B, c, t + h, 1) - curve(B, c, t - h, 1)) / (2 * h),
+                  1e-4);
     }
   }
   EXPECT_THROW(CubicBSplineBasis(0.0, 3), ReachError);

@@ -12,12 +12,12 @@
 // Units of the 1e-4 bound: contacts in m, rad, m/s, rad/s, m/s^2, rad/s^2; eq. (1) residual
 // divided by the effort limit (actuated rows) or the weight m g (base rows); cone rows and the
 // torque excess divided by m g and u_max.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
@@ -148,10 +148,10 @@ void expectFeasibleTrajectory(const TransitionRequest& req, const TransitionResu
     }
     // qdd is the derivative of qd (central differences; qd is piecewise quadratic).
     if (k > 0 && k + 1 < n) {
-      const Eigen::VectorXd fd = (res.qd.col(k + 1) - res.qd.col(k - 1)) /
-                                 (res.time[k + 1] - res.time[k - 1]);
-      accel = std::max(accel, (fd - qdd).cwiseAbs().maxCoeff() /
-                                  std::max(1.0, qdd.cwiseAbs().maxCoeff()));
+      const Eigen::VectorXd fd =
+          (res.qd.col(k + 1) - res.qd.col(k - 1)) / (res.time[k + 1] - res.time[k - 1]);
+      accel = std::max(accel,
+                       (fd - qdd).cwiseAbs().maxCoeff() / std::max(1.0, qdd.cwiseAbs().maxCoeff()));
     }
   }
   EXPECT_LT(dyn, kTol);
@@ -251,9 +251,9 @@ TEST(TransitionOcp, StepBeyondReachableSetIsRelaxedToItsEdge) {
               res.eps.norm(), kTol);
   // The landing is a kinematically feasible stance (Sec. III-B).
   const KinematicFeasibility kf(biped());
-  const auto ik = kf.check(Side::kLeft, contactAt(0.0, 0.1),
-                           contactAt(res.landing_position.x(), res.landing_position.y()),
-                           ikGuess(*biped()));
+  const auto ik =
+      kf.check(Side::kLeft, contactAt(0.0, 0.1),
+               contactAt(res.landing_position.x(), res.landing_position.y()), ikGuess(*biped()));
   EXPECT_TRUE(ik.feasible) << ik.reason;
   std::cout << "[ relaxed   ] eps = " << res.eps.transpose() << ", " << res.solve_time << " s\n";
 }
@@ -278,9 +278,9 @@ TEST(TransitionOcp, StepBeyondLegReachLandsOnFeasibleFoothold) {
   const TransitionResult res = ocp.solve(req);  // kAuto: straight to the relaxed problem
   ASSERT_EQ(res.status, OcpStatus::kRelaxed) << res.reason;
   expectFeasibleTrajectory(req, res);
-  const auto ik = kf.check(Side::kLeft, contactAt(0.0, 0.1),
-                           contactAt(res.landing_position.x(), res.landing_position.y()),
-                           ikGuess(*m));
+  const auto ik =
+      kf.check(Side::kLeft, contactAt(0.0, 0.1),
+               contactAt(res.landing_position.x(), res.landing_position.y()), ikGuess(*m));
   EXPECT_TRUE(ik.feasible) << ik.reason;
   EXPECT_GE(res.eps.norm(), beyond - kTol);
   std::cout << "[ beyond IK ] edge " << lo << " m, landing x " << res.landing_position.x()

@@ -1,13 +1,13 @@
 // LIPM closed form (eq. 9-10) against numerical integration, the TVR planner (eq. 11) and the
 // eigenvalues of its closed-loop step map (eq. 12), config validation and YAML.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
 #include <random>
-
-#include <Eigen/Eigenvalues>
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
@@ -32,8 +32,7 @@ LipmState integrateRk4(LipmState x, const Eigen::Vector2d& a, double g_over_h, d
   V4 s;
   s << x.p, x.pd;
   for (int i = 0; i < n; ++i) {
-    const V4 k1 = f(s), k2 = f(s + 0.5 * dt * k1), k3 = f(s + 0.5 * dt * k2),
-             k4 = f(s + dt * k3);
+    const V4 k1 = f(s), k2 = f(s + 0.5 * dt * k1), k3 = f(s + 0.5 * dt * k2), k4 = f(s + dt * k3);
     s += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
   }
   x.p = s.head<2>();
@@ -143,8 +142,7 @@ TEST(TvrPlanner, BoundedStepsLieInsideTheBounds) {
     clipped += s.offset_clipped;
     speed_clipped += s.speed_clipped;
     if (!s.offset_clipped) {
-      EXPECT_LT((s.alpha - in.stance - Eigen::Rotation2Dd(in.stance_yaw) * s.offset).norm(),
-                1e-12);
+      EXPECT_LT((s.alpha - in.stance - Eigen::Rotation2Dd(in.stance_yaw) * s.offset).norm(), 1e-12);
     }
   }
   EXPECT_GT(clipped, 100);  // the sample exercises the clipping
@@ -238,8 +236,8 @@ TEST(TvrPlanner, RejectsBadInputAndConfig) {
 }
 
 TEST(TvrPlanner, ShippedYamlHasPaperValues) {
-  const auto file = YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) +
-                                          "/config/biped.yaml");
+  const auto file =
+      YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   const TvrConfig c = TvrConfig::fromYaml(file.section("planner"));
   EXPECT_EQ(c.t_s, 0.15);
   EXPECT_EQ(c.kappa_x, -0.16);  // the authors' code value: with -0.66 our biped walks in place only
@@ -247,7 +245,7 @@ TEST(TvrPlanner, ShippedYamlHasPaperValues) {
   EXPECT_EQ(c.foot_offset_y_max, 0.65);
   EXPECT_EQ(c.com_speed_max, 1.3);
   EXPECT_TRUE(TvrPlanner(c).stability().stable);
-  EXPECT_THROW(TvrConfig::fromYaml(YamlSection::loadString("planner: {t_s: -1}", "t.yaml")
-                                       .section("planner")),
+  EXPECT_THROW(TvrConfig::fromYaml(
+                   YamlSection::loadString("planner: {t_s: -1}", "t.yaml").section("planner")),
                ReachError);
 }

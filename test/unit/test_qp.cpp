@@ -2,6 +2,9 @@
 // against an independent KKT linear solve, and on bad input. The large random comparison with
 // quadprog is test/oracle/test_qp_oracle.py.
 
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -9,9 +12,6 @@
 #include <limits>
 #include <random>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"
@@ -133,7 +133,7 @@ TEST(DualActiveSetQp, BoxConstrainedDiagonalQpIsAClamp) {
     EXPECT_NEAR(r.x(i), expected, 1e-14) << i;
     // The multiplier of the bound that is hit is |d_i x_i + g_i|.
     const double grad = d(i) * expected + g(i);
-    EXPECT_NEAR(r.in()(i) - r.in()(n + i), grad, 1e-14) << i;
+    EXPECT_NEAR(r.in()(i)-r.in()(n + i), grad, 1e-14) << i;
   }
   // x_5 = 0 sits on its bound with zero multiplier (weakly active): no multiplier may be < 0.
   EXPECT_GE(r.in().minCoeff(), 0.0);
@@ -157,7 +157,8 @@ TEST(DualActiveSetQp, ProjectionOntoSimplexMatchesSortAlgorithm) {
   for (int trial = 0; trial < 20; ++trial) {
     const int n = 3 + trial;
     const VectorXd c = randomMatrix(rng, n, 1);
-    Problem p{MatrixXd::Identity(n, n), -c, MatrixXd::Ones(1, n), VectorXd::Ones(1),
+    Problem p{MatrixXd::Identity(n, n), -c,
+              MatrixXd::Ones(1, n),     VectorXd::Ones(1),
               MatrixXd::Identity(n, n), VectorXd::Zero(n)};
     DualActiveSetQp qp(n, 1, n);
     const QpResult& r = solve(qp, p);
@@ -201,8 +202,7 @@ TEST(DualActiveSetQp, InfeasibleProblemsAreReportedInfeasible) {
   Aeq << 1, 1, 1, -1, 2, 0;
   VectorXd beq(3);
   beq << 1, 0, 1.5;  // row 3 = row 1 + row 2 needs 1
-  EXPECT_EQ(qp.solve(G, g, Aeq, beq, MatrixXd(0, 2), VectorXd(0)).status,
-            QpStatus::kInfeasible);
+  EXPECT_EQ(qp.solve(G, g, Aeq, beq, MatrixXd(0, 2), VectorXd(0)).status, QpStatus::kInfeasible);
   // An equality and an inequality that exclude each other.
   MatrixXd Aeq1(1, 2), Ain1(1, 2);
   Aeq1 << 1, 2;
@@ -214,8 +214,7 @@ TEST(DualActiveSetQp, InfeasibleProblemsAreReportedInfeasible) {
   // A zero row 0 >= 1.
   MatrixXd Ain2 = MatrixXd::Zero(1, 2);
   VectorXd bin2 = VectorXd::Ones(1);
-  EXPECT_EQ(qp.solve(G, g, MatrixXd(0, 2), VectorXd(0), Ain2, bin2).status,
-            QpStatus::kInfeasible);
+  EXPECT_EQ(qp.solve(G, g, MatrixXd(0, 2), VectorXd(0), Ain2, bin2).status, QpStatus::kInfeasible);
 }
 
 TEST(DualActiveSetQp, DegenerateRowsDoNotChangeTheSolution) {
@@ -250,7 +249,7 @@ TEST(DualActiveSetQp, ManyRowsThroughOneVertex) {
   // 3 variables, 12 inequality rows all tight at x* = (1, 1, 1), minimum pulled towards it.
   std::mt19937 rng(5);
   const int n = 3, m = 12;
-  Problem p{MatrixXd::Identity(n, n), VectorXd::Zero(n), MatrixXd(0, n), VectorXd(0),
+  Problem p{MatrixXd::Identity(n, n),           VectorXd::Zero(n), MatrixXd(0, n), VectorXd(0),
             randomMatrix(rng, m, n).cwiseAbs(), VectorXd()};
   p.bin = p.Ain * VectorXd::Ones(n);  // all rows >= at (1,1,1); origin violates all of them
   DualActiveSetQp qp(n, 0, m);
@@ -270,12 +269,24 @@ TEST(DualActiveSetQp, NonFiniteAndBadSizesAreInvalidInput) {
   for (int which = 0; which < 6; ++which) {
     Problem q = p;
     switch (which) {
-      case 0: q.G(1, 1) = kNaN; break;
-      case 1: q.g(2) = kNaN; break;
-      case 2: q.Aeq(1, 3) = std::numeric_limits<double>::infinity(); break;
-      case 3: q.beq(0) = kNaN; break;
-      case 4: q.Ain(3, 4) = -std::numeric_limits<double>::infinity(); break;
-      case 5: q.bin(1) = kNaN; break;
+      case 0:
+        q.G(1, 1) = kNaN;
+        break;
+      case 1:
+        q.g(2) = kNaN;
+        break;
+      case 2:
+        q.Aeq(1, 3) = std::numeric_limits<double>::infinity();
+        break;
+      case 3:
+        q.beq(0) = kNaN;
+        break;
+      case 4:
+        q.Ain(3, 4) = -std::numeric_limits<double>::infinity();
+        break;
+      case 5:
+        q.bin(1) = kNaN;
+        break;
     }
     expect_invalid(q, "non-finite");
   }
@@ -301,8 +312,8 @@ TEST(DualActiveSetQp, NonFiniteAndBadSizesAreInvalidInput) {
 
 TEST(DualActiveSetQp, SemiDefiniteHessianIsRejectedOrRegularized) {
   const int n = 3;
-  Problem p{MatrixXd::Zero(n, n), VectorXd::Zero(n), MatrixXd(0, n), VectorXd(0),
-            MatrixXd::Identity(n, n), VectorXd::Ones(n)};
+  Problem p{MatrixXd::Zero(n, n), VectorXd::Zero(n),        MatrixXd(0, n),
+            VectorXd(0),          MatrixXd::Identity(n, n), VectorXd::Ones(n)};
   p.G(0, 0) = 1.0;  // positive semi-definite, rank 1
   p.g << -2.0, 1.0, 1.0;
   DualActiveSetQp qp(n, 0, n);

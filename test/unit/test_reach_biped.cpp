@@ -5,11 +5,11 @@
 // sample, and the witness path, is re-checked here independently of the library: the held
 // sole on its foothold within 1e-4 m, joint limits, and the recorded (u, lambda) satisfying
 // eq. (1) and the contact wrench cone to 1e-6. 1 and 2 threads give identical results.
-#include <cmath>
-#include <iostream>
+#include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
+#include <cmath>
+#include <iostream>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
@@ -89,8 +89,8 @@ Scenario normalStep(const ReachConfig& config) {
   const Eigen::Vector3d p0 = r.target.position + Eigen::Vector3d(-0.03, 0.0, 0.02);
   const Eigen::Vector3d v0 = 2.0 * (r.target.position - p0) / config.horizon;
   const RobotState x0 =
-      swingState(model, KinematicFeasibilityConfig(), contact, Side::kLeft, r.stance_foothold,
-                 p0, 0.0, v0, bentKnees(*model, 0.5 * p0.x(), 0.5 * (0.1 + p0.y())));
+      swingState(model, KinematicFeasibilityConfig(), contact, Side::kLeft, r.stance_foothold, p0,
+                 0.0, v0, bentKnees(*model, 0.5 * p0.x(), 0.5 * (0.1 + p0.y())));
   r.q0 = x0.q;
   r.qd0 = x0.qd;
   return s;
@@ -163,16 +163,16 @@ void recheckAll(const ReachabilityAnalyzer& an, const ReachResult& r, const Foot
         const Eigen::VectorXd qp = an.sampleConfiguration(r, forward, j - 1, p);
         const Eigen::VectorXd qdp = slices[j - 1].qd.col(p);
         // The integrator: forward q = q_p + dt qd (semi-implicit), backward q = q_p - dt qd_p.
-        const Eigen::VectorXd q_expect = forward ? Eigen::VectorXd(qp + r.dt * qd)
-                                                 : Eigen::VectorXd(qp - r.dt * qdp);
+        const Eigen::VectorXd q_expect =
+            forward ? Eigen::VectorXd(qp + r.dt * qd) : Eigen::VectorXd(qp - r.dt * qdp);
         ASSERT_LT((q - q_expect).cwiseAbs().maxCoeff(), 1e-12);
         checkState(m, foothold, sole, q, qd, out);
         if (forward)
           checkStep(m, sole, qp, qdp, (qd - qdp) / r.dt, slices[j].u.col(i),
                     slices[j].lambda.col(i), out);
         else
-          checkStep(m, sole, q, qd, (qdp - qd) / r.dt, slices[j].u.col(i),
-                    slices[j].lambda.col(i), out);
+          checkStep(m, sole, q, qd, (qdp - qd) / r.dt, slices[j].u.col(i), slices[j].lambda.col(i),
+                    out);
         ++out.samples;
       }
     }
@@ -234,8 +234,8 @@ TEST(ReachBiped, NormalTvrFootstepIsReachableAndEverySampleChecksOut) {
   EXPECT_LE(wc.torque, 1e-6);
   EXPECT_LE(wc.limits, 1e-9);
   EXPECT_LE(w.violation.dynamics, 1e-6);  // the library's own account agrees
-  std::cout << "witness junction at t = " << w.time[w.junction] << " s, output gap "
-            << w.output_gap << " m\n";
+  std::cout << "witness junction at t = " << w.time[w.junction] << " s, output gap " << w.output_gap
+            << " m\n";
 }
 
 TEST(ReachBiped, LateralFootstepOf1_5mIsUnreachable) {
@@ -257,8 +257,9 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
   for (int k = 0; k < 30; ++k) {
     const double mid = 0.5 * (lo + hi);
     t.position.x() = mid;
-    const bool ok = s.kinematics->check(Side::kLeft, s.request.stance_foothold, t,
-                                        bentKnees(m, 0.5 * mid, 0.0)).feasible;
+    const bool ok =
+        s.kinematics->check(Side::kLeft, s.request.stance_foothold, t, bentKnees(m, 0.5 * mid, 0.0))
+            .feasible;
     (ok ? lo : hi) = mid;
   }
   std::cout << "forward reach of the right sole: x = " << lo << " m\n";
@@ -317,8 +318,8 @@ TEST(ReachBiped, StatesViolatingContactsAreErrors) {
   p.footholds[0] = s.request.stance_foothold.pose();
   p.q0 = s.request.q0;
   p.qd0 = s.request.qd0;
-  const auto kin = s.kinematics->check(Side::kLeft, s.request.stance_foothold, s.request.target,
-                                       s.request.q0);
+  const auto kin =
+      s.kinematics->check(Side::kLeft, s.request.stance_foothold, s.request.target, s.request.q0);
   ASSERT_TRUE(kin.feasible);
   p.qf = kin.q_f;
   p.qdf = Eigen::VectorXd::Zero(m.nq());

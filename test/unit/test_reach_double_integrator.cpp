@@ -6,13 +6,12 @@
 // simulating the recurrences with unit inputs (independently of the library), checks that
 // no sample lies outside it, and that the sampled position extent reaches >= 90% of the exact
 // one at t = 20, 50, 100 ms, forward and backward; also 1-vs-2-thread determinism and errors.
+#include <gtest/gtest.h>
 #include <omp.h>
 
 #include <cmath>
 #include <iostream>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
@@ -150,10 +149,9 @@ TEST(ReachDoubleIntegrator, ForwardAndBackwardSetsAreSoundAndCover) {
       const double exact = z.positionExtent();
       const double t = N * kDt;
       const double continuous = kA * t * t;  // width of the continuous-time position range
-      std::cout << (forward ? "forward " : "backward") << " t = " << ms << " ms: extent "
-                << hi - lo << " m, exact (discrete) " << exact << " m (ratio "
-                << (hi - lo) / exact << "), continuous " << continuous << " m, samples "
-                << s.size() << "\n";
+      std::cout << (forward ? "forward " : "backward") << " t = " << ms << " ms: extent " << hi - lo
+                << " m, exact (discrete) " << exact << " m (ratio " << (hi - lo) / exact
+                << "), continuous " << continuous << " m, samples " << s.size() << "\n";
       EXPECT_GE(hi - lo, 0.9 * exact) << (forward ? "forward" : "backward") << " t = " << ms;
       EXPECT_LE(hi - lo, exact * (1.0 + 1e-9));
     }

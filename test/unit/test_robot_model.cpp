@@ -2,16 +2,16 @@
 // against independent computations (finite differences of kinematics, inverse dynamics columns,
 // a one-joint pendulum in closed form). The Pinocchio comparison is test/oracle/.
 
+#include <gtest/gtest.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <fstream>
 #include <random>
 #include <regex>
 #include <sstream>
-
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
-#include <gtest/gtest.h>
-#include <urdf_parser/urdf_parser.h>
 
 #include "reach_trajopt/model/robot_model.h"
 
@@ -133,8 +133,8 @@ TEST(RobotModel, ClearErrors) {
   EXPECT_THROW(model->massMatrix(fresh, M), ReachError);
   // A joint with a NaN limit or an inverted range is reported.
   std::string xml = readFile(kUrdf);
-  const std::string bad = std::regex_replace(xml, std::regex("lower=\"0\" upper=\"2.4\""),
-                                             "lower=\"2.4\" upper=\"0\"");
+  const std::string bad =
+      std::regex_replace(xml, std::regex("lower=\"0\" upper=\"2.4\""), "lower=\"2.4\" upper=\"0\"");
   EXPECT_THROW(RobotModel::fromUrdfString(bad, {}, "inverted.urdf"), ReachError);
 }
 

@@ -2,12 +2,12 @@
 // link against the URDF's joint origins and axes read independently by urdfdom, joint states,
 // the sole-frame wrench, and the walking records -> messages.
 
+#include <gtest/gtest.h>
+#include <urdf_parser/urdf_parser.h>
+
 #include <cmath>
 #include <map>
 #include <random>
-
-#include <gtest/gtest.h>
-#include <urdf_parser/urdf_parser.h>
 
 #include "reach_trajopt/ros/conversions.h"
 
@@ -21,8 +21,8 @@ const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.u
 Eigen::Isometry3d urdfPose(const urdf::Pose& p) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
-  T.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
-                   .toRotationMatrix();
+  T.linear() =
+      Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).toRotationMatrix();
   return T;
 }
 
@@ -153,7 +153,8 @@ TEST(RosConversions, SoleWrenchIsExpressedInTheSoleFrame) {
   SoleContact sole;
   sole.frame = "l_sole";
   sole.sole_pose = Eigen::Isometry3d::Identity();
-  sole.sole_pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  sole.sole_pose.linear() =
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   sole.wrench << 1.0, 0.0, 500.0, 0.0, 2.0, 0.5;
   const geometry_msgs::WrenchStamped m = rb::toSoleWrenchMsg(sole, ros::Time(3.0));
   EXPECT_EQ(m.header.frame_id, "l_sole");

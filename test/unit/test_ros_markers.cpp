@@ -1,10 +1,10 @@
 // ROS layer, pure marker builders (no master): frames, namespaces, sizes, point counts and the
 // rejection of bad input.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ros/markers.h"

@@ -1,12 +1,12 @@
 // ROS layer, node helpers (no master): the temporary URDF file and the request handler that
 // answers a bad request with its reason.
 
+#include <gtest/gtest.h>
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ros/node_setup.h"

@@ -3,9 +3,9 @@
 // infeasible foothold), its markers, and the OCP's TransitionTrajectory, all stamped with the
 // time of the check in "world".
 
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"

@@ -1,11 +1,11 @@
 // ROS layer, service request validation (no master): every malformed request is rejected with
 // its reason, a valid one is filled from the model's forward kinematics.
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/ros/service_requests.h"
 #include "reach_trajopt/walk/standing_pose.h"
@@ -56,8 +56,7 @@ TEST(RosServiceRequests, RejectsMalformedRequestsWithTheReason) {
   expectReason([&] { f.parse("world", "flight", {}, {}); }, "empty contact set");
   expectReason([&] { f.parse("world", "DS", {}, {}); }, "no swing sole");
   expectReason([&] { f.parse("world", "SS-Q", {}, {}); }, "SS-Q");
-  expectReason([&] { f.parse("world", "SS-L", std::vector<double>(3, 0.0), {}); },
-               "expected size");
+  expectReason([&] { f.parse("world", "SS-L", std::vector<double>(3, 0.0), {}); }, "expected size");
   std::vector<double> q(f.standing.data(), f.standing.data() + nq), qd(nq, 0.0);
   q[7] = nan;
   expectReason([&] { f.parse("world", "SS-L", q, qd); }, "non-finite");

@@ -1,9 +1,9 @@
 // Checks of the simulator edge (base_coordinates.h): quaternion <-> ZYX Euler round trips,
 // the Euler-rate matrix against finite differences of rotations, and the acceleration maps
 // against finite differences of the velocity maps along a trajectory.
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "reach_trajopt/sim/base_coordinates.h"
 
@@ -36,9 +36,7 @@ Eigen::Isometry3d randomPose(std::mt19937& rng) {
 struct Trajectory {
   Vector6d a, b, w;
   Vector6d q(double t) const { return a + (b.array() * (w.array() * t).sin()).matrix(); }
-  Vector6d qd(double t) const {
-    return (b.array() * w.array() * (w.array() * t).cos()).matrix();
-  }
+  Vector6d qd(double t) const { return (b.array() * w.array() * (w.array() * t).cos()).matrix(); }
   Vector6d qdd(double t) const {
     return (-b.array() * w.array().square() * (w.array() * t).sin()).matrix();
   }

@@ -7,12 +7,12 @@
 //    weight (and, with gravity tilted, the friction forces and the moments balance it);
 //  - fall detection: a limp robot ends with its pelvis or torso on the ground.
 // It also prints the real-time factor of 10 s of standing (no timing assertion).
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
 #include <chrono>
 #include <cstring>
 #include <random>
-
-#include <Eigen/Cholesky>
-#include <gtest/gtest.h>
 
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/sim/bullet_world.h"
@@ -170,8 +170,8 @@ TEST(SimBulletWorld, FreeFallStepMatchesModelDynamics) {
     const Eigen::VectorXd qdd_model = M.ldlt().solve(S.transpose() * u - b);
     const double err = (qdd_sim - qdd_model).norm() / std::max(1.0, qdd_model.norm());
     worst = std::max(worst, err);
-    EXPECT_LT(err, 1e-6) << "trial " << trial << "\n sim   " << qdd_sim.transpose()
-                         << "\n model " << qdd_model.transpose();
+    EXPECT_LT(err, 1e-6) << "trial " << trial << "\n sim   " << qdd_sim.transpose() << "\n model "
+                         << qdd_model.transpose();
 
     // Semi-implicit Euler: the joint positions move with the NEW velocities.
     const Eigen::VectorXd dq = (world->q() - q0).tail(model->nu());
@@ -317,8 +317,10 @@ TEST(SimBulletWorld, TiltedGravityFrictionAndMomentsBalance) {
   // Moments about the CoM: compare with the weight times 1 cm.
   EXPECT_LT(moment.norm(), 0.01 * mg.norm()) << moment.transpose();
   EXPECT_LT(world->qd().head<3>().norm(), 0.01);  // not sliding
-  std::printf("[sim] tilted gravity: |f + m g| = %.3f N of |m g| = %.1f N, |moment about CoM| = "
-              "%.3f Nm\n", (force + mg).norm(), mg.norm(), moment.norm());
+  std::printf(
+      "[sim] tilted gravity: |f + m g| = %.3f N of |m g| = %.1f N, |moment about CoM| = "
+      "%.3f Nm\n",
+      (force + mg).norm(), mg.norm(), moment.norm());
 }
 
 TEST(SimBulletWorld, LimpRobotFallsOntoPelvisOrTorso) {
@@ -386,7 +388,8 @@ TEST(SimBulletWorld, RealTimeFactorOfStandingTenSeconds) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_TRUE(world->nonFootContacts().empty());
-  std::printf("[sim] 10 s standing under joint PD: wall %.3f s, real-time factor %.1fx "
-              "(%.1f us/step)\n",
-              wall, 10.0 / wall, 1e6 * wall / n_steps);
+  std::printf(
+      "[sim] 10 s standing under joint PD: wall %.3f s, real-time factor %.1fx "
+      "(%.1f us/step)\n",
+      wall, 10.0 / wall, 1e6 * wall / n_steps);
 }

@@ -89,8 +89,8 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
 // A run on the shipped configuration (config/biped.yaml) in `mode`, with the check drawing
 // `samples` initial samples (the paper's 1e4 in the shipped file), from a push (initial CoM
 // velocity [m/s]) or at a commanded forward speed [m/s].
-WalkResult runShipped(WalkConfig::Mode mode, int steps, const Eigen::Vector2d& push,
-                      int samples, double forward_speed = 0.0) {
+WalkResult runShipped(WalkConfig::Mode mode, int steps, const Eigen::Vector2d& push, int samples,
+                      double forward_speed = 0.0) {
   const YamlSection file =
       YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   WalkConfig walk = WalkConfig::fromYaml(file.section("walk"));

@@ -7,11 +7,10 @@
 /// Missing keys keep the caller's default (the paper's value); keys the reader does not know
 /// are reported by requireOnlyKeys(), so a typo in a YAML file cannot pass silently.
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "reach_trajopt/common/error.h"
 

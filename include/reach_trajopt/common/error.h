@@ -7,12 +7,11 @@
 /// RequestError). Nodes catch ReachError at their boundary, answer the request with the
 /// message and keep serving.
 
+#include <Eigen/Core>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
-#include <cmath>
 #include <string>
-
-#include <Eigen/Core>
 
 namespace reach_trajopt {
 

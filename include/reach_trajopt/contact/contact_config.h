@@ -13,9 +13,9 @@ class YamlSection;
 
 /// Rectangular-sole contact parameters. Defaults: a Valkyrie-like sole (docs/method.md).
 struct ContactConfig {
-  double mu = 0.7;                        ///< friction coefficient, > 0
-  double half_length = 0.135;             ///< X: sole half-length along the sole's x axis [m]
-  double half_width = 0.08;               ///< Y: sole half-width along the sole's y axis [m]
+  double mu = 0.7;                          ///< friction coefficient, > 0
+  double half_length = 0.135;               ///< X: sole half-length along the sole's x axis [m]
+  double half_width = 0.08;                 ///< Y: sole half-width along the sole's y axis [m]
   std::string left_sole_frame = "l_sole";   ///< frame at the left sole centre, z out of the sole
   std::string right_sole_frame = "r_sole";  ///< frame at the right sole centre
 

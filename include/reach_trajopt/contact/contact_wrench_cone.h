@@ -1,7 +1,8 @@
 #pragma once
 /// \file contact_wrench_cone.h
 /// The contact wrench cone (CWC) of eq. (7)-(8) for a rectangular sole, in the corrected form
-/// of docs/method.md Sec. 2 (Caron, Pham, Nakamura, ICRA 2015; the paper's printed matrix is wrong).
+/// of docs/method.md Sec. 2 (Caron, Pham, Nakamura, ICRA 2015; the paper's printed matrix is
+/// wrong).
 ///
 /// With w = [fx fy fz tx ty tz] in the sole frame at the sole centre, X, Y the half-length and
 /// half-width and mu the friction coefficient, w is admissible iff C w >= 0 with the 16 rows

@@ -35,12 +35,11 @@
 ///
 /// The model is read-only after construction; every thread owns a Workspace for its buffers.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "reach_trajopt/common/error.h"
 
@@ -55,14 +54,14 @@ using FrameId = int;
 /// One degree of freedom of the model, in the order of q.
 struct JointInfo {
   std::string name;
-  bool is_virtual = false;   ///< one of the six floating-base coordinates
+  bool is_virtual = false;  ///< one of the six floating-base coordinates
   bool is_prismatic = false;
   /// URDF `continuous`: one unbounded angle [rad] (Pinocchio stores cos, sin instead).
   bool is_continuous = false;
-  double q_min = 0.0;        ///< position lower limit [m or rad] (-inf when unlimited)
-  double q_max = 0.0;        ///< position upper limit [m or rad] (+inf when unlimited)
-  double qd_max = 0.0;       ///< |velocity| limit [m/s or rad/s] (+inf when unlimited)
-  double effort_max = 0.0;   ///< |force/torque| limit [N or Nm] (0 for virtual joints)
+  double q_min = 0.0;       ///< position lower limit [m or rad] (-inf when unlimited)
+  double q_max = 0.0;       ///< position upper limit [m or rad] (+inf when unlimited)
+  double qd_max = 0.0;      ///< |velocity| limit [m/s or rad/s] (+inf when unlimited)
+  double effort_max = 0.0;  ///< |force/torque| limit [N or Nm] (0 for virtual joints)
 };
 
 /// How to load a URDF.
@@ -101,8 +100,8 @@ class RobotModel {
   int jointIndex(const std::string& name) const;
   Eigen::VectorXd positionLowerLimits() const;
   Eigen::VectorXd positionUpperLimits() const;
-  Eigen::VectorXd velocityLimits() const;   ///< |qd| bounds, size n_q
-  Eigen::VectorXd effortLimits() const;     ///< |u| bounds, size n_u (actuated joints only)
+  Eigen::VectorXd velocityLimits() const;  ///< |qd| bounds, size n_q
+  Eigen::VectorXd effortLimits() const;    ///< |u| bounds, size n_u (actuated joints only)
   /// Selection matrix S (n_u x n_q) of eq. (1): u acts on the actuated coordinates.
   Eigen::MatrixXd selectionMatrix() const;
   double totalMass() const { return total_mass_; }  ///< [kg]

@@ -5,7 +5,8 @@
 ///
 /// Knots: [0 0 0 0, h, 2h, ..., (N-1)h, T T T T], h = T / N for N segments, so there are
 /// K = N + 3 control points. Clamping gives the boundary values directly:
-///   q(0) = c_0,   qd(0) = 3 (c_1 - c_0) / h,   q(T) = c_{K-1},   qd(T) = 3 (c_{K-1} - c_{K-2}) / h,
+///   q(0) = c_0,   qd(0) = 3 (c_1 - c_0) / h,   q(T) = c_{K-1},   qd(T) = 3 (c_{K-1} - c_{K-2}) /
+///   h,
 /// which is how the OCP eliminates the boundary states x(t_0) = x_0 and x(t_f) = x_f.
 /// q is C2: qd is continuous and qdd is continuous and piecewise linear, so torques and contact
 /// wrenches obtained by inverse dynamics are continuous too. Each control point acts on at most
@@ -27,13 +28,13 @@ class CubicBSplineBasis {
 
   double duration() const { return duration_; }
   int segments() const { return segments_; }
-  int controlPoints() const { return segments_ + kDegree; }  ///< K = N + 3
+  int controlPoints() const { return segments_ + kDegree; }     ///< K = N + 3
   double knotSpacing() const { return duration_ / segments_; }  ///< h [s]
 
   /// The four basis functions that can be non-zero at t (clamped to [0, T]) and their first and
   /// second time derivatives: q(t) = sum_{i<4} value[i] c_{first + i}, and so on.
   struct Row {
-    int first = 0;                                  ///< index of the first control point
+    int first = 0;                                    ///< index of the first control point
     Eigen::Vector4d value = Eigen::Vector4d::Zero();  ///< N_k(t)
     Eigen::Vector4d d1 = Eigen::Vector4d::Zero();     ///< dN_k/dt [1/s]
     Eigen::Vector4d d2 = Eigen::Vector4d::Zero();     ///< d2N_k/dt2 [1/s^2]

@@ -25,14 +25,14 @@ class YamlSection;
 /// i.e. Qu = w_torque diag(u_max)^-2 / T, Ql = w_wrench / (m g)^2 / T, Qx = diag(w_position,
 /// w_velocity) / T, integrated by the trapezoid rule over the check samples.
 struct TransitionOcpConfig {
-  int segments = 4;                 ///< cubic B-spline segments over the horizon (>= 2)
-  double check_interval = 0.02;     ///< NLP sample spacing [s]
-  double output_dt = 0.001;         ///< output / verification sample spacing [s] (controller)
-  double w_torque = 1.0;            ///< weight of |u / u_max|^2
-  double w_wrench = 0.1;            ///< weight of |lambda / (m g)|^2
-  double w_position = 0.1;          ///< weight of |q - q_f|^2 [1/rad^2, 1/m^2]
-  double w_velocity = 0.001;        ///< weight of |qd - qd_f|^2 [s^2/rad^2]
-  double w_eps = 1.0e3;             ///< weight of |eps|^2 in the relaxed problem [1/m^2]
+  int segments = 4;              ///< cubic B-spline segments over the horizon (>= 2)
+  double check_interval = 0.02;  ///< NLP sample spacing [s]
+  double output_dt = 0.001;      ///< output / verification sample spacing [s] (controller)
+  double w_torque = 1.0;         ///< weight of |u / u_max|^2
+  double w_wrench = 0.1;         ///< weight of |lambda / (m g)|^2
+  double w_position = 0.1;       ///< weight of |q - q_f|^2 [1/rad^2, 1/m^2]
+  double w_velocity = 0.001;     ///< weight of |qd - qd_f|^2 [s^2/rad^2]
+  double w_eps = 1.0e3;          ///< weight of |eps|^2 in the relaxed problem [1/m^2]
   /// Relaxed problem only: at t_f the floating base (the URDF root, the pelvis) stands upright
   /// (roll = pitch = 0) at this height above the mean sole height [m], the posture of the
   /// kinematic feasibility check (Sec. III-B), so the landing configuration is an IK solution
@@ -54,9 +54,9 @@ struct TransitionOcpConfig {
   /// Relaxed problem: its cost is dominated by w_eps |eps|^2, so a relative cost test would stop
   /// SLSQP before the equalities converge; it uses this tighter value and stops on xtol_rel.
   double relaxed_ftol_rel = 1.0e-14;
-  double xtol_rel = 1.0e-7;         ///< NLopt relative variable tolerance
-  double fd_step = 1.0e-6;          ///< finite-difference step in q [rad, m]
-  bool central_differences = false;  ///< see file comment
+  double xtol_rel = 1.0e-7;            ///< NLopt relative variable tolerance
+  double fd_step = 1.0e-6;             ///< finite-difference step in q [rad, m]
+  bool central_differences = false;    ///< see file comment
   double fit_regularization = 1.0e-6;  ///< seed fit: weight of the second differences
 
   /// Throws ReachError naming the first bad value.

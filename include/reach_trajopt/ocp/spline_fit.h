@@ -9,9 +9,8 @@
 /// least-squares problem is solved by SuiteSparseQR (SPQR) on the stacked matrix: one
 /// factorization, one solve per coordinate.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "reach_trajopt/ocp/cubic_bspline.h"
 
@@ -23,11 +22,9 @@ namespace reach_trajopt {
 /// \param regularization rho >= 0 (see file comment)
 /// Throws ReachError on size mismatches, non-finite samples, times outside [0, T] or when
 /// SPQR fails.
-Eigen::MatrixXd fitSplineControlPoints(const CubicBSplineBasis& basis,
-                                       const Eigen::VectorXd& times,
+Eigen::MatrixXd fitSplineControlPoints(const CubicBSplineBasis& basis, const Eigen::VectorXd& times,
                                        const Eigen::MatrixXd& samples,
                                        const std::vector<bool>& fixed,
-                                       const Eigen::MatrixXd& fixed_values,
-                                       double regularization);
+                                       const Eigen::MatrixXd& fixed_values, double regularization);
 
 }  // namespace reach_trajopt

@@ -24,10 +24,9 @@
 /// q, so central differences have no truncation error), and finite differences in q_a
 /// (forward or central, step from TransitionOcpConfig).
 
-#include <memory>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/contact/contact_mode.h"

@@ -3,7 +3,8 @@
 /// The transcription of the transition OCP (eq. 22-23) that NLopt's SLSQP solves.
 ///
 /// Why this transcription. SLSQP is a dense SQP method whose cost per iteration grows as n^3
-/// (measured beside IPOPT in bench/README.md), so the variable count must stay in the hundreds. We therefore
+/// (measured beside IPOPT in bench/README.md), so the variable count must stay in the hundreds. We
+/// therefore
 ///  1. write the 12 actuated joint trajectories as clamped cubic B-splines with few segments
 ///     (cubic_bspline.h): q_a(t) = sum_k N_k(t) c_k. The first two and (strict problem) last two
 ///     control points encode x(t_0) = x_0 and x(t_f) = x_f exactly, so the boundary states are
@@ -26,9 +27,9 @@
 ///     points are free, eps = (eps_x, eps_y) are variables, and the equalities are
 ///     phi_2 - [eps; 0 0 0 0] = 0, phidot_2 = 0, phiddot_2 = 0 (18 rows), and, unless disabled,
 ///     the base upright at the nominal height (3 rows: TransitionOcpConfig::
-///     terminal_pelvis_height, or the request's), so the landing is a kinematically feasible stance (Sec. III-B).
-///     The phidot_2 and phiddot_2 rows are multiplied by h and h^2 (h the knot spacing) so all
-///     equality rows are in metres and equally sensitive to the control points.
+///     terminal_pelvis_height, or the request's), so the landing is a kinematically feasible stance
+///     (Sec. III-B). The phidot_2 and phiddot_2 rows are multiplied by h and h^2 (h the knot
+///     spacing) so all equality rows are in metres and equally sensitive to the control points.
 /// Variables: 12 (N - 1) + 6 (strict) or 12 (N + 1) + 8 (relaxed); N = 4 segments gives 42 / 68.
 ///
 /// Gradients: per sample, the signals' Jacobian with respect to (q_a, qd_a, qdd_a, lambda_2)
@@ -36,11 +37,10 @@
 /// basis (each sample depends on 4 control points per joint). Checked against central finite
 /// differences of this class's functions in test/unit/test_ocp_gradients.cpp.
 
-#include <memory>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
+#include <vector>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
@@ -59,18 +59,18 @@ using RowMajorMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, E
 /// layout NLopt's vector constraints use.
 struct NlpValues {
   double cost = 0.0;
-  Eigen::VectorXd cost_gradient;   ///< n
-  Eigen::VectorXd equality;        ///< m_eq, = 0 at a solution
+  Eigen::VectorXd cost_gradient;         ///< n
+  Eigen::VectorXd equality;              ///< m_eq, = 0 at a solution
   RowMajorMatrixXd equality_jacobian;    ///< m_eq x n
-  Eigen::VectorXd inequality;      ///< m_in, <= 0 at a solution
+  Eigen::VectorXd inequality;            ///< m_in, <= 0 at a solution
   RowMajorMatrixXd inequality_jacobian;  ///< m_in x n
 };
 
 /// One state of the sampled transition trajectory (full coordinates).
 struct TransitionSampleState {
-  Eigen::VectorXd q, qd, qdd, u;  ///< n_q, n_q, n_q, n_u
+  Eigen::VectorXd q, qd, qdd, u;                                             ///< n_q, n_q, n_q, n_u
   Vector6d lambda_stance = Vector6d::Zero(), lambda_new = Vector6d::Zero();  ///< world [N, N m]
-  Eigen::Vector3d swing_position = Eigen::Vector3d::Zero();  ///< [m]
+  Eigen::Vector3d swing_position = Eigen::Vector3d::Zero();                  ///< [m]
   Vector6d phi2 = Vector6d::Zero(), phidot2 = Vector6d::Zero(), phiddot2 = Vector6d::Zero();
 };
 

@@ -4,9 +4,8 @@
 /// the largest constraint violation per family (re-evaluated at every output sample) and the
 /// solver status mapped to converged / relaxed / failed with a reason.
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 namespace reach_trajopt {
 
@@ -43,25 +42,25 @@ struct ConstraintViolations {
 /// The transition trajectory and its diagnostics.
 struct TransitionResult {
   OcpStatus status = OcpStatus::kFailed;
-  std::string reason;       ///< why failed (or notes); empty when converged cleanly
+  std::string reason;        ///< why failed (or notes); empty when converged cleanly
   std::string nlopt_status;  ///< NLopt's last return code, e.g. "FTOL_REACHED"
-  bool relaxed = false;     ///< the relaxed problem produced this trajectory
+  bool relaxed = false;      ///< the relaxed problem produced this trajectory
   Eigen::Vector2d eps = Eigen::Vector2d::Zero();  ///< landing offset (eps_x, eps_y) [m]
   Eigen::Vector3d landing_position = Eigen::Vector3d::Zero();  ///< swing sole at t_f [m]
 
-  double dt = 0.001;        ///< sample spacing [s]
-  Eigen::VectorXd time;     ///< N sample times since t_0 [s] (last = horizon)
+  double dt = 0.001;           ///< sample spacing [s]
+  Eigen::VectorXd time;        ///< N sample times since t_0 [s] (last = horizon)
   Eigen::MatrixXd q, qd, qdd;  ///< n_q x N [m, rad], [m/s, rad/s], [m/s^2, rad/s^2]
-  Eigen::MatrixXd u;        ///< n_u x N joint torques [N m]
-  Eigen::MatrixXd lambda;   ///< 12 x N contact wrenches [f; tau] world, [left; right] [N, N m]
+  Eigen::MatrixXd u;           ///< n_u x N joint torques [N m]
+  Eigen::MatrixXd lambda;      ///< 12 x N contact wrenches [f; tau] world, [left; right] [N, N m]
 
   ConstraintViolations violation;  ///< re-evaluated at every sample
-  double cost = 0.0;        ///< eq. (22) at the solution (the OCP's scaled form)
-  int iterations = 0;       ///< objective evaluations over all solves
-  int solves = 0;           ///< SLSQP runs (refinements, strict + relaxed)
-  int variables = 0;        ///< size of the last NLP
-  int constraints = 0;      ///< rows of the last NLP (equalities + inequalities)
-  double solve_time = 0.0;  ///< wall time [s]
+  double cost = 0.0;               ///< eq. (22) at the solution (the OCP's scaled form)
+  int iterations = 0;              ///< objective evaluations over all solves
+  int solves = 0;                  ///< SLSQP runs (refinements, strict + relaxed)
+  int variables = 0;               ///< size of the last NLP
+  int constraints = 0;             ///< rows of the last NLP (equalities + inequalities)
+  double solve_time = 0.0;         ///< wall time [s]
 };
 
 }  // namespace reach_trajopt

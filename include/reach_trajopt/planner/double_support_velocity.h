@@ -2,10 +2,10 @@
 /// \file double_support_velocity.h
 /// The terminal velocity qd_f of a transition's final state x_f (Sec. III-B): the final
 /// posture q_f comes from the kinematic feasibility IK; its velocity is either zero or, as
-/// here, the one that keeps the LIPM's CoM velocity at touchdown (docs/method.md Sec. 3: qd_f = 0 or
-/// from the LIPM touchdown velocity). A walking robot does not stop at every touchdown: a
-/// final state at rest asks the stance leg to brake the whole body within the last tenths of
-/// a second, which the contact wrench cone does not allow.
+/// here, the one that keeps the LIPM's CoM velocity at touchdown (docs/method.md Sec. 3: qd_f = 0
+/// or from the LIPM touchdown velocity). A walking robot does not stop at every touchdown: a final
+/// state at rest asks the stance leg to brake the whole body within the last tenths of a second,
+/// which the contact wrench cone does not allow.
 
 #include <Eigen/Core>
 

@@ -8,17 +8,17 @@
 /// pelvis height, pelvis orientation = upright with the soles' mean heading) are solved by
 /// damped least squares Newton steps with their exact Jacobians; a joint whose update would
 /// cross a limit is clamped to it and the step is re-solved for the other joints. The pelvis
-/// x, y are free (or, optionally, the whole pelvis position is held). Before the IK, two geometric checks reject placements where one foot would
-/// pass through the other (overlapping sole rectangles, or the swing sole across the stance
-/// sole's centre line). Its solution is the final configuration q_f of the transition (x_f
-/// with qd_f = 0), used by the backward reachable set and the OCP.
-
-#include <memory>
-#include <optional>
-#include <string>
+/// x, y are free (or, optionally, the whole pelvis position is held). Before the IK, two geometric
+/// checks reject placements where one foot would pass through the other (overlapping sole
+/// rectangles, or the swing sole across the stance sole's centre line). Its solution is the final
+/// configuration q_f of the transition (x_f with qd_f = 0), used by the backward reachable set and
+/// the OCP.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
@@ -61,8 +61,8 @@ struct FlatContact {
 /// Outcome of one check.
 struct KinematicFeasibilityResult {
   bool feasible = false;
-  std::string reason;              ///< why not (empty when feasible)
-  double position_residual = 0.0;  ///< max |position error| over soles and pelvis height [m]
+  std::string reason;                 ///< why not (empty when feasible)
+  double position_residual = 0.0;     ///< max |position error| over soles and pelvis height [m]
   double orientation_residual = 0.0;  ///< max |orientation error| of soles and pelvis [rad]
   int iterations = 0;
   Eigen::VectorXd q_f;   ///< final configuration, size n_q (last iterate when infeasible)
@@ -86,11 +86,10 @@ class KinematicFeasibility {
   /// Throws ReachError on non-finite input, a wrong q_init size, or a step outside the
   /// workspace (soles more than workspace_radius apart horizontally or workspace_height
   /// vertically); an unreachable step within it is a result with feasible = false and a reason.
-  KinematicFeasibilityResult check(Side stance, const FlatContact& current,
-                                   const FlatContact& planned,
-                                   const Eigen::VectorXd& q_init = Eigen::VectorXd(),
-                                   const std::optional<Eigen::Vector3d>& pelvis_position =
-                                       std::nullopt) const;
+  KinematicFeasibilityResult check(
+      Side stance, const FlatContact& current, const FlatContact& planned,
+      const Eigen::VectorXd& q_init = Eigen::VectorXd(),
+      const std::optional<Eigen::Vector3d>& pelvis_position = std::nullopt) const;
 
   const KinematicFeasibilityConfig& config() const { return config_; }
   const RobotModel& model() const { return *model_; }

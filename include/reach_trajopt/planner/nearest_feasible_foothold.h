@@ -7,10 +7,9 @@
 /// found is returned with its IK posture; none within rings * ring_step is a result, not an
 /// error. Not in the paper (its planner never proposes such steps); see docs/method.md.
 
+#include <Eigen/Core>
 #include <memory>
 #include <optional>
-
-#include <Eigen/Core>
 
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 

@@ -9,10 +9,9 @@
 /// to the stance sole, CoM speed limits) can be switched on (the baseline) or off (the
 /// proposed method, which checks reachability instead).
 
+#include <Eigen/Core>
 #include <complex>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "reach_trajopt/contact/contact_mode.h"
 #include "reach_trajopt/planner/lipm.h"
@@ -23,19 +22,19 @@ class YamlSection;
 
 /// TVR parameters; defaults are the paper's (Sec. IV-A) where it gives them.
 struct TvrConfig {
-  double com_height = 1.0;        ///< h [m] of the LIPM (> 0)
-  double gravity = 9.81;          ///< g [m/s^2] (> 0)
-  double t_s = 0.15;              ///< time to velocity reversal [s] (> 0)
-  double step_duration = 0.28;    ///< T [s] of the step map (12); keep T < 2 t_s (see report)
-  double kappa_x = -0.66;         ///< bias kappa_1 (< 0 stabilizes; authors' code also -0.16)
-  double kappa_y = -0.66;         ///< bias kappa_2
-  bool heuristic_bounds = true;   ///< clip the step and the CoM speed (baseline of Sec. IV-A)
+  double com_height = 1.0;           ///< h [m] of the LIPM (> 0)
+  double gravity = 9.81;             ///< g [m/s^2] (> 0)
+  double t_s = 0.15;                 ///< time to velocity reversal [s] (> 0)
+  double step_duration = 0.28;       ///< T [s] of the step map (12); keep T < 2 t_s (see report)
+  double kappa_x = -0.66;            ///< bias kappa_1 (< 0 stabilizes; authors' code also -0.16)
+  double kappa_y = -0.66;            ///< bias kappa_2
+  bool heuristic_bounds = true;      ///< clip the step and the CoM speed (baseline of Sec. IV-A)
   double foot_offset_x_min = -0.42;  ///< next sole x offset from the stance sole [m] (heading)
   double foot_offset_x_max = 0.42;   ///< [m]
   double foot_offset_y_min = 0.25;   ///< |y| offset towards the swing side, lower bound [m]
   double foot_offset_y_max = 0.65;   ///< upper bound [m]
-  double com_speed_min = 0.0;     ///< bounds on the horizontal CoM speed used by the planner
-  double com_speed_max = 1.3;     ///< [m/s]
+  double com_speed_min = 0.0;        ///< bounds on the horizontal CoM speed used by the planner
+  double com_speed_max = 1.3;        ///< [m/s]
 
   /// Throws ReachError naming the first bad value (non-finite, non-positive h, g, t_s, T,
   /// or a bound interval with min > max, or negative |y| / speed bounds).
@@ -46,10 +45,10 @@ struct TvrConfig {
 
 /// What the planner is given at the start of a step (the CoM state x_{p,k}).
 struct TvrInput {
-  LipmState com;                                   ///< CoM position [m] and velocity [m/s]
+  LipmState com;                                     ///< CoM position [m] and velocity [m/s]
   Eigen::Vector2d p_des = Eigen::Vector2d::Zero();   ///< target of the bias term [m]
   Eigen::Vector2d stance = Eigen::Vector2d::Zero();  ///< stance sole centre (x, y) [m]
-  double stance_yaw = 0.0;  ///< stance sole heading [rad]; offsets are measured in it
+  double stance_yaw = 0.0;   ///< stance sole heading [rad]; offsets are measured in it
   Side swing = Side::kLeft;  ///< the sole that steps; y offsets are signed towards it
 };
 
@@ -65,10 +64,10 @@ struct TvrStep {
 
 /// Eigenvalues of the closed-loop step map (12), x_{p,k+1} = (A(T) + B(T) K) x_{p,k}.
 struct TvrStabilityReport {
-  Eigen::Matrix4d closed_loop;                    ///< A(T) + B(T) K
+  Eigen::Matrix4d closed_loop;  ///< A(T) + B(T) K
   Eigen::Matrix<std::complex<double>, 4, 1> eigenvalues;
   double spectral_radius = 0.0;
-  bool stable = false;  ///< spectral radius < 1 - 1e-9 (asymptotically stable step map)
+  bool stable = false;          ///< spectral radius < 1 - 1e-9 (asymptotically stable step map)
   std::string summary() const;  ///< one line: T, t_s, kappas, |lambda|_max, verdict
 };
 

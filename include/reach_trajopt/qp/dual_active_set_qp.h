@@ -25,9 +25,8 @@
 /// iterate is dual feasible, so "no violated constraint" is the optimum and "violated constraint
 /// with z = 0 and no constraint to drop" proves infeasibility.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "reach_trajopt/qp/hessian_factor.h"
 #include "reach_trajopt/qp/qp_result.h"
@@ -133,8 +132,8 @@ class DualActiveSetQp {
   Eigen::VectorXd tau_;
   const HessianFactor* factor_ = nullptr;  // factor of the current solve
   std::vector<int> active_;
-  std::vector<char> is_active_;      // per inequality row
-  std::vector<char> eq_redundant_;   // per equality row
+  std::vector<char> is_active_;     // per inequality row
+  std::vector<char> eq_redundant_;  // per equality row
   Eigen::VectorXd u_, x_, x0_, d_, z_, r_, w_, work_, s_, row_norm_;
 
   // The active set after the equality rows, kept for the next solve with the same factor/A_eq.

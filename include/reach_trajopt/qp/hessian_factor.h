@@ -3,9 +3,8 @@
 /// The factorization of the QP Hessian that the dual active-set method starts from
 /// (Goldfarb and Idnani 1983, section 3: G = L L^T and J = L^{-T}).
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 namespace reach_trajopt {
 namespace qp {

@@ -3,10 +3,9 @@
 /// Status and result of the bundled dense QP (see dual_active_set_qp.h for the problem form and
 /// the sign convention of the multipliers).
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace reach_trajopt {
 namespace qp {
@@ -40,17 +39,15 @@ struct QpResult {
   /// inequality row j is m_eq + j. Equality rows found linearly dependent (redundant) are not in
   /// it. Pass it back as a warm start.
   std::vector<int> active_set;
-  int iterations = 0;  ///< add and drop steps of the dual method (warm-start drops included)
-  int m_eq = 0;        ///< number of equality rows of the problem solved
-  int m_in = 0;        ///< number of inequality rows of the problem solved
-  std::string message; ///< human-readable reason, empty when optimal
+  int iterations = 0;   ///< add and drop steps of the dual method (warm-start drops included)
+  int m_eq = 0;         ///< number of equality rows of the problem solved
+  int m_in = 0;         ///< number of inequality rows of the problem solved
+  std::string message;  ///< human-readable reason, empty when optimal
 
   /// Multipliers of the equality rows (dim m_eq).
   Eigen::VectorBlock<const Eigen::VectorXd> eq() const { return multipliers.segment(0, m_eq); }
   /// Multipliers of the inequality rows (dim m_in), all >= 0 at an optimum.
-  Eigen::VectorBlock<const Eigen::VectorXd> in() const {
-    return multipliers.segment(m_eq, m_in);
-  }
+  Eigen::VectorBlock<const Eigen::VectorXd> in() const { return multipliers.segment(m_eq, m_in); }
   /// All multipliers of the problem solved (dim m_eq + m_in): equalities then inequalities.
   Eigen::VectorBlock<const Eigen::VectorXd> all() const {
     return multipliers.segment(0, m_eq + m_in);

@@ -11,9 +11,8 @@
 /// evenly spaced ranks. The candidate lists are merged round-robin up to max_boundary, so a
 /// cap never drops a whole plane or look-ahead.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 namespace reach_trajopt {
 

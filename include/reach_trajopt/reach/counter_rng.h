@@ -12,8 +12,8 @@ namespace reach_trajopt {
 /// @brief Per-sample random numbers keyed by (seed, direction, step, parent, child).
 class CounterRng {
  public:
-  CounterRng(std::uint64_t seed, std::uint64_t direction, std::uint64_t step,
-             std::uint64_t parent, std::uint64_t child) {
+  CounterRng(std::uint64_t seed, std::uint64_t direction, std::uint64_t step, std::uint64_t parent,
+             std::uint64_t child) {
     std::uint64_t h = mix(seed + 0x9e3779b97f4a7c15ULL);
     h = mix(h ^ (direction + 0x632be59bd9b4e019ULL));
     h = mix(h ^ (step + 0x85157af5ULL));

@@ -7,11 +7,10 @@
 /// qd_f = 0 (or a given touchdown velocity) is x_f of the bidirectional reachability check from
 /// the current state x_0 in single support.
 
+#include <Eigen/Core>
 #include <memory>
 #include <optional>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "reach_trajopt/contact/contact_mode.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
@@ -21,7 +20,7 @@ namespace reach_trajopt {
 
 /// A planned footstep from a single-support state.
 struct FootstepRequest {
-  Side stance = Side::kLeft;  ///< the held sole (mode SS-stance); the other one steps
+  Side stance = Side::kLeft;    ///< the held sole (mode SS-stance); the other one steps
   FlatContact stance_foothold;  ///< where the stance sole is held [m, rad]
   FlatContact target;           ///< the planned next foothold of the swing sole
   Eigen::VectorXd q0, qd0;      ///< x_0 (size n_q)

@@ -17,10 +17,9 @@
 /// computed once in setParent() and shared by all its children; a child costs one QP solve,
 /// warm-started from the previous child's active set.
 
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <vector>
 
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"

@@ -4,9 +4,8 @@
 /// bound K of Prop. 2 and the closest pair, using k-d trees (nanoflann): O((N + M) log(N + M))
 /// instead of O(N M).
 
-#include <cmath>
-
 #include <Eigen/Core>
+#include <cmath>
 
 namespace reach_trajopt {
 
@@ -18,7 +17,7 @@ struct SetDistance {
   double resolution_a = HUGE_VAL;  ///< K(A) = max_a d_H({a}, A \ {a}); inf for < 2 points
   double resolution_b = HUGE_VAL;  ///< K(B)
   double resolution() const { return resolution_a < resolution_b ? resolution_a : resolution_b; }
-  double closest = HUGE_VAL;       ///< min_{a, b} |a - b|
+  double closest = HUGE_VAL;           ///< min_{a, b} |a - b|
   int closest_a = -1, closest_b = -1;  ///< column indices of the closest pair
 };
 

@@ -6,9 +6,8 @@
 /// sample pair although the sets overlap. 3-D hulls come from Bullet's btConvexHullComputer,
 /// 2-D ones from Andrew's monotone chain, 1-D ones are intervals.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 namespace reach_trajopt {
 

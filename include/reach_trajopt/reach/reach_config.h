@@ -27,12 +27,12 @@ class YamlSection;
 /// is rejected up front instead of running for minutes or exhausting memory. The paper's
 /// values (1e4 samples, 1 ms, 0.1 s horizons) sit far inside.
 struct ReachLimits {
-  static constexpr int kMaxInitialSamples = 200000;  ///< 20 x the paper's 1e4
+  static constexpr int kMaxInitialSamples = 200000;   ///< 20 x the paper's 1e4
   static constexpr int kMaxChildrenPerParent = 1000;  ///< also backward_children_per_parent
   static constexpr int kMaxBoundary = 10000;          ///< also interior_samples
   static constexpr int kMaxAngularBins = 4096;
-  static constexpr int kMaxLookahead = 16;            ///< entries of boundary_lookahead
-  static constexpr int kMaxSteps = 20000;             ///< horizon / dt
+  static constexpr int kMaxLookahead = 16;  ///< entries of boundary_lookahead
+  static constexpr int kMaxSteps = 20000;   ///< horizon / dt
   /// Estimated memory of one check (estimatedMemoryBytes) allowed [bytes].
   static constexpr double kMaxMemoryBytes = 1024.0 * 1024 * 1024;
   /// Estimated QPs of one check (estimatedQps) allowed: about 10-30 s on one core; the
@@ -43,10 +43,10 @@ struct ReachLimits {
 /// Configuration of ReachabilityAnalyzer. validate() throws ReachError naming a bad field.
 struct ReachConfig {
   // ---- time line -------------------------------------------------------------------------
-  double dt = 1e-3;             ///< time step of (16) and (20) [s] (paper: 1 ms)
-  double horizon = 0.08;        ///< t_f - t_0 [s]
-  double window_start = 0.03;   ///< t_2 - t_0 [s]: the backward set reaches back to here
-  double window_end = 0.05;     ///< t_1 - t_0 [s]: the forward set reaches up to here
+  double dt = 1e-3;            ///< time step of (16) and (20) [s] (paper: 1 ms)
+  double horizon = 0.08;       ///< t_f - t_0 [s]
+  double window_start = 0.03;  ///< t_2 - t_0 [s]: the backward set reaches back to here
+  double window_end = 0.05;    ///< t_1 - t_0 [s]: the forward set reaches up to here
   // ---- sampling ------------------------------------------------------------------------
   int initial_samples = 10000;  ///< samples drawn at the first step of each direction (paper 1e4)
   int children_per_parent = 8;  ///< samples drawn from each boundary sample at later steps
@@ -67,8 +67,8 @@ struct ReachConfig {
   /// uniform. The extremes of a reachable set come from bang-bang inputs, which uniform draws
   /// almost never produce. 0 = the paper's uniform draws.
   double vertex_fraction = 0.25;
-  std::uint64_t seed = 1;       ///< random stream: results are identical for any thread count
-  int threads = 0;              ///< OpenMP threads (0: OpenMP's default)
+  std::uint64_t seed = 1;  ///< random stream: results are identical for any thread count
+  int threads = 0;         ///< OpenMP threads (0: OpenMP's default)
   // ---- forward QP (15) ----------------------------------------------------------------------
   /// "semi_implicit": q_{j+1} = q_j + dt qd_{j+1}, the exact inverse of the backward step (20),
   /// so both sets and the witness path belong to one discrete-time system; positions then
@@ -76,9 +76,9 @@ struct ReachConfig {
   /// (all children of a parent then share one position; the position limits are imposed one
   /// step ahead, on q_j + 2 dt qd_j + dt^2 qdd).
   std::string forward_integrator = "semi_implicit";
-  double w_qdd = 1e-4;          ///< W_qdd of (15) [per (rad/s^2)^2]
-  double w_du = 1.0;            ///< W_u of (15): large, so u + du stays close to the drawn u
-  double w_lambda = 1e-6;       ///< W_lambda of (15)
+  double w_qdd = 1e-4;     ///< W_qdd of (15) [per (rad/s^2)^2]
+  double w_du = 1.0;       ///< W_u of (15): large, so u + du stays close to the drawn u
+  double w_lambda = 1e-6;  ///< W_lambda of (15)
   /// beta in [0, 1] of the contact acceleration rows: J_phi qdd = -Jdot_phi qd -
   /// beta (phi / dt^2 + 2 phidot / dt); 0 is eq. (5) as printed; > 0 removes the O(dt^2)
   /// drift of the Euler steps (1 = deadbeat in two steps). Also used by the backward step.
@@ -94,14 +94,14 @@ struct ReachConfig {
   /// never farther apart than this [m].
   double overlap_gap_max = 5e-3;
   // ---- output and states ----------------------------------------------------------------
-  std::string output_frame;     ///< frame of y; empty: the swing sole of the mode
+  std::string output_frame;         ///< frame of y; empty: the swing sole of the mode
   std::string output_axes = "xyz";  ///< world axes of the frame origin in y (1-3 of x, y, z)
   /// Samples whose swing sole origin is below the target foothold height minus this are
   /// rejected (the ground); negative infinity disables. [m]
   double swing_ground_margin = 0.0;
-  double contact_tolerance = 1e-4;  ///< |phi| allowed at x_0 and x_f [m, rad]
+  double contact_tolerance = 1e-4;           ///< |phi| allowed at x_0 and x_f [m, rad]
   double contact_velocity_tolerance = 1e-3;  ///< |J qd| allowed at x_0 and x_f [m/s, rad/s]
-  double limit_tolerance = 1e-9;    ///< slack on position / velocity / torque limits
+  double limit_tolerance = 1e-9;             ///< slack on position / velocity / torque limits
 
   /// Throws ReachError naming a bad field, also for values over ReachLimits and threads over
   /// the hardware threads of this machine.

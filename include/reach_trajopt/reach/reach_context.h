@@ -4,13 +4,12 @@
 /// m_k with its held footholds (eq. 5), the contact wrench cone (7-8), the limits, the output
 /// map y = f_y(x) of (13) and the integrator. Built once per check, shared by all threads.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_constraint.h"
@@ -42,10 +41,10 @@ struct ReachContext {
   int m() const { return 6 * nc; }          ///< contact wrench size
   bool floating = false;
   FrameId output_frame = -1;
-  std::vector<int> output_axes;             ///< 0 = x, 1 = y, 2 = z
+  std::vector<int> output_axes;  ///< 0 = x, 1 = y, 2 = z
   int ny() const { return static_cast<int>(output_axes.size()); }
-  FrameId swing_frame = -1;                 ///< -1: no swing clearance check
-  double ground_height = -HUGE_VAL;         ///< swing sole origin must stay above this [m]
+  FrameId swing_frame = -1;          ///< -1: no swing clearance check
+  double ground_height = -HUGE_VAL;  ///< swing sole origin must stay above this [m]
   Eigen::VectorXd q_min, q_max, qd_max, u_max;
   std::vector<int> finite_position, finite_velocity;  ///< coordinates with finite limits
 

@@ -1,8 +1,8 @@
 #pragma once
 /// \file reachability_analyzer.h
 /// The reachability check of the paper's Sec. III-C/D (eq. 13-21, Prop. 1-2), in the corrected
-/// reading of docs/method.md Sec. 4: can the robot, in contact mode m_k from x_0, reach x_f (a state
-/// of the next mode m_{k+1}, e.g. the touchdown of the swing sole) within the horizon?
+/// reading of docs/method.md Sec. 4: can the robot, in contact mode m_k from x_0, reach x_f (a
+/// state of the next mode m_{k+1}, e.g. the touchdown of the swing sole) within the horizon?
 ///
 ///  1. Forward set (15)-(16) from x_0 over [0, t_1], backward set (17)-(20) from x_f over
 ///     [t_2, t_f], dt apart. The first step of each direction draws `initial_samples` inputs
@@ -44,13 +44,12 @@
 /// (seed, direction, step, parent, child) and results are written at fixed indices, so the
 /// sets, verdict and witness are bit-identical for any thread count.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
@@ -92,16 +91,16 @@ struct ReachTimings {
 /// Everything a check returns.
 struct ReachResult {
   bool reachable = false;
-  std::string reason;                 ///< one sentence explaining the verdict
-  std::vector<SampleSlice> forward;   ///< slice j at time j dt (slice 0 = x_0)
-  std::vector<SampleSlice> backward;  ///< slice j at time t_f - j dt (slice 0 = x_f)
+  std::string reason;                   ///< one sentence explaining the verdict
+  std::vector<SampleSlice> forward;     ///< slice j at time j dt (slice 0 = x_0)
+  std::vector<SampleSlice> backward;    ///< slice j at time t_f - j dt (slice 0 = x_f)
   std::vector<SliceComparison> window;  ///< the test (14) on [t_2, t_1]
-  int best = -1;                      ///< index into window of the witness slice
+  int best = -1;                        ///< index into window of the witness slice
   WitnessPath witness;
   ReachCounts counts;
   ReachTimings timings;
-  double dt = 0.0;                    ///< time step used [s]
-  bool semi_implicit = true;          ///< forward integrator used
+  double dt = 0.0;                       ///< time step used [s]
+  bool semi_implicit = true;             ///< forward integrator used
   std::vector<std::string> joint_names;  ///< names of q's coordinates
 };
 

@@ -13,27 +13,26 @@
 /// way M qdd + b = S^T u + sum_i J_i^T lambda_i (eq. 1) at the evaluation state, lambda_i in
 /// world orientation at the sole centre, contacts in the order left, right of the mode.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 namespace reach_trajopt {
 
 /// Samples of one slice of a reachable set.
 struct SampleSlice {
-  double time = 0.0;          ///< t - t_0 [s]
+  double time = 0.0;  ///< t - t_0 [s]
   int size() const { return static_cast<int>(parent.size()); }
-  std::vector<int> parent;    ///< sample index in the previous slice (-1 for x_0 / x_f)
-  Eigen::MatrixXd output;     ///< y of each sample (n_y x size) [m]
+  std::vector<int> parent;      ///< sample index in the previous slice (-1 for x_0 / x_f)
+  Eigen::MatrixXd output;       ///< y of each sample (n_y x size) [m]
   Eigen::MatrixXd output_rate;  ///< dy/dt (n_y x size) [m/s]
-  Eigen::MatrixXd qd;         ///< velocities (n_q x size)
-  Eigen::MatrixXd u;          ///< recorded torques (n_u x size; zeros for the root)
-  Eigen::MatrixXd lambda;     ///< recorded contact wrenches (6 n_c x size; zeros for the root)
-  std::vector<int> boundary;  ///< samples on the boundary by rule (21), ascending
+  Eigen::MatrixXd qd;           ///< velocities (n_q x size)
+  Eigen::MatrixXd u;            ///< recorded torques (n_u x size; zeros for the root)
+  Eigen::MatrixXd lambda;       ///< recorded contact wrenches (6 n_c x size; zeros for the root)
+  std::vector<int> boundary;    ///< samples on the boundary by rule (21), ascending
   /// Samples propagated to the next slice: the boundary plus `interior_samples` evenly spread
   /// interior ones (they fill the later slices' interiors), ascending.
   std::vector<int> kept;
-  Eigen::MatrixXd q_kept;     ///< configuration of each kept sample (n_q x kept.size())
+  Eigen::MatrixXd q_kept;  ///< configuration of each kept sample (n_q x kept.size())
   /// Column of q_kept holding a sample's q, or -1 (size() entries).
   std::vector<int> kept_column;
 };

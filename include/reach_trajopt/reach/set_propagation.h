@@ -9,9 +9,8 @@
 /// Determinism: the draws of a child depend only on (seed, direction, step, parent, child) and
 /// results are stored at fixed indices, so the slices are bit-identical for any thread count.
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "reach_trajopt/reach/reach_context.h"
 #include "reach_trajopt/reach/sample_slice.h"
@@ -22,10 +21,10 @@ enum class PropagationDirection { kForward, kBackward };
 
 /// What one direction of the check produced besides its slices.
 struct PropagationStats {
-  long samples = 0;             ///< kept samples over all slices (root excluded)
-  long rejected = 0;            ///< draws that gave no sample
-  long qps = 0;                 ///< QPs solved
-  double boundary_time = 0.0;   ///< wall time of the boundary selection (21) [s]
+  long samples = 0;               ///< kept samples over all slices (root excluded)
+  long rejected = 0;              ///< draws that gave no sample
+  long qps = 0;                   ///< QPs solved
+  double boundary_time = 0.0;     ///< wall time of the boundary selection (21) [s]
   double propagation_time = 0.0;  ///< wall time of the rest [s]
 };
 
@@ -37,14 +36,13 @@ struct PropagationStats {
 /// \param threads     OpenMP threads (>= 1)
 /// \param[out] slices the root slice followed by `steps` slices
 PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
-                              int root_index, const Eigen::VectorXd& q,
-                              const Eigen::VectorXd& qd, int steps, int threads,
-                              std::vector<SampleSlice>& slices);
+                              int root_index, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                              int steps, int threads, std::vector<SampleSlice>& slices);
 
 /// The configuration q of sample `index` of slice `slice` (exact, from its parent's stored
 /// configuration). \param semi_implicit  the forward integrator used (forward slices only)
 Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,
-                                      PropagationDirection direction, double dt,
-                                      bool semi_implicit, int slice, int index);
+                                      PropagationDirection direction, double dt, bool semi_implicit,
+                                      int slice, int index);
 
 }  // namespace reach_trajopt

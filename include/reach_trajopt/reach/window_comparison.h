@@ -15,17 +15,17 @@ namespace reach_trajopt {
 
 /// The test (14) on one slice of the overlap window.
 struct SliceComparison {
-  double time = 0.0;       ///< t - t_0 [s]
-  int forward_slice = 0;   ///< index into ReachResult::forward
-  int backward_slice = 0;  ///< index into ReachResult::backward
-  SetDistance distance;    ///< d_H, directed distances, K's, closest pair
+  double time = 0.0;               ///< t - t_0 [s]
+  int forward_slice = 0;           ///< index into ReachResult::forward
+  int backward_slice = 0;          ///< index into ReachResult::backward
+  SetDistance distance;            ///< d_H, directed distances, K's, closest pair
   double overlap_tolerance = 0.0;  ///< min(K, overlap_gap_max) [m]
   /// Backward outputs inside the forward set's convex hull (up to overlap_tolerance).
   int backward_inside_forward = 0;
   int forward_inside_backward = 0;  ///< forward outputs inside the backward set's hull
   /// A sample of one set inside the other's hull, or closest <= overlap_tolerance.
   bool overlap = false;
-  bool within_delta = false;       ///< d_H <= min(delta, K) (Prop. 2)
+  bool within_delta = false;  ///< d_H <= min(delta, K) (Prop. 2)
 };
 
 /// Compares slices i_2 .. i_1 of the forward set with the backward slices of the same times

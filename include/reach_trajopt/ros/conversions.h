@@ -6,10 +6,6 @@
 /// package's messages. Conventions (docs/method.md Sec. 1, REP 103): SI units, the world frame
 /// "world" with z up, wrenches [f; tau] in world orientation at the sole centre.
 
-#include <string>
-#include <vector>
-
-#include <Eigen/Geometry>
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Transform.h>
@@ -19,6 +15,10 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/time.h>
 #include <sensor_msgs/JointState.h>
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/CenterOfMassState.h"
 #include "reach_trajopt/ContactPlan.h"
@@ -79,8 +79,7 @@ class LinkTransforms {
 /// Reuses msg's storage (no allocation after the first call). `u` may be empty (no effort).
 /// \throws ReachError on wrong sizes.
 void fillJointState(const RobotModel& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                    const Eigen::VectorXd& u, const ros::Time& stamp,
-                    sensor_msgs::JointState& msg);
+                    const Eigen::VectorXd& u, const ros::Time& stamp, sensor_msgs::JointState& msg);
 
 /// A sole's measured ground wrench expressed in the sole frame (frame_id = the sole frame, for
 /// viewers): f_sole = R^T f, tau_sole = R^T tau, moment about the sole centre [N, Nm].

@@ -7,13 +7,13 @@
 /// Every marker carries a namespace (ns) naming what it shows; ids are stable per namespace, so
 /// publishing a new array replaces the previous markers of the same ns/id.
 
-#include <string>
-#include <vector>
-
-#include <Eigen/Core>
 #include <ros/time.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/ReachabilityResult.h"
 #include "reach_trajopt/model/robot_model.h"

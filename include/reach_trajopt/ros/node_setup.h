@@ -7,13 +7,13 @@
 /// serving (errors with context, caught at the node boundary), and the main() of a service node.
 /// Parameters are private (`~name`); `robot_description` is a global, remappable name.
 
-#include <memory>
-#include <string>
-
-#include <Eigen/Core>
 #include <ros/console.h>
 #include <ros/init.h>
 #include <ros/node_handle.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/contact/contact_config.h"
@@ -21,8 +21,8 @@
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
-#include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/ros/service_requests.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {

@@ -6,9 +6,10 @@
 /// transition_ocp_node publish, so that a recorded walk carries them too. Frame "world" (REP
 /// 103), SI units.
 
-#include <Eigen/Core>
 #include <ros/time.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <Eigen/Core>
 
 #include "reach_trajopt/ReachabilityResult.h"
 #include "reach_trajopt/TransitionTrajectory.h"

@@ -6,12 +6,12 @@
 /// conversion of the engines' results (ReachResult, TransitionResult) to messages.
 /// Frames (REP 103): every position is in "world"; units SI.
 
-#include <string>
-#include <vector>
-
-#include <Eigen/Core>
 #include <geometry_msgs/Point.h>
 #include <ros/time.h>
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/ReachabilityResult.h"
 #include "reach_trajopt/TransitionTrajectory.h"
@@ -71,8 +71,7 @@ ReachConfig reachConfigForDuration(const ReachConfig& base, double duration);
 /// The reachability problem (13)-(21) of a validated request whose foothold passed the
 /// kinematic feasibility check `ik` (x_f = (ik.q_f, ik.qd_f)): mode SS(stance), the stance
 /// sole held where it is at x_0, the swing sole to land flat on the target.
-ReachProblem toReachProblem(const FootholdRequest& request,
-                            const KinematicFeasibilityResult& ik);
+ReachProblem toReachProblem(const FootholdRequest& request, const KinematicFeasibilityResult& ik);
 
 /// A ReachabilityResult message from a check (verdict "reachable" | "unreachable").
 /// Per window slice: d_H, counts, boundaries; output samples when `samples` (at most

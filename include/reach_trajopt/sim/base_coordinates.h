@@ -22,10 +22,10 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 /// A simulator's floating base: body frame B (for Bullet, the root body's centre of mass with
 /// its principal axes) in the world, velocities in world coordinates.
 struct BaseBodyState {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();           ///< origin of B [m]
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               ///< origin of B [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< B -> world
-  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();    ///< of B's origin, world [m/s]
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();   ///< world [rad/s]
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();        ///< of B's origin, world [m/s]
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();       ///< world [rad/s]
 };
 
 /// B's accelerations, world coordinates: d/dt of BaseBodyState's velocities.

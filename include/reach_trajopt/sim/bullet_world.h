@@ -22,12 +22,11 @@
 /// about a millisecond).
 /// Not thread-safe; one world per thread.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/sim/base_coordinates.h"
@@ -40,7 +39,7 @@ class RobotModel;
 
 /// Contact of one sole with the ground, measured from Bullet's contact manifolds after a step.
 struct SoleContact {
-  std::string frame;      ///< sole frame name (SimConfig::left_sole_frame / right_sole_frame)
+  std::string frame;        ///< sole frame name (SimConfig::left_sole_frame / right_sole_frame)
   bool in_contact = false;  ///< the ground pushed on the sole's body during the last step
   int num_points = 0;       ///< contact points carrying a normal force
   /// Wrench exerted BY the ground ON the robot over the last step (impulse / dt), [f; tau] in
@@ -117,14 +116,14 @@ class BulletWorld {
   bool floating_;
   int nq_ = 0;
   int nu_ = 0;
-  std::vector<int> body_to_q_;        ///< per body: index in q (-1 for the root)
-  Eigen::VectorXd effort_max_;        ///< size n_u
+  std::vector<int> body_to_q_;  ///< per body: index in q (-1 for the root)
+  Eigen::VectorXd effort_max_;  ///< size n_u
   BaseCoordinates base_coords_;
   int sole_body_[2] = {0, 0};
   Eigen::Isometry3d sole_in_principal_[2];  ///< sole frame in its body's principal frame
 
-  long steps_ = 0;      ///< steps since the last reset
-  double time_ = 0.0;   ///< steps_ * time_step (no accumulated round-off)
+  long steps_ = 0;     ///< steps since the last reset
+  double time_ = 0.0;  ///< steps_ * time_step (no accumulated round-off)
   Eigen::VectorXd q_, qd_;
   std::vector<SoleContact> soles_;
   std::vector<std::string> non_foot_contacts_;

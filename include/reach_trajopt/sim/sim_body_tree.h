@@ -6,13 +6,12 @@
 /// root). Every body gets a "principal frame": its centre of mass with the principal axes of
 /// its inertia, the frame Featherstone's btMultiBody expects. Bullet-free, so it is testable.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <limits>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace reach_trajopt {
 
@@ -20,7 +19,7 @@ namespace reach_trajopt {
 struct SimShape {
   enum class Type { kBox, kSphere, kCylinder };
   Type type = Type::kBox;
-  std::string link;             ///< URDF link it came from
+  std::string link;                                        ///< URDF link it came from
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in the body's URDF frame
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box: full sizes; sphere/cylinder: radius,
                                                    ///< length (z axis), 0 [m]
@@ -36,14 +35,14 @@ struct SimBody {
   JointType joint_type = JointType::kNone;
   /// Pose of this body's URDF frame in the parent body's URDF frame at joint position 0.
   Eigen::Isometry3d parent_to_body = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< unit joint axis, body's URDF frame
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();          ///< unit joint axis, body's URDF frame
   double q_min = -std::numeric_limits<double>::infinity();  ///< [rad or m]
   double q_max = std::numeric_limits<double>::infinity();
   double effort_max = std::numeric_limits<double>::infinity();  ///< [Nm or N]
 
   double mass = 0.0;                                  ///< [kg]
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();       ///< in the body's URDF frame [m]
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();   ///< about the com, URDF frame [kg m^2]
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();      ///< in the body's URDF frame [m]
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< about the com, URDF frame [kg m^2]
   /// Principal frame (com, principal axes) in the body's URDF frame; the inertia there is
   /// diag(principal_inertia).
   Eigen::Isometry3d principal = Eigen::Isometry3d::Identity();
@@ -53,8 +52,8 @@ struct SimBody {
 
 /// The merged body tree of a URDF, parents before children.
 struct SimBodyTree {
-  std::string source;          ///< file name or "<string>", for error messages
-  bool floating_base = true;   ///< false when the URDF root link is called "world"
+  std::string source;         ///< file name or "<string>", for error messages
+  bool floating_base = true;  ///< false when the URDF root link is called "world"
   std::vector<SimBody> bodies;
   /// Every URDF link: its body and its pose in that body's URDF frame.
   std::map<std::string, std::pair<int, Eigen::Isometry3d>> frames;

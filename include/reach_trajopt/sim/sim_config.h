@@ -4,9 +4,8 @@
 /// DART; we use Bullet's btMultiBody, double precision). Read from the `sim:` section of
 /// config/sim.yaml.
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 namespace reach_trajopt {
 
@@ -18,13 +17,13 @@ struct SimConfig {
   double time_step = 1e-3;  ///< fixed step [s] (1 kHz)
   double mu = 0.7;          ///< Coulomb friction sole/link-ground (same default as ContactConfig)
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< world frame [m/s^2]
-  bool contacts = true;        ///< false: no ground (free fall, for checks against the model)
-  bool joint_limits = true;    ///< unilateral joint-limit constraints from the URDF limits
-  bool clamp_torques = true;   ///< saturate u at the URDF effort limits, as actuators do
-  std::string left_sole_frame = "l_sole";   ///< sole-centre frames where wrenches are reported
+  bool contacts = true;       ///< false: no ground (free fall, for checks against the model)
+  bool joint_limits = true;   ///< unilateral joint-limit constraints from the URDF limits
+  bool clamp_torques = true;  ///< saturate u at the URDF effort limits, as actuators do
+  std::string left_sole_frame = "l_sole";  ///< sole-centre frames where wrenches are reported
   std::string right_sole_frame = "r_sole";
-  int solver_iterations = 20;         ///< Bullet constraint-solver iterations per step
-  double collision_margin = 1e-3;     ///< Bullet convex margin [m] (rounds box corners)
+  int solver_iterations = 20;      ///< Bullet constraint-solver iterations per step
+  double collision_margin = 1e-3;  ///< Bullet convex margin [m] (rounds box corners)
   /// Bullet clamps every velocity coordinate to this [m/s, rad/s]; kept out of reach.
   double max_coordinate_velocity = 1e3;
 

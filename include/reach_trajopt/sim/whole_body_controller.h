@@ -14,10 +14,9 @@
 /// each a PD law a_k = a_ref + Kd (v_ref - v) + Kp (x_ref - x), plus an optional joint
 /// acceleration feed-forward (the OCP's trajectory in the proposed mode).
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
@@ -37,10 +36,10 @@ struct WbcConfig {
   /// Horizontal CoM weight. Small: the horizontal CoM moves as the pendulum the TVR planner
   /// assumes and the footsteps stabilize it, rather than the ankles fighting the swing leg.
   double w_com_xy = 2.0;
-  double w_pelvis = 50.0, kp_pelvis = 300.0, kd_pelvis = 35.0;  ///< pelvis orientation
-  double w_swing = 200.0, kp_swing = 900.0, kd_swing = 60.0;    ///< swing sole pose
-  double w_posture = 0.03, kp_posture = 60.0, kd_posture = 12.0; ///< actuated joints
-  double w_qdd = 1e-4;     ///< regularization of qdd
+  double w_pelvis = 50.0, kp_pelvis = 300.0, kd_pelvis = 35.0;    ///< pelvis orientation
+  double w_swing = 200.0, kp_swing = 900.0, kd_swing = 60.0;      ///< swing sole pose
+  double w_posture = 0.03, kp_posture = 60.0, kd_posture = 12.0;  ///< actuated joints
+  double w_qdd = 1e-4;                                            ///< regularization of qdd
   double w_lambda = 1e-6;  ///< regularization of contact wrenches (N^2 -> cost)
   /// \throws ReachError naming a negative or non-finite field.
   void validate() const;
@@ -71,9 +70,9 @@ struct WbcReference {
 /// Result of one tick.
 struct WbcOutput {
   qp::QpStatus status = qp::QpStatus::kInvalidInput;
-  Eigen::VectorXd u;         ///< joint torques, size n_u [Nm]
-  Eigen::VectorXd qdd;       ///< planned accelerations, size n_q
-  Vector6d lambda_left = Vector6d::Zero();   ///< [f; tau] world orientation at the sole [N, Nm]
+  Eigen::VectorXd u;                        ///< joint torques, size n_u [Nm]
+  Eigen::VectorXd qdd;                      ///< planned accelerations, size n_q
+  Vector6d lambda_left = Vector6d::Zero();  ///< [f; tau] world orientation at the sole [N, Nm]
   Vector6d lambda_right = Vector6d::Zero();
   std::string message;
 };
@@ -106,7 +105,8 @@ class WholeBodyController {
   /// Solves the QP (without the torque limits when they are infeasible) into out_.
   const WbcOutput& solveQp(const ContactMode& mode);
   void fillOutput(const qp::QpResult& r, const ContactMode& mode, int n, int nu);
-  void addTask(const Eigen::Ref<const Eigen::MatrixXd>& J, const Eigen::Ref<const Eigen::VectorXd>& drift,
+  void addTask(const Eigen::Ref<const Eigen::MatrixXd>& J,
+               const Eigen::Ref<const Eigen::VectorXd>& drift,
                const Eigen::Ref<const Eigen::VectorXd>& a_des, double weight);
 
   std::shared_ptr<const RobotModel> model_;
@@ -121,8 +121,8 @@ class WholeBodyController {
   // Scratch, sized once.
   Eigen::MatrixXd M_, G_, A_eq_, A_in_;
   Eigen::VectorXd b_, g_, b_eq_, b_in_;
-  Eigen::VectorXd u_max_;         ///< effort limits (n_u) [Nm]
-  Eigen::VectorXd posture_acc_;   ///< posture task acceleration (n_u)
+  Eigen::VectorXd u_max_;        ///< effort limits (n_u) [Nm]
+  Eigen::VectorXd posture_acc_;  ///< posture task acceleration (n_u)
   Matrix6Xd J_sole_[2], J_pelvis_;
   Eigen::Matrix3Xd J_com_;
   WbcOutput out_;

@@ -23,8 +23,7 @@ struct ContactConsistentState {
 /// \param stance_sole  frame of the stance sole
 /// \param q, qd        the measured state (size n_q, finite; checked by the model)
 ContactConsistentState contactConsistentState(const RobotModel& model, FrameId stance_sole,
-                                              const Eigen::VectorXd& q,
-                                              const Eigen::VectorXd& qd);
+                                              const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
 
 /// Heading of a pose: the yaw of its x axis in the world's x-y plane [rad].
 double yawOf(const Eigen::Isometry3d& pose);

@@ -11,12 +11,11 @@
 ///   5. the fallback of a kinematically infeasible foothold: the nearest feasible one
 ///      (planner/nearest_feasible_foothold.h), the relaxed OCP toward the target, or an error.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <optional>
 #include <string>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/ocp/ocp_config.h"
@@ -45,9 +44,10 @@ struct FootstepPlannerConfig {
 
 /// What happens when the foothold fails the kinematic check.
 enum class InfeasibleFootholdPolicy {
-  kNearestFeasible,  ///< the nearest feasible foothold, its IK posture as x_f (OCP strict, then relaxed)
+  kNearestFeasible,    ///< the nearest feasible foothold, its IK posture as x_f (OCP strict, then
+                       ///< relaxed)
   kRelaxTowardTarget,  ///< the relaxed OCP toward the target, the IK's best posture as x_f
-  kReject,           ///< a ReachError naming the IK's reason
+  kReject,             ///< a ReachError naming the IK's reason
 };
 
 /// Which OCP a kinematically feasible foothold gets.
@@ -86,13 +86,13 @@ struct FootstepPlanRequest {
 struct FootstepTransition {
   bool kinematically_feasible = false;
   bool reachable = false;
-  std::string verdict;        ///< "reachable", "unreachable", "not_checked",
-                              ///< "kinematically_infeasible"
-  std::string reason;         ///< the check's and the OCP's explanations
+  std::string verdict;               ///< "reachable", "unreachable", "not_checked",
+                                     ///< "kinematically_infeasible"
+  std::string reason;                ///< the check's and the OCP's explanations
   double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed
-  double check_time_s = 0.0;  ///< kinematic + reachability check wall time
-  double ocp_time_s = 0.0;    ///< OCP wall time
-  TransitionResult trajectory;  ///< converged, relaxed or failed
+  double check_time_s = 0.0;         ///< kinematic + reachability check wall time
+  double ocp_time_s = 0.0;           ///< OCP wall time
+  TransitionResult trajectory;       ///< converged, relaxed or failed
   /// The full check (kinematics, reachable sets, witness) for recorders and the ROS layer.
   FootstepResult check;
   Side stance = Side::kLeft;
@@ -136,8 +136,8 @@ class FootstepTransitionPlanner {
   Eigen::Isometry3d initialState(const FootstepPlanRequest& r, FootstepTransition& out) const;
   Touchdown predictTouchdown(const FootstepPlanRequest& r, const FootstepTransition& out) const;
   /// Steps 2-3 into out.check and the verdict fields.
-  void checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach,
-                     const Touchdown& td, FootstepTransition& out) const;
+  void checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
+                     FootstepTransition& out) const;
   /// Steps 4-5 into out.trajectory and out.foothold.
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
                        const Touchdown& td, FootstepTransition& out) const;

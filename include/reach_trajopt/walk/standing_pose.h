@@ -4,9 +4,8 @@
 /// compensating so the soles are flat, the pelvis upright, and the base height chosen so both
 /// soles rest on the ground z = 0. The starting state of every walking run.
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 #include "reach_trajopt/model/robot_model.h"
 

@@ -11,12 +11,11 @@
 /// A run ends after the requested number of steps, or at a fall (pelvis below a height, or a
 /// link other than the feet touching the ground), with a per-step record.
 
+#include <Eigen/Core>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
@@ -34,26 +33,26 @@ class YamlSection;
 struct WalkConfig {
   enum class Mode { kBaseline, kProposed };
   Mode mode = Mode::kBaseline;
-  int steps = 20;                        ///< footsteps to walk (touchdowns)
-  double single_support_duration = 0.22; ///< nominal swing time
-  double double_support_duration = 0.04; ///< weight transfer between steps
-  double settle_duration = 0.2;          ///< initial standing before the first lift-off
-  double swing_height = 0.07;            ///< swing apex above the ground
-  double replan_fraction = 0.0;          ///< eq. (11) is re-evaluated from the measured CoM
-                                         ///< state during this fraction of the swing
-  double touchdown_depth = 0.01;         ///< nominal swing end below the ground (touchdown by contact)
-  double touchdown_force = 30.0;         ///< sole normal force that counts as touchdown [N]
-  double late_touchdown = 0.15;          ///< time past the nominal swing end before a fall is declared
-  double check_horizon = 0.2;            ///< proposed mode: the check and the OCP start this long
-                                         ///< before the nominal touchdown (their t_f - t_0; it
-                                         ///< replaces ReachConfig::horizon) [s]
-  double knee_bend = 0.6;                ///< standing posture [rad]
-  double forward_speed = 0.0;            ///< desired CoM speed along x (drives p_des of eq. 11)
+  int steps = 20;                         ///< footsteps to walk (touchdowns)
+  double single_support_duration = 0.22;  ///< nominal swing time
+  double double_support_duration = 0.04;  ///< weight transfer between steps
+  double settle_duration = 0.2;           ///< initial standing before the first lift-off
+  double swing_height = 0.07;             ///< swing apex above the ground
+  double replan_fraction = 0.0;           ///< eq. (11) is re-evaluated from the measured CoM
+                                          ///< state during this fraction of the swing
+  double touchdown_depth = 0.01;  ///< nominal swing end below the ground (touchdown by contact)
+  double touchdown_force = 30.0;  ///< sole normal force that counts as touchdown [N]
+  double late_touchdown = 0.15;   ///< time past the nominal swing end before a fall is declared
+  double check_horizon = 0.2;     ///< proposed mode: the check and the OCP start this long
+                                  ///< before the nominal touchdown (their t_f - t_0; it
+                                  ///< replaces ReachConfig::horizon) [s]
+  double knee_bend = 0.6;         ///< standing posture [rad]
+  double forward_speed = 0.0;     ///< desired CoM speed along x (drives p_des of eq. 11)
   Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
-  Side first_swing = Side::kRight;       ///< SS-L comes first: the right sole swings first
-  double fall_pelvis_height = 0.6;       ///< pelvis origin below this height = fall [m]
-  unsigned seed = 1;                     ///< seed of every random draw of the run
-  double max_sim_time = 60.0;            ///< hard stop [s]
+  Side first_swing = Side::kRight;  ///< SS-L comes first: the right sole swings first
+  double fall_pelvis_height = 0.6;  ///< pelvis origin below this height = fall [m]
+  unsigned seed = 1;                ///< seed of every random draw of the run
+  double max_sim_time = 60.0;       ///< hard stop [s]
 
   /// \throws ReachError naming the first bad field.
   void validate() const;
@@ -64,32 +63,32 @@ struct WalkConfig {
 
 /// One footstep of a run.
 struct StepRecord {
-  int index = 0;                      ///< 1, 2, ...
-  Side swing = Side::kRight;          ///< the sole that stepped
-  double plan_time = 0.0;             ///< sim time of lift-off and planning [s]
-  double touchdown_time = 0.0;        ///< sim time of touchdown [s] (0 if none)
-  LipmState com_at_plan;              ///< measured CoM state at planning
-  LipmState com_predicted;            ///< LIPM prediction at nominal touchdown (planner input)
-  Eigen::Vector2d stance = Eigen::Vector2d::Zero();          ///< stance sole centre [m]
-  Eigen::Vector2d planned_tvr = Eigen::Vector2d::Zero();     ///< eq. (11) without bounds [m]
-  Eigen::Vector2d planned = Eigen::Vector2d::Zero();         ///< the contact aimed at [m]
-  Eigen::Vector3d executed = Eigen::Vector3d::Zero();        ///< sole centre at touchdown [m]
-  double touchdown_error = 0.0;       ///< |executed_xy - planned| [m]
-  bool offset_clipped = false;        ///< heuristic bounds moved the TVR step
+  int index = 0;                ///< 1, 2, ...
+  Side swing = Side::kRight;    ///< the sole that stepped
+  double plan_time = 0.0;       ///< sim time of lift-off and planning [s]
+  double touchdown_time = 0.0;  ///< sim time of touchdown [s] (0 if none)
+  LipmState com_at_plan;        ///< measured CoM state at planning
+  LipmState com_predicted;      ///< LIPM prediction at nominal touchdown (planner input)
+  Eigen::Vector2d stance = Eigen::Vector2d::Zero();       ///< stance sole centre [m]
+  Eigen::Vector2d planned_tvr = Eigen::Vector2d::Zero();  ///< eq. (11) without bounds [m]
+  Eigen::Vector2d planned = Eigen::Vector2d::Zero();      ///< the contact aimed at [m]
+  Eigen::Vector3d executed = Eigen::Vector3d::Zero();     ///< sole centre at touchdown [m]
+  double touchdown_error = 0.0;                           ///< |executed_xy - planned| [m]
+  bool offset_clipped = false;                            ///< heuristic bounds moved the TVR step
   bool touched_down = false;
   std::string verdict = "not_checked";  ///< reachability verdict (proposed mode)
-  double hausdorff_distance = -1.0;   ///< [m], -1 when not computed
-  double check_time_s = 0.0;          ///< reachability check wall time
-  double ocp_time_s = 0.0;            ///< OCP wall time
-  std::string ocp_status = "none";    ///< "converged", "relaxed", "failed" (proposed mode)
-  std::string reason;                 ///< the check's and the OCP's explanations
+  double hausdorff_distance = -1.0;     ///< [m], -1 when not computed
+  double check_time_s = 0.0;            ///< reachability check wall time
+  double ocp_time_s = 0.0;              ///< OCP wall time
+  std::string ocp_status = "none";      ///< "converged", "relaxed", "failed" (proposed mode)
+  std::string reason;                   ///< the check's and the OCP's explanations
 };
 
 /// What the loop sees at one control tick (for recorders and the ROS layer).
 struct WalkTick {
-  double time = 0.0;                  ///< sim time [s]
+  double time = 0.0;  ///< sim time [s]
   ContactMode mode;
-  const Eigen::VectorXd* q = nullptr;   ///< measured state (our coordinates)
+  const Eigen::VectorXd* q = nullptr;  ///< measured state (our coordinates)
   const Eigen::VectorXd* qd = nullptr;
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
@@ -101,13 +100,13 @@ struct WalkTick {
 /// Outcome of a run.
 struct WalkResult {
   WalkConfig::Mode mode = WalkConfig::Mode::kBaseline;
-  int steps = 0;                      ///< completed footsteps (touchdowns)
+  int steps = 0;  ///< completed footsteps (touchdowns)
   bool fell = false;
-  std::string end_reason;             ///< "completed", or why it fell / stopped
-  double sim_time = 0.0;              ///< [s]
-  double wall_time = 0.0;             ///< [s]
-  int qp_failures = 0;                ///< controller ticks whose QP was not optimal
-  double max_touchdown_error = 0.0;   ///< [m]
+  std::string end_reason;            ///< "completed", or why it fell / stopped
+  double sim_time = 0.0;             ///< [s]
+  double wall_time = 0.0;            ///< [s]
+  int qp_failures = 0;               ///< controller ticks whose QP was not optimal
+  double max_touchdown_error = 0.0;  ///< [m]
   std::vector<StepRecord> records;
   /// One line: WALK mode=<m> steps=<n> fell=<yes|no> ... (the format of `make demo`).
   std::string summaryLine() const;
@@ -127,9 +126,10 @@ class WalkingExperiment {
   /// Runs one walk from the standing pose. `on_tick` (optional) is called after every
   /// control tick, `on_step` after every touchdown, `on_check` (proposed mode) after every
   /// reachability check + OCP with the step so far and the planner's full output.
-  WalkResult run(const std::function<void(const WalkTick&)>& on_tick = {},
-                 const std::function<void(const StepRecord&)>& on_step = {},
-                 const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check = {});
+  WalkResult run(
+      const std::function<void(const WalkTick&)>& on_tick = {},
+      const std::function<void(const StepRecord&)>& on_step = {},
+      const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check = {});
 
   const RobotModel& model() const { return *model_; }
   std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
