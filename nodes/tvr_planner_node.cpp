@@ -62,18 +62,15 @@ class TvrPlannerNode {
     if (contact_->sole_poses.size() != 2)
       throw ReachError("contact_state must carry the two sole poses (left, right)");
     for (int i = 0; i < 2; ++i) soles[i] = rb::fromPointMsg(contact_->sole_poses[i].position);
-    TvrInput in;
-    in.swing = opposite(stance);
-    in.stance = soles[static_cast<int>(stance)].head<2>();
     LipmState now;
     now.p = rb::fromPointMsg(com.position).head<2>();
     now.pd = rb::fromVector3Msg(com.velocity).head<2>();
     const double t = com.header.stamp.toSec() - start_time_;
     const double T = walk_.single_support_duration;
-    in.com = planner_->lipm().propagate(now, in.stance, T);
-    in.p_des = Eigen::Vector2d(com0_x_ + walk_.forward_speed * (t + T),
-                               0.5 * (soles[0].y() + soles[1].y()));
-    const TvrStep step = planner_->plan(in);
+    TvrInput in;
+    const TvrStep step = planner_->planFromMeasured(
+        now, soles[static_cast<int>(stance)].head<2>(), opposite(stance), t, T, com0_x_,
+        walk_.forward_speed, 0.5 * (soles[0].y() + soles[1].y()), &in);
     plan_pub_.publish(rb::toContactPlanMsg(in, step, T, walk_.double_support_duration,
                                            soles[static_cast<int>(stance)].z(), com.header.stamp));
   }

@@ -185,4 +185,17 @@ std::string TvrStabilityReport::summary() const {
   return os.str();
 }
 
+TvrStep TvrPlanner::planFromMeasured(const LipmState& measured, const Eigen::Vector2d& stance,
+                                     Side swing, double t, double remaining, double x_start,
+                                     double forward_speed, double y_mid, TvrInput* input) const {
+  TvrInput in;
+  in.com = lipm_.propagate(measured, stance, remaining);
+  in.p_des = Eigen::Vector2d(x_start + forward_speed * (t + remaining), y_mid);
+  in.stance = stance;
+  in.stance_yaw = 0.0;
+  in.swing = swing;
+  if (input) *input = in;
+  return plan(in);
+}
+
 }  // namespace reach_trajopt

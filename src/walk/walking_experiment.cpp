@@ -362,15 +362,11 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
   current_.com_at_plan.pd = xy(vcom_);
   current_.plan_time = t;
   const double remaining = std::max(0.0, wc_.single_support_duration - time_in_swing);
-  current_.com_predicted =
-      planner_.lipm().propagate(current_.com_at_plan, current_.stance, remaining);
   TvrInput in;
-  in.com = current_.com_predicted;
-  in.p_des = Eigen::Vector2d(com0_.x() + wc_.forward_speed * (t + remaining), feet_mid_.y());
-  in.stance = current_.stance;
-  in.stance_yaw = 0.0;
-  in.swing = current_.swing;
-  const TvrStep step = planner_.plan(in);
+  const TvrStep step =
+      planner_.planFromMeasured(current_.com_at_plan, current_.stance, current_.swing, t, remaining,
+                                com0_.x(), wc_.forward_speed, feet_mid_.y(), &in);
+  current_.com_predicted = in.com;
   current_.planned_tvr = step.alpha_tvr;
   current_.planned = step.alpha;
   current_.offset_clipped = step.offset_clipped;

@@ -84,6 +84,16 @@ class TvrPlanner {
   /// Throws ReachError on a non-finite input.
   TvrStep plan(const TvrInput& input) const;
 
+  /// Eq. (11) from a measured CoM state, as the walking loop and tvr_planner_node plan: the
+  /// state predicted `remaining` seconds ahead (the nominal touchdown) with the LIPM about the
+  /// stance sole (eq. 9-10), toward p_des = (x_start + forward_speed (t + remaining), y_mid).
+  /// \param measured  CoM position [m] and velocity [m/s] at time t [s] of the run
+  /// \param stance    stance sole centre (x, y) [m], heading 0; `swing` the sole that steps
+  /// \param[out] input  the TvrInput used (for recorders and messages), if not null
+  TvrStep planFromMeasured(const LipmState& measured, const Eigen::Vector2d& stance, Side swing,
+                           double t, double remaining, double x_start, double forward_speed,
+                           double y_mid, TvrInput* input = nullptr) const;
+
   /// The feedback K (2 x 4) of a = K x_p + diag(kappa) p_des: [(I - diag(kappa)), coth I/omega].
   Eigen::Matrix<double, 2, 4> gain() const;
   /// Closed-loop matrix A(T) + B(T) K of eq. (12) for step duration T [s].
