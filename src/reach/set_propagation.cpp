@@ -231,7 +231,6 @@ Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,
                                       PropagationDirection direction, double dt, bool semi_implicit,
                                       int slice, int index) {
   const bool forward = direction == PropagationDirection::kForward;
-  const bool semi = semi_implicit;
   const SampleSlice& s = slices.at(slice);
   if (index < 0 || index >= s.size()) throw ReachError("sampleConfiguration: index out of range");
   if (s.kept_column[index] >= 0) return s.q_kept.col(s.kept_column[index]);
@@ -240,7 +239,7 @@ Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,
   Eigen::VectorXd q(s.qd.rows());
   if (forward)
     forwardConfiguration(prev.q_kept.col(prev.kept_column[p]), prev.qd.col(p), s.qd.col(index), dt,
-                         semi, q);
+                         semi_implicit, q);
   else
     backwardConfiguration(prev.q_kept.col(prev.kept_column[p]), prev.qd.col(p), dt, q);
   return q;

@@ -57,9 +57,8 @@ FootholdServiceSetup FootholdServiceSetup::load(const ros::NodeHandle& nh,
   const WalkConfig walk =
       file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
   FootholdServiceSetup s{file, config_path, model, contact, reach, limits, nullptr, {}};
+  file.section("kinematic_feasibility");  // required here (throws naming the file when missing)
   FootstepPlannerConfig planner = FootstepPlannerConfig::fromYaml(file);
-  planner.kinematics =
-      KinematicFeasibilityConfig::fromYaml(file.section("kinematic_feasibility"));  // required
   planner.reach = reach;
   s.planner = std::make_shared<FootstepTransitionPlanner>(model, contact, planner);
   s.standing_q = standingConfiguration(*model, walk.knee_bend, contact.left_sole_frame);

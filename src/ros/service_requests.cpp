@@ -6,6 +6,7 @@
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/step/contact_consistent_state.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
@@ -104,7 +105,7 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
       r.stance == Side::kLeft ? contact.left_sole_frame : contact.right_sole_frame;
   const Eigen::Isometry3d stance = model.framePose(ws, model.frameId(stance_frame));
   r.stance_contact.position = stance.translation();
-  r.stance_contact.yaw = std::atan2(stance.linear()(1, 0), stance.linear()(0, 0));
+  r.stance_contact.yaw = yawOf(stance);
   const double height = target.z() - stance.translation().z();
   if (std::abs(height) > limits.ground_tolerance) {
     std::ostringstream os;

@@ -8,13 +8,12 @@
 
 namespace reach_trajopt {
 
-void trackTransition(const RobotModel& m, Workspace& ws, FrameId id,
+void trackTransition(const RobotModel& m, Workspace& ws, Matrix6Xd& J, FrameId id,
                      const TransitionResult& tracked, double tt, WbcReference& ref) {
   constexpr double kDescent = 0.2;  // past the horizon: keep descending [m/s]
   const int last = static_cast<int>(tracked.time.size()) - 1;
   const int k = std::min(last, static_cast<int>(std::lround(tt / tracked.dt)));
   m.update(ws, tracked.q.col(k), tracked.qd.col(k));
-  Matrix6Xd J(6, m.nq());
   m.frameJacobian(ws, id, J);
   const Eigen::Isometry3d T = m.framePose(ws, id);
   ref.swing_position = T.translation();

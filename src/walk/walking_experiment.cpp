@@ -197,6 +197,7 @@ struct WalkingExperiment::Loop {
   FrameId sole_[2];
   FrameId pelvis_;
   Workspace ws_, ws_traj_;
+  Matrix6Xd J_traj_;  ///< swing sole Jacobian of the tracked trajectory (scratch)
   Eigen::VectorXd q0_;
   std::unique_ptr<BulletWorld> world_;
   double dt_ = 0.0;
@@ -239,6 +240,7 @@ WalkingExperiment::Loop::Loop(
       pelvis_(m_.frameId(m_.linkNames().front())),
       ws_(m_),
       ws_traj_(m_),
+      J_traj_(6, m_.nq()),
       q0_(standingConfiguration(m_, wc_.knee_bend, impl.contact.left_sole_frame)),
       com0_([&] {
         m_.update(ws_, q0_, Eigen::VectorXd::Zero(m_.nq()));
@@ -441,8 +443,8 @@ void WalkingExperiment::Loop::references(double t) {
   ref_.qdd_ff.resize(0);
   if (phase_ != Phase::kSingle) return;
   if (tracked_.time.size() > 0) {  // the OCP's swing sole, its joints as feed-forward
-    trackTransition(m_, ws_traj_, sole_[static_cast<int>(swing_)], tracked_, t - tracked_start_,
-                    ref_);
+    trackTransition(m_, ws_traj_, J_traj_, sole_[static_cast<int>(swing_)], tracked_,
+                    t - tracked_start_, ref_);
   } else {
     const SwingSample sw = swing_traj_->sample(t - phase_start_);
     ref_.swing_position = sw.position;

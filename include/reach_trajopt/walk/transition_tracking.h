@@ -13,8 +13,9 @@
 namespace reach_trajopt {
 
 /// Fills the swing and feed-forward fields of `ref` from `trajectory` at `t` [s] after its
-/// start. \param swing  the swing sole's frame; `ws` a workspace of `model` (overwritten).
-void trackTransition(const RobotModel& model, Workspace& ws, FrameId swing,
+/// start. \param swing  the swing sole's frame; `ws` a workspace of `model` and `J` a 6 x n_q
+/// buffer, both overwritten (the caller keeps them: this runs at every controller tick).
+void trackTransition(const RobotModel& model, Workspace& ws, Matrix6Xd& J, FrameId swing,
                      const TransitionResult& trajectory, double t, WbcReference& ref);
 
 }  // namespace reach_trajopt
