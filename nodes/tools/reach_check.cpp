@@ -199,6 +199,12 @@ int main(int argc, char** argv) {
                         {"output_gap", w.output_gap},
                         {"position_gap", w.position_gap},
                         {"velocity_gap", w.velocity_gap},
+                        {"certified", w.certified},
+                        {"bridge_start", w.bridge_start},
+                        {"candidates_tried", w.candidates_tried},
+                        {"terminal_position_gap", number(w.terminal_position_gap)},
+                        {"terminal_velocity_gap", number(w.terminal_velocity_gap)},
+                        {"terminal_output_gap", number(w.terminal_output_gap)},
                         {"max_violation", v.max()},
                         {"violation",
                          {{"dynamics", v.dynamics},
@@ -208,7 +214,8 @@ int main(int argc, char** argv) {
                           {"velocity_limit", v.velocity_limit},
                           {"contact", v.contact},
                           {"contact_velocity", v.contact_velocity},
-                          {"integration", v.integration}}}};
+                          {"integration", v.integration},
+                          {"ground", v.ground}}}};
     }
     for (int dir = 0; dir < 2; ++dir) {
       json list = json::array();

@@ -2,7 +2,7 @@
 ///
 ///   walk_experiment [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                   [--mode baseline|proposed] [--steps N] [--seed S] [--push vx,vy]
-///                   [--forward-speed v] [--records FILE.csv]
+///                   [--forward-speed v] [--records FILE.csv] [--plan-requests FILE.jsonl]
 ///
 /// Prints one line per step and ends with `WALK mode=<m> steps=<n> fell=<yes|no> ...`.
 /// Option values are parsed strictly (cli_args.h): "--steps 5x" is an error naming --steps.
@@ -15,6 +15,7 @@
 
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
 using namespace reach_trajopt;
@@ -23,7 +24,8 @@ using namespace reach_trajopt;
 constexpr long long kMaxWalkSteps = 1000;
 
 int main(int argc, char** argv) {
-  std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", records_path;
+  std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", records_path,
+              requests_path;
   std::string mode, push, steps, seed, speed;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -48,6 +50,8 @@ int main(int argc, char** argv) {
         speed = next();
       else if (a == "--records")
         records_path = next();
+      else if (a == "--plan-requests")
+        requests_path = next();
       else
         throw std::runtime_error("unknown argument '" + a + "'");
     } catch (const std::exception& e) {
@@ -79,28 +83,52 @@ int main(int argc, char** argv) {
     walk.validate();
     const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
     WalkingExperiment experiment(urdf, walk, tvr, contact, wbc, sim, &proposed);
-    const WalkResult r = experiment.run({}, [](const StepRecord& s) {
-      std::printf(
-          "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
-          "executed=(%.3f, %.3f) err=%.4f m verdict=%s d_H=%.4g check_s=%.3f "
-          "ocp_s=%.3f ocp=%s%s%s\n",
-          s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
-          s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
-          s.executed.y(), s.touchdown_error, s.verdict.c_str(), s.hausdorff_distance,
-          s.check_time_s, s.ocp_time_s, s.ocp_status.c_str(),
-          s.reason.empty() ? "" : " reason: ", s.reason.c_str());
-      std::fflush(stdout);
-    });
+    std::ofstream requests_out;
+    if (!requests_path.empty()) {
+      requests_out.open(requests_path);
+      if (!requests_out)
+        throw ReachError("cannot write --plan-requests file '" + requests_path + "'");
+    }
+    // --plan-requests: each checked footstep's request, one JSON per line (verdict_grid input).
+    const auto on_check = [&](const StepRecord&, const FootstepTransition& step) {
+      if (!requests_out.is_open()) return;
+      nlohmann::json j = footstepPlanRequestJson(step.request);
+      j["reach_horizon"] = step.horizon;  // the walk's check horizon
+      requests_out << j.dump() << "\n";
+    };
+    const WalkResult r = experiment.run(
+        {},
+        [](const StepRecord& s) {
+          std::printf(
+              "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
+              "executed=(%.3f, %.3f) err=%.4f m verdict=%s certificate=%s witness_violation=%.3g "
+              "junction_gap=%.3g/%.3g x_f_gap=%.3g/%.3g d_H=%.4g check_s=%.3f ocp_s=%.3f "
+              "ocp=%s%s%s\n",
+              s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
+              s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
+              s.executed.y(), s.touchdown_error, s.verdict.c_str(),
+              s.certificate.empty() ? "none" : s.certificate.c_str(), s.witness_violation,
+              s.junction_position_gap, s.junction_velocity_gap, s.terminal_position_gap,
+              s.terminal_velocity_gap, s.hausdorff_distance, s.check_time_s, s.ocp_time_s,
+              s.ocp_status.c_str(), s.reason.empty() ? "" : " reason: ", s.reason.c_str());
+          std::fflush(stdout);
+        },
+        on_check);
     if (!records_path.empty()) {
       std::ofstream out(records_path);
       if (!out) throw ReachError("cannot write records file '" + records_path + "'");
       out << "index,swing,plan_time,touchdown_time,planned_tvr_x,planned_tvr_y,planned_x,"
-             "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict\n";
+             "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict,certificate,"
+             "witness_violation,junction_position_gap,junction_velocity_gap,"
+             "terminal_position_gap,terminal_velocity_gap\n";
       for (const StepRecord& s : r.records)
         out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
             << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
             << s.planned.y() << "," << s.executed.x() << "," << s.executed.y() << ","
-            << s.touchdown_error << "," << s.offset_clipped << "," << s.verdict << "\n";
+            << s.touchdown_error << "," << s.offset_clipped << "," << s.verdict << ","
+            << s.certificate << "," << s.witness_violation << "," << s.junction_position_gap << ","
+            << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
+            << s.terminal_velocity_gap << "\n";
     }
     std::printf("%s\n", r.summaryLine().c_str());
   } catch (const std::exception& e) {

@@ -18,8 +18,7 @@ FootstepResult FootstepReachability::check(const FootstepRequest& request) const
   return check(request, analyzer_->config());
 }
 
-FootstepResult FootstepReachability::check(const FootstepRequest& r,
-                                           const ReachConfig& config) const {
+FootstepResult FootstepReachability::kinematicStage(const FootstepRequest& r) const {
   FootstepResult out;
   out.kinematics =
       kinematics_->check(r.stance, r.stance_foothold, r.target, r.q0, r.touchdown_pelvis_position);
@@ -29,21 +28,31 @@ FootstepResult FootstepReachability::check(const FootstepRequest& r,
         "unreachable: the foothold is kinematically infeasible (" + out.kinematics.reason + ")";
     return out;
   }
+  out.qdf = touchdownVelocity(r, out.kinematics.q_f);
+  out.reason = "kinematically feasible (reachability not checked)";
+  return out;
+}
+
+Eigen::VectorXd FootstepReachability::touchdownVelocity(const FootstepRequest& r,
+                                                        const Eigen::VectorXd& qf) const {
+  if (r.qdf.size()) return r.qdf;
+  const RobotModel& m = analyzer_->model();
+  const ContactConfig& c = analyzer_->contactConfig();
+  return doubleSupportVelocity(
+      m, qf, m.frameId(c.left_sole_frame), m.frameId(c.right_sole_frame),
+      Eigen::Vector3d(r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y(), 0.0));
+}
+
+FootstepResult FootstepReachability::check(const FootstepRequest& r,
+                                           const ReachConfig& config) const {
+  FootstepResult out = kinematicStage(r);
+  if (!out.kinematically_feasible) return out;
   ReachProblem p;
   p.mode = ContactMode::singleSupport(r.stance);
   p.q0 = r.q0;
   p.qd0 = r.qd0;
   p.qf = out.kinematics.q_f;
-  if (r.qdf.size()) {
-    p.qdf = r.qdf;
-  } else {
-    const RobotModel& m = analyzer_->model();
-    const ContactConfig& c = analyzer_->contactConfig();
-    p.qdf = doubleSupportVelocity(
-        m, p.qf, m.frameId(c.left_sole_frame), m.frameId(c.right_sole_frame),
-        Eigen::Vector3d(r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y(), 0.0));
-  }
-  out.qdf = p.qdf;
+  p.qdf = out.qdf;
   p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();
   p.target = r.target.pose();
   out.reach = analyzer_->check(p, config);

@@ -16,12 +16,24 @@ constexpr double kNoBound = -1e20;
 int inequalityRows(const ReachContext& c) {
   return 2 * c.nu + ContactWrenchCone::kRows * c.nc +
          2 * static_cast<int>(c.finite_velocity.size()) +
-         2 * static_cast<int>(c.finite_position.size());
+         2 * static_cast<int>(c.finite_position.size()) + (c.swing_frame >= 0 ? 1 : 0);
 }
 }  // namespace
 
+ForwardStepCost ForwardStepCost::sampling(const ReachConfig& config) {
+  ForwardStepCost c;
+  c.w_qdd = config.w_qdd;
+  c.w_du = config.w_du;
+  c.w_lambda = config.w_lambda;
+  return c;
+}
+
 ForwardStep::ForwardStep(const ReachContext& context)
+    : ForwardStep(context, ForwardStepCost::sampling(context.config)) {}
+
+ForwardStep::ForwardStep(const ReachContext& context, const ForwardStepCost& cost)
     : ctx_(context),
+      cost_(cost),
       ws_(*context.model),
       n_(context.n),
       nu_(context.nu),
@@ -52,8 +64,10 @@ ForwardStep::ForwardStep(const ReachContext& context)
   g_.resize(nu_);
   z_.resize(k);
   w_.resize(k);
-  w_.head(n_).setConstant(ctx_.config.w_qdd);
-  w_.tail(m_).setConstant(ctx_.config.w_lambda);
+  w_.head(n_).setConstant(cost_.w_qdd);
+  w_.tail(m_).setConstant(cost_.w_lambda);
+  swing_jz_.setZero(n_);
+  target_.resize(k);
   warm_.reserve(rows_);
 }
 
@@ -101,7 +115,7 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
   // Hessian 2 (w_du I + P^T W P) of the reduced cost.
   PtW_ = P_.transpose() * w_.asDiagonal();
   G_.noalias() = 2.0 * PtW_ * P_;
-  G_.diagonal().array() += 2.0 * cfg.w_du;
+  G_.diagonal().array() += 2.0 * cost_.w_du;
   if (!factor_.compute(G_)) return false;
   // Inequality matrix (rows depend on the parent only; right-hand sides on the child).
   int r = 0;
@@ -122,6 +136,18 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
     A_in_.row(r++) = -P_.row(i);
     A_in_.row(r++) = P_.row(i);
   }
+  if (ctx_.swing_frame >= 0) {
+    // The ground row of a bridge step: the swing sole above the ground one step ahead, to
+    // first order (hence within half the certificate's tolerance):
+    // z + dt (zdot + dt (J_z qdd + Jdot_z qd)) >= ground.
+    model.frameJacobian(ws_, ctx_.swing_frame, J_);
+    swing_jz_ = J_.row(2);
+    const double z = model.framePose(ws_, ctx_.swing_frame).translation().z();
+    const double zdot = model.frameVelocity(ws_, ctx_.swing_frame)[2];
+    const double ground = ctx_.ground_height - 0.5 * cfg.certificate_tolerance;
+    ground_rhs_ = ((ground - z) / dt - zdot) / dt - model.frameJdotQd(ws_, ctx_.swing_frame)[2];
+    A_in_.row(r++).noalias() = swing_jz_ * P_.topRows(n_);
+  }
   parent_ok_ = true;
   return true;
 }
@@ -130,14 +156,38 @@ bool ForwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& u,
                         Eigen::Ref<Eigen::VectorXd> q_child, Eigen::Ref<Eigen::VectorXd> qd_child,
                         Eigen::Ref<Eigen::VectorXd> y, Eigen::Ref<Eigen::VectorXd> y_rate,
                         Eigen::Ref<Eigen::VectorXd> u_out, Eigen::Ref<Eigen::VectorXd> lambda_out) {
+  return solveChild(u, nullptr, q_child, qd_child, y, y_rate, u_out, lambda_out);
+}
+
+bool ForwardStep::trackChild(const Eigen::Ref<const Eigen::VectorXd>& u,
+                             const Eigen::Ref<const Eigen::VectorXd>& qdd_target,
+                             Eigen::Ref<Eigen::VectorXd> q_child,
+                             Eigen::Ref<Eigen::VectorXd> qd_child, Eigen::Ref<Eigen::VectorXd> y,
+                             Eigen::Ref<Eigen::VectorXd> y_rate, Eigen::Ref<Eigen::VectorXd> u_out,
+                             Eigen::Ref<Eigen::VectorXd> lambda_out) {
+  target_.setZero();
+  target_.head(n_) = qdd_target;
+  return solveChild(u, &target_, q_child, qd_child, y, y_rate, u_out, lambda_out);
+}
+
+bool ForwardStep::solveChild(const Eigen::Ref<const Eigen::VectorXd>& u,
+                             const Eigen::VectorXd* target, Eigen::Ref<Eigen::VectorXd> q_child,
+                             Eigen::Ref<Eigen::VectorXd> qd_child, Eigen::Ref<Eigen::VectorXd> y,
+                             Eigen::Ref<Eigen::VectorXd> y_rate, Eigen::Ref<Eigen::VectorXd> u_out,
+                             Eigen::Ref<Eigen::VectorXd> lambda_out) {
   if (!parent_ok_) return false;
   const ReachConfig& cfg = ctx_.config;
   const double dt = cfg.dt;
   const bool semi = cfg.semiImplicit();
-  // s = [qdd; lambda] at du = 0; cost gradient 2 P^T W s.
+  // s = [qdd; lambda] at du = 0; cost gradient 2 P^T W (s - target).
   s_.noalias() = P_ * u;
   s_ += r0_;
-  g_.noalias() = 2.0 * PtW_ * s_;
+  if (target) {
+    z_ = s_ - *target;
+    g_.noalias() = 2.0 * PtW_ * z_;
+  } else {
+    g_.noalias() = 2.0 * PtW_ * s_;
+  }
   int r = 0;
   for (int i = 0; i < nu_; ++i) b_in_[r + i] = -ctx_.u_max[i] - u[i];  // du >= -u_max - u
   r += nu_;
@@ -159,6 +209,8 @@ bool ForwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& u,
     b_in_[r++] = std::isfinite(ctx_.q_max[i]) ? (qn - ctx_.q_max[i]) / (dt * dt) + s_[i] : kNoBound;
     b_in_[r++] = std::isfinite(ctx_.q_min[i]) ? (ctx_.q_min[i] - qn) / (dt * dt) - s_[i] : kNoBound;
   }
+  if (ctx_.swing_frame >= 0)  // samples are rejected below the ground instead, after the QP
+    b_in_[r++] = cost_.bridge ? ground_rhs_ - swing_jz_.dot(s_.head(n_)) : kNoBound;
   ++qp_count_;
   const qp::QpResult& res =
       qp_.solve(factor_, g_, empty_eq_, empty_beq_, A_in_, b_in_, warm_.empty() ? nullptr : &warm_);
@@ -170,10 +222,10 @@ bool ForwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& u,
   qd_child = qd_ + dt * z_.head(n_);
   forwardConfiguration(q_, qd_, qd_child, dt, semi, q_child);
   lambda_out = z_.tail(m_);
-  if (!ctx_.withinLimits(q_child, qd_child)) return false;
+  if (!cost_.bridge && !ctx_.withinLimits(q_child, qd_child)) return false;
   const RobotModel& model = *ctx_.model;
   model.update(ws_, q_child, qd_child);
-  if (!ctx_.swingClear(ws_)) return false;
+  if (!cost_.bridge && !ctx_.swingClear(ws_)) return false;
   ctx_.output(ws_, y, y_rate);
   return true;
 }

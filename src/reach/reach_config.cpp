@@ -104,6 +104,13 @@ void ReachConfig::validate() const {
   requirePositive("backward_base_accel", backward_base_accel);
   requireNonNegative("delta", delta);
   requireNonNegative("overlap_gap_max", overlap_gap_max);
+  if (certificate_candidates < 1) bad("certificate_candidates", "must be >= 1");
+  requireAtMost("certificate_candidates", certificate_candidates, L::kMaxCertificateCandidates);
+  requirePositive("certificate_tolerance", certificate_tolerance);
+  requirePositive("certificate_contact_velocity_tolerance", certificate_contact_velocity_tolerance);
+  requirePositive("terminal_position_tolerance", terminal_position_tolerance);
+  requirePositive("terminal_velocity_tolerance", terminal_velocity_tolerance);
+  requireNonNegative("constraint_margin", constraint_margin);
   if (output_axes.empty() || output_axes.size() > 3) bad("output_axes", "must hold 1-3 axes");
   for (std::size_t i = 0; i < output_axes.size(); ++i) {
     const char c = output_axes[i];
@@ -176,6 +183,12 @@ ReachConfig ReachConfig::fromYaml(const YamlSection& s, const ReachConfig& base)
                      "backward_base_accel",
                      "delta",
                      "overlap_gap_max",
+                     "certificate_candidates",
+                     "certificate_tolerance",
+                     "certificate_contact_velocity_tolerance",
+                     "terminal_position_tolerance",
+                     "terminal_velocity_tolerance",
+                     "constraint_margin",
                      "output_frame",
                      "output_axes",
                      "swing_ground_margin",
@@ -210,6 +223,12 @@ ReachConfig ReachConfig::fromYaml(const YamlSection& s, const ReachConfig& base)
   s.read("backward_base_accel", c.backward_base_accel);
   s.read("delta", c.delta);
   s.read("overlap_gap_max", c.overlap_gap_max);
+  s.read("certificate_candidates", c.certificate_candidates);
+  s.read("certificate_tolerance", c.certificate_tolerance);
+  s.read("certificate_contact_velocity_tolerance", c.certificate_contact_velocity_tolerance);
+  s.read("terminal_position_tolerance", c.terminal_position_tolerance);
+  s.read("terminal_velocity_tolerance", c.terminal_velocity_tolerance);
+  s.read("constraint_margin", c.constraint_margin);
   s.read("output_frame", c.output_frame);
   s.read("output_axes", c.output_axes);
   s.read("swing_ground_margin", c.swing_ground_margin);

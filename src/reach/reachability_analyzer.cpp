@@ -13,6 +13,7 @@
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/reach/reach_context.h"
 #include "reach_trajopt/reach/set_propagation.h"
+#include "reach_trajopt/reach/witness_certificate.h"
 
 namespace reach_trajopt {
 
@@ -68,27 +69,36 @@ void validateState(const ReachContext& ctx, const char* which, const Eigen::Vect
   }
 }
 
-/// The sentence explaining the verdict decided on slice `best` (-1: an empty set).
+/// The sentence explaining the verdict: the certificate, then what the sets showed.
 std::string verdictReason(const ReachConfig& config, const std::vector<SliceComparison>& window,
-                          int best, bool best_ok) {
-  if (best < 0)
-    return "unreachable: a forward or backward slice of the window is empty (every draw "
-           "was rejected)";
-  const SliceComparison& c = window[best];
+                          int best, bool sets_meet, const WitnessPath& w) {
   std::ostringstream os;
-  if (best_ok && c.overlap)
-    os << "reachable: the forward and backward output sets overlap at t = " << fmt(c.time) << " s ("
-       << c.backward_inside_forward << " backward samples inside the forward hull, "
-       << c.forward_inside_backward << " forward samples inside the backward hull, closest "
-       << "pair " << fmt(c.distance.closest) << " m)";
-  else if (best_ok)
-    os << "reachable: d_H = " << fmt(c.distance.hausdorff)
-       << " m <= min(delta, K) at t = " << fmt(c.time) << " s (Prop. 2)";
+  if (w.certified) {
+    os << "reachable: certified path x_0 -> x_f, the forward sample at t = "
+       << fmt(w.time[w.bridge_start]) << " s bridged to x_f (largest violation "
+       << fmt(w.violation.max()) << ", x(t_f) - x_f " << fmt(w.terminal_position_gap) << " / "
+       << fmt(w.terminal_velocity_gap) << ", pair " << w.candidates_tried << " of "
+       << config.certificate_candidates << ")";
+    return os.str();
+  }
+  os << "unreachable (not shown reachable): ";
+  if (best < 0) {
+    os << "a forward or backward slice of the window is empty (every draw was rejected)";
+    return os.str();
+  }
+  const SliceComparison& c = window[best];
+  if (!w.valid)
+    os << "no junction pair to bridge (the window must end at least 2 dt before t_f)";
+  else if (std::isinf(w.terminal_position_gap))
+    os << "no bridge of the " << w.candidates_tried << " best junction pairs reached t_f";
   else
-    os << "unreachable: the forward and backward output sets stay apart over the window ["
-       << fmt(config.window_start) << ", " << fmt(config.window_end) << "] s; closest approach "
-       << fmt(c.distance.closest) << " m at t = " << fmt(c.time) << " s (tolerance "
-       << fmt(c.overlap_tolerance) << " m)";
+    os << "no bridge of the " << w.candidates_tried << " best junction pairs ended on x_f "
+       << "(closest: x(t_f) - x_f " << fmt(w.terminal_position_gap) << " / "
+       << fmt(w.terminal_velocity_gap) << ", swing sole " << fmt(w.terminal_output_gap)
+       << " m from the target, largest violation " << fmt(w.violation.max()) << ")";
+  os << "; the output sets " << (sets_meet ? "meet" : "stay apart") << " (closest approach "
+     << fmt(c.distance.closest) << " m at t = " << fmt(c.time) << " s, d_H "
+     << fmt(c.distance.hausdorff) << " m)";
   return os.str();
 }
 
@@ -165,13 +175,10 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   res.timings.hausdorff = since(th);
   // ---- verdict and witness ----------------------------------------------------------------
   const auto tw = Clock::now();
-  bool passed = false;
-  res.best = decidingSlice(res.window, passed);
-  res.reachable = passed;
-  res.reason = verdictReason(config, res.window, res.best, passed);
-  if (res.best >= 0)
-    res.witness =
-        buildWitnessPath(ctx, res.forward, res.backward, res.window[res.best], res.semi_implicit);
+  res.best = decidingSlice(res.window, res.sets_meet);
+  res.witness = certifyWitness(ctx, res.forward, res.backward, res.window, res.semi_implicit);
+  res.reachable = res.witness.certified;
+  res.reason = verdictReason(config, res.window, res.best, res.sets_meet, res.witness);
   res.timings.witness = since(tw);
   res.timings.total = since(t_start);
   return res;

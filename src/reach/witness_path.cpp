@@ -14,63 +14,18 @@
 namespace reach_trajopt {
 
 double PathViolation::max() const {
-  return std::max({dynamics, cone, torque, position_limit, velocity_limit, contact,
-                   contact_velocity, integration});
+  return std::max({maxWithoutContact(), contact, contact_velocity});
 }
 
-WitnessPath buildWitnessPath(const ReachContext& ctx, const std::vector<SampleSlice>& forward,
-                             const std::vector<SampleSlice>& backward, const SliceComparison& c,
-                             bool semi_implicit) {
-  // Witness: x_0 -> a (forward chain), b -> x_f (backward chain).
-  WitnessPath w;
-  const double dt = ctx.config.dt;
-  std::vector<std::pair<int, int>> fchain, bchain;
-  for (int s = c.forward_slice, i = c.distance.closest_a; s >= 0; i = forward[s].parent[i], --s)
-    fchain.push_back({s, i});
-  std::reverse(fchain.begin(), fchain.end());
-  for (int s = c.backward_slice, i = c.distance.closest_b; s >= 0; i = backward[s].parent[i], --s)
-    bchain.push_back({s, i});
-  const int L = static_cast<int>(fchain.size() + bchain.size());
-  const int n = ctx.n;
-  w.q.resize(n, L);
-  w.qd.resize(n, L);
-  w.output.resize(ctx.ny(), L);
-  w.u = Eigen::MatrixXd::Zero(ctx.nu, L - 1);
-  w.lambda = Eigen::MatrixXd::Zero(ctx.m(), L - 1);
-  w.semi_implicit_step.assign(L - 1, 1);
-  w.junction = static_cast<int>(fchain.size()) - 1;
-  int k = 0;
-  for (const auto& [s, i] : fchain) {
-    w.time.push_back(forward[s].time);
-    w.q.col(k) =
-        sampleConfigurationOf(forward, PropagationDirection::kForward, dt, semi_implicit, s, i);
-    w.qd.col(k) = forward[s].qd.col(i);
-    w.output.col(k) = forward[s].output.col(i);
-    if (k > 0) {
-      w.u.col(k - 1) = forward[s].u.col(i);
-      w.lambda.col(k - 1) = forward[s].lambda.col(i);
-      w.semi_implicit_step[k - 1] = semi_implicit ? 1 : 0;
-    }
-    ++k;
-  }
-  for (const auto& [s, i] : bchain) {
-    w.time.push_back(backward[s].time);
-    w.q.col(k) = sampleConfigurationOf(backward, PropagationDirection::kBackward, dt, true, s, i);
-    w.qd.col(k) = backward[s].qd.col(i);
-    w.output.col(k) = backward[s].output.col(i);
-    if (k < L - 1) {
-      w.u.col(k) = backward[s].u.col(i);
-      w.lambda.col(k) = backward[s].lambda.col(i);
-    }
-    ++k;
-  }
-  const int a = w.junction;
-  w.output_gap = (w.output.col(a) - w.output.col(a + 1)).norm();
-  w.position_gap = (w.q.col(a) - w.q.col(a + 1)).cwiseAbs().maxCoeff();
-  w.velocity_gap = (w.qd.col(a) - w.qd.col(a + 1)).cwiseAbs().maxCoeff();
-  measurePath(ctx, w);
-  w.valid = true;
-  return w;
+double PathViolation::maxWithoutContact() const {
+  return std::max({dynamics, cone, torque, position_limit, velocity_limit, integration, ground});
+}
+
+std::vector<std::pair<int, int>> chainToRoot(const std::vector<SampleSlice>& slices, int slice,
+                                             int index) {
+  std::vector<std::pair<int, int>> chain;
+  for (int s = slice, i = index; s >= 0; i = slices[s].parent[i], --s) chain.push_back({s, i});
+  return chain;
 }
 
 /// Largest violations of the path's states and steps (see PathViolation).
@@ -93,6 +48,9 @@ void measurePath(const ReachContext& ctx, WitnessPath& w) {
     for (int i : ctx.finite_velocity)
       v.velocity_limit = std::max(v.velocity_limit, std::abs(qd[i]) - ctx.qd_max[i]);
     model.update(ws, q, qd);
+    if (ctx.swing_frame >= 0)
+      v.ground = std::max(
+          v.ground, ctx.ground_height - model.framePose(ws, ctx.swing_frame).translation().z());
     for (const ContactConstraint& c : ctx.contacts) {
       c.evaluate(model, ws, t);
       v.contact = std::max(v.contact, t.phi.cwiseAbs().maxCoeff());

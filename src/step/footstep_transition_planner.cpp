@@ -11,6 +11,7 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
 #include "reach_trajopt/step/contact_consistent_state.h"
+#include "reach_trajopt/step/reachable_set_constraint.h"
 
 namespace reach_trajopt {
 namespace {
@@ -34,7 +35,7 @@ RelaxationMode relaxationFor(OcpPolicy policy, bool reachable) {
     case OcpPolicy::kByVerdict:
       break;
   }
-  return reachable ? RelaxationMode::kStrict : RelaxationMode::kRelaxed;
+  return reachable ? RelaxationMode::kStrict : RelaxationMode::kAuto;
 }
 
 /// The witness path x_0 -> x_f as the OCP's initial guess.
@@ -80,6 +81,7 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r)
   }
   const ReachConfig& reach = r.reach ? *r.reach : config_.reach;
   FootstepTransition out;
+  out.request = r;
   out.stance = r.stance;
   out.horizon = r.horizon > 0.0 ? r.horizon : reach.horizon;
   const Eigen::Isometry3d held = initialState(r, out);
@@ -149,11 +151,7 @@ void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
   if (r.check_reachability) {
     out.check = footsteps_.check(request, reach);
   } else {
-    out.check.kinematics = kinematics_->check(r.stance, request.stance_foothold, request.target,
-                                              request.q0, td.pelvis);
-    out.check.kinematically_feasible = out.check.kinematics.feasible;
-    out.check.qdf = request.qdf;
-    out.check.reason = out.check.kinematics.feasible ? "not checked" : out.check.kinematics.reason;
+    out.check = footsteps_.kinematicStage(request);
   }
   const FootstepResult& check = out.check;
   out.check_time_s = secondsSince(check_start);
@@ -186,6 +184,10 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     ocp.qf = check.kinematics.q_f;
     ocp.qdf = check.qdf;
     ocp.relaxation = relaxationFor(r.ocp_policy, check.reachable);
+    if (r.check_reachability) {
+      const ReachConfig& reach = r.reach ? *r.reach : config_.reach;
+      ocp.slices = reachableSetConstraint(check.reach, reach.output_axes, reach.constraint_margin);
+    }
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kReject) {
     throw RequestError("kinematically infeasible foothold (" + check.kinematics.reason + ")");
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kRelaxTowardTarget) {
@@ -218,6 +220,23 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
   // foothold (the target itself when it is feasible).
   out.foothold = out.usable() ? out.trajectory.landing_position : nearest_feasible;
   if (!out.trajectory.reason.empty()) out.reason += "; OCP: " + out.trajectory.reason;
+  if (r.check_reachability && check.kinematically_feasible) certify(out);
+}
+
+void FootstepTransitionPlanner::certify(FootstepTransition& out) const {
+  const bool strict_converged =
+      out.trajectory.status == OcpStatus::kConverged && !out.trajectory.relaxed;
+  if (out.check.reachable) {
+    out.certificate = "bridge";
+  } else if (strict_converged) {
+    out.certificate = "local_solve";
+    out.reason =
+        "reachable: certified by the local solve, the strict OCP seeded with the "
+        "check's closest bridged path (" +
+        out.check.reason + ")";
+  }
+  out.reachable = !out.certificate.empty();
+  out.verdict = out.reachable ? "reachable" : "unreachable";
 }
 
 }  // namespace reach_trajopt

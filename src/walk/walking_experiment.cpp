@@ -107,6 +107,21 @@ std::string WalkResult::summaryLine() const {
      << " fell=" << (fell ? "yes" : "no") << " sim_s=" << sim_time << " wall_s=" << wall_time
      << " max_touchdown_err_m=" << max_touchdown_error << " qp_failures=" << qp_failures
      << " end=" << end_reason;
+  if (mode == WalkConfig::Mode::kProposed) {
+    // The verdicts: every "reachable" rests on a certified witness; its OCP was strict.
+    int reachable = 0, bridge = 0, local_solve = 0, reachable_converged = 0, unreachable = 0;
+    for (const StepRecord& r : records) {
+      reachable += r.verdict == "reachable";
+      bridge += r.certificate == "bridge";
+      local_solve += r.certificate == "local_solve";
+      reachable_converged += r.verdict == "reachable" && r.ocp_status == "converged";
+      unreachable += r.verdict == "unreachable";
+    }
+    os << " reachable=" << reachable << " bridge_certified=" << bridge
+       << " local_solve_certified=" << local_solve
+       << " reachable_ocp_converged=" << reachable_converged
+       << " not_shown_reachable=" << unreachable;
+  }
   return os.str();
 }
 
@@ -393,6 +408,15 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
     const FootstepTransition step = impl_.proposed->plan(request);
     current_.verdict = step.verdict;
     current_.hausdorff_distance = step.hausdorff_distance;
+    const WitnessPath& w = step.check.reach.witness;
+    current_.certificate = step.certificate;
+    if (w.valid) {
+      current_.witness_violation = w.violation.max();
+      current_.junction_position_gap = w.position_gap;
+      current_.junction_velocity_gap = w.velocity_gap;
+      current_.terminal_position_gap = w.terminal_position_gap;
+      current_.terminal_velocity_gap = w.terminal_velocity_gap;
+    }
     current_.check_time_s = step.check_time_s;
     current_.ocp_time_s = step.ocp_time_s;
     current_.ocp_status = ocpStatusName(step.trajectory.status);

@@ -53,9 +53,16 @@ class FootstepReachability {
   FootstepResult check(const FootstepRequest& request) const;
   FootstepResult check(const FootstepRequest& request, const ReachConfig& config) const;
 
+  /// The kinematic stage alone: kinematics, kinematically_feasible, qdf (the touchdown
+  /// velocity x_f would have) and reason; reach stays empty, reachable false.
+  FootstepResult kinematicStage(const FootstepRequest& request) const;
+
   const ReachabilityAnalyzer& analyzer() const { return *analyzer_; }
 
  private:
+  /// qd_f: the request's, else the posture qf moving with the touchdown CoM velocity.
+  Eigen::VectorXd touchdownVelocity(const FootstepRequest& request,
+                                    const Eigen::VectorXd& qf) const;
   std::shared_ptr<const ReachabilityAnalyzer> analyzer_;
   std::shared_ptr<const KinematicFeasibility> kinematics_;
 };

@@ -7,6 +7,7 @@
 ///        J_phi,i qdd = -Jdot_phi,i qd - beta (phi_i / dt^2 + 2 phidot_i / dt)   (eq. 5)
 ///        -u_max <= u + du <= u_max,   C_i R_i lambda_i >= 0   (eq. 7-8)
 ///        |qd + dt qdd| <= qd_max,     q_min <= q_{j+1} <= q_max
+///        (bridge steps only) the swing sole above the ground one step ahead
 /// then x_{j+1} = [q_j + dt qd_{j+1}; qd_j + dt qdd] (semi-implicit; or q_j + dt qd_j).
 ///
 /// Solved in the reduced form: given u + du, the equality rows fix [qdd; lambda] uniquely
@@ -16,6 +17,11 @@
 /// (M, b, J, the LU of K, P, the QP Hessian and its factorization, the inequality matrix) is
 /// computed once in setParent() and shared by all its children; a child costs one QP solve,
 /// warm-started from the previous child's active set.
+///
+/// The junction bridge of a witness path (junction_bridge.h) uses the same step to track a
+/// target acceleration (trackChild), with the weights of a ForwardStepCost, the ground row,
+/// and no rejection of children that leave the limits or the ground by rounding (the
+/// certificate measures those).
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -28,11 +34,25 @@
 
 namespace reach_trajopt {
 
+/// Weights of the forward QP's cost (15) and the bridge mode.
+struct ForwardStepCost {
+  double w_qdd = 1e-4;     ///< on |qdd - qdd_target|^2 [per (rad/s^2)^2]
+  double w_du = 1.0;       ///< on |du|^2 [per (N m)^2]
+  double w_lambda = 1e-6;  ///< on |lambda|^2 [per N^2]
+  /// Bridge step: the swing sole is kept above the ground by a QP row instead of rejecting
+  /// the child, and children are not rejected for leaving the limits by rounding.
+  bool bridge = false;
+  /// The weights of ReachConfig (w_qdd, w_du, w_lambda): the sampling step (15).
+  static ForwardStepCost sampling(const ReachConfig& config);
+};
+
 /// @brief Per-thread solver of the forward step (15)-(16). Sized once; no heap allocation in
 /// setParent() / child().
 class ForwardStep {
  public:
+  /// The sampling step (15) with the weights of context.config.
   explicit ForwardStep(const ReachContext& context);
+  ForwardStep(const ReachContext& context, const ForwardStepCost& cost);
 
   /// Evaluates the dynamics at the parent x_j = (q, qd). Returns false when no child can be
   /// feasible (explicit integrator with q + dt qd outside the limits, or a singular K).
@@ -47,16 +67,35 @@ class ForwardStep {
              Eigen::Ref<Eigen::VectorXd> y_rate, Eigen::Ref<Eigen::VectorXd> u_out,
              Eigen::Ref<Eigen::VectorXd> lambda_out);
 
+  /// d qdd / d u at the parent (n_q x n_u), valid after a successful setParent().
+  Eigen::Ref<const Eigen::MatrixXd> accelerationMap() const { return P_.topRows(n_); }
+  /// A bridge step: the same QP with the cost |qdd - qdd_target|^2_Wqdd + |du|^2_Wu +
+  /// |lambda|^2_Wl (qdd_target of size n_q), u the nominal torque du corrects.
+  bool trackChild(const Eigen::Ref<const Eigen::VectorXd>& u,
+                  const Eigen::Ref<const Eigen::VectorXd>& qdd_target,
+                  Eigen::Ref<Eigen::VectorXd> q_child, Eigen::Ref<Eigen::VectorXd> qd_child,
+                  Eigen::Ref<Eigen::VectorXd> y, Eigen::Ref<Eigen::VectorXd> y_rate,
+                  Eigen::Ref<Eigen::VectorXd> u_out, Eigen::Ref<Eigen::VectorXd> lambda_out);
+
   Workspace& workspace() { return ws_; }
   long qpCount() const { return qp_count_; }
 
  private:
+  /// child() and trackChild() (target: [qdd_target; 0], or null for zero).
+  bool solveChild(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::VectorXd* target,
+                  Eigen::Ref<Eigen::VectorXd> q_child, Eigen::Ref<Eigen::VectorXd> qd_child,
+                  Eigen::Ref<Eigen::VectorXd> y, Eigen::Ref<Eigen::VectorXd> y_rate,
+                  Eigen::Ref<Eigen::VectorXd> u_out, Eigen::Ref<Eigen::VectorXd> lambda_out);
+
   const ReachContext& ctx_;
+  ForwardStepCost cost_;
   Workspace ws_;
   int n_, nu_, m_, rows_;
   Eigen::VectorXd q_, qd_;
   Eigen::MatrixXd M_, K_, E_, P_, PtW_, G_, A_in_, J_;
-  Eigen::VectorXd b_, r0_, s_, g_, b_in_, z_, w_;
+  Eigen::VectorXd b_, r0_, s_, g_, b_in_, z_, w_, target_;
+  Eigen::RowVectorXd swing_jz_;  ///< z row of the swing sole's Jacobian (the ground row)
+  double ground_rhs_ = 0.0;      ///< J_z qdd >= this keeps the swing sole above the ground
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   ContactConstraintTerms terms_;
   ContactWrenchCone::Matrix cone_world_[2];

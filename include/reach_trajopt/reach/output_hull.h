@@ -22,6 +22,8 @@ class OutputHull {
   bool contains(const Eigen::Ref<const Eigen::VectorXd>& y, double tolerance = 0.0) const;
   /// Number of columns of `points` inside the hull.
   int countInside(const Eigen::Ref<const Eigen::MatrixXd>& points, double tolerance = 0.0) const;
+  const Eigen::MatrixXd& normals() const { return normals_; }  ///< n_y x faces, unit, outward
+  const Eigen::VectorXd& offsets() const { return offsets_; }  ///< faces
 
  private:
   Eigen::MatrixXd normals_;  ///< unit outward normals, n_y x faces

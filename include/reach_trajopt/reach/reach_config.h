@@ -31,8 +31,9 @@ struct ReachLimits {
   static constexpr int kMaxChildrenPerParent = 1000;  ///< also backward_children_per_parent
   static constexpr int kMaxBoundary = 10000;          ///< also interior_samples
   static constexpr int kMaxAngularBins = 4096;
-  static constexpr int kMaxLookahead = 16;  ///< entries of boundary_lookahead
-  static constexpr int kMaxSteps = 20000;   ///< horizon / dt
+  static constexpr int kMaxLookahead = 16;                ///< entries of boundary_lookahead
+  static constexpr int kMaxSteps = 20000;                 ///< horizon / dt
+  static constexpr int kMaxCertificateCandidates = 1000;  ///< bridges of one check
   /// Estimated memory of one check (estimatedMemoryBytes) allowed [bytes].
   static constexpr double kMaxMemoryBytes = 1024.0 * 1024 * 1024;
   /// Estimated QPs of one check (estimatedQps) allowed: about 10-30 s on one core; the
@@ -93,6 +94,23 @@ struct ReachConfig {
   /// sampling resolution K of Prop. 2 (largest nearest-neighbour gap of the sparser set), but
   /// never farther apart than this [m].
   double overlap_gap_max = 5e-3;
+  // ---- the certificate (witness_certificate.h, junction_bridge.h) -------------------------
+  /// Junction pairs (a, b) bridged at most, lowest bridge effort first; the verdict is
+  /// "reachable" only when one of them gives a certified path.
+  int certificate_candidates = 8;
+  /// Largest violation along a certified path of eq. (1) [N, Nm], the cones (8) [N], the
+  /// torque limits [Nm], the position / velocity limits [m, rad; m/s, rad/s], the Euler steps
+  /// [m, rad] and the ground [m]; the held soles' |phi| within contact_tolerance.
+  double certificate_tolerance = 1e-4;
+  /// |J_phi qd| of the held soles along a certified path [m/s, rad/s]. Looser than at x_0 and
+  /// x_f: the Euler steps of (16) / (20) leave |phi| ~ 1e-6 per step on the curved contact
+  /// manifold, and the drift stabilization answers with |J qd| ~ beta |phi| / dt.
+  double certificate_contact_velocity_tolerance = 1e-2;
+  double terminal_position_tolerance = 1e-3;  ///< |q(t_f) - q_f|_inf of a certified path [m, rad]
+  double terminal_velocity_tolerance = 1e-2;  ///< |qd(t_f) - qd_f|_inf [m/s, rad/s]
+  /// Eq. (23): the swing sole hulls of the forward set handed to the OCP grow by this [m]
+  /// (step/reachable_set_constraint.h).
+  double constraint_margin = 0.01;
   // ---- output and states ----------------------------------------------------------------
   std::string output_frame;         ///< frame of y; empty: the swing sole of the mode
   std::string output_axes = "xyz";  ///< world axes of the frame origin in y (1-3 of x, y, z)

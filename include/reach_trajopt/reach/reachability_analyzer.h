@@ -13,16 +13,17 @@
 ///  2. On each slice t in the overlap window [t_2, t_1]: the Hausdorff distance (14) between
 ///     the forward and backward output sets (k-d trees), the resolution K of Prop. 2 and the
 ///     closest pair.
-///  3. Verdict: reachable when on some slice the sets overlap (a sample of one set inside the
-///     other's convex hull, or a forward and a backward output closer than
-///     min(K, overlap_gap_max): the sets touch at their sampling resolution) or
-///     d_H <= min(delta, K) (Prop. 2). Else unreachable, with the closest approach. The hull
-///     test treats each slice's output set as convex (an over-approximation); the witness then
-///     shows how close an actual pair of samples came.
-///  4. Witness: on the slice with the closest pair, the forward path x_0 -> a and the backward
-///     path b -> x_f traced through parent indices, with (u, lambda) of every step, the gap
-///     between a and b and the largest constraint violation along the path.
-///
+///  3. Certificate (witness_certificate.h): the junction pairs of the window ranked by the
+///     effort of closing their full-state gap, bridged from the forward sample to x_f by a
+///     QP-controlled segment (junction_bridge.h), every 1 ms step re-checked with the full
+///     model (eq. 1, 5, 8, limits, ground) and x(t_f) compared with x_f.
+///  4. Verdict: reachable only with a certified path x_0 -> x_f (the witness). Otherwise
+///     "not shown reachable" (reachable = false) with the closest attempt: its terminal gaps
+///     and the swing sole's miss distance. The output-set test of step 2 (overlap: a sample of
+///     one set inside the other's convex hull, or a pair closer than min(K, overlap_gap_max);
+///     Prop. 2: d_H <= min(delta, K)) is reported (sets_meet, window) but decides nothing by
+///     itself: in the walk the sets "overlapped" on steps no path joined.
+
 /// Choosing the time line (see ReachConfig): for the biped's single support -> double support
 /// check, x_0 is a mid-swing state (swing sole in the air, moving toward the target; see
 /// swing_state.h) and x_f the touchdown state (KinematicFeasibility's q_f, qd_f = 0). The sets
@@ -90,13 +91,15 @@ struct ReachTimings {
 
 /// Everything a check returns.
 struct ReachResult {
-  bool reachable = false;
+  bool reachable = false;               ///< a certified witness path x_0 -> x_f exists
   std::string reason;                   ///< one sentence explaining the verdict
   std::vector<SampleSlice> forward;     ///< slice j at time j dt (slice 0 = x_0)
   std::vector<SampleSlice> backward;    ///< slice j at time t_f - j dt (slice 0 = x_f)
   std::vector<SliceComparison> window;  ///< the test (14) on [t_2, t_1]
-  int best = -1;                        ///< index into window of the witness slice
-  WitnessPath witness;
+  int best = -1;  ///< index into window of the closest (or first overlapping) slice
+  /// The output-set test (14) / Prop. 2 passed on some slice (informative, not the verdict).
+  bool sets_meet = false;
+  WitnessPath witness;  ///< certified when reachable, else the closest attempt
   ReachCounts counts;
   ReachTimings timings;
   double dt = 0.0;                       ///< time step used [s]

@@ -6,8 +6,11 @@
 ///   1. x_0 made consistent with the stance contact (contact_consistent_state.h), optionally;
 ///   2. the kinematic check of the foothold (Sec. III-B), x_f its IK posture;
 ///   3. the bidirectional reachability check (13)-(21), optionally;
-///   4. the transition OCP (22)-(23), seeded with the check's witness path: strict to the
-///      foothold when it is reachable, relaxed (to the closest reachable foothold) when not;
+///   4. the transition OCP (22)-(23), seeded with the check's witness path and held in its
+///      forward set's swing sole hulls (eq. 23, reachable_set_constraint.h): strict to the
+///      foothold when the witness is certified; otherwise strict first, as the local solve
+///      that may still certify the step (a converged strict OCP is a checked path x_0 ->
+///      x_f), then relaxed (to the closest reachable foothold) when it fails;
 ///   5. the fallback of a kinematically infeasible foothold: the nearest feasible one
 ///      (planner/nearest_feasible_foothold.h), the relaxed OCP toward the target, or an error.
 
@@ -52,7 +55,8 @@ enum class InfeasibleFootholdPolicy {
 
 /// Which OCP a kinematically feasible foothold gets.
 enum class OcpPolicy {
-  kByVerdict,  ///< strict when the check says reachable, relaxed otherwise (Sec. III-E)
+  kByVerdict,  ///< strict when the witness is certified; else strict (the local solve), then
+               ///< relaxed (Sec. III-E)
   kStrict,     ///< strict only
   kAuto,       ///< strict first, relaxed if it fails
 };
@@ -84,9 +88,16 @@ struct FootstepPlanRequest {
 
 /// What one footstep decided.
 struct FootstepTransition {
+  FootstepPlanRequest request;  ///< the request as given (for recorders and replays)
   bool kinematically_feasible = false;
+  /// A checked path x_0 -> x_f exists (see `certificate`).
   bool reachable = false;
-  std::string verdict;               ///< "reachable", "unreachable", "not_checked",
+  /// What certifies `reachable`: "bridge" (the check's witness, ReachResult::reachable),
+  /// "local_solve" (the strict OCP seeded with the check's closest bridged path and held in
+  /// its sets, converged through its 1 ms re-check), or "" (not shown reachable).
+  std::string certificate;
+  std::string verdict;               ///< "reachable", "unreachable" (not shown reachable),
+                                     ///< "not_checked",
                                      ///< "kinematically_infeasible"
   std::string reason;                ///< the check's and the OCP's explanations
   double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed
@@ -141,6 +152,8 @@ class FootstepTransitionPlanner {
   /// Steps 4-5 into out.trajectory and out.foothold.
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
                        const Touchdown& td, FootstepTransition& out) const;
+  /// The verdict of a checked, kinematically feasible step from its witness and its OCP.
+  void certify(FootstepTransition& out) const;
 
   std::shared_ptr<const RobotModel> model_;
   ContactConfig contact_;

@@ -78,10 +78,20 @@ struct StepRecord {
   bool touched_down = false;
   std::string verdict = "not_checked";  ///< reachability verdict (proposed mode)
   double hausdorff_distance = -1.0;     ///< [m], -1 when not computed
-  double check_time_s = 0.0;            ///< reachability check wall time
-  double ocp_time_s = 0.0;              ///< OCP wall time
-  std::string ocp_status = "none";      ///< "converged", "relaxed", "failed" (proposed mode)
-  std::string reason;                   ///< the check's and the OCP's explanations
+  /// What certifies a "reachable" verdict: "bridge" or "local_solve"
+  /// (FootstepTransition::certificate), "" otherwise.
+  std::string certificate;
+  /// The check's bridged witness (proposed mode, kinematically feasible footholds): its
+  /// largest violation along the path (reach/witness_path.h), the full-state gap of its
+  /// junction pair before bridging and where it ended against x_f (|q|_inf [m, rad],
+  /// |qd|_inf [m/s, rad/s]); -1 when there is no witness.
+  double witness_violation = -1.0;
+  double junction_position_gap = -1.0, junction_velocity_gap = -1.0;
+  double terminal_position_gap = -1.0, terminal_velocity_gap = -1.0;
+  double check_time_s = 0.0;        ///< reachability check wall time
+  double ocp_time_s = 0.0;          ///< OCP wall time
+  std::string ocp_status = "none";  ///< "converged", "relaxed", "failed" (proposed mode)
+  std::string reason;               ///< the check's and the OCP's explanations
 };
 
 /// What the loop sees at one control tick (for recorders and the ROS layer).

@@ -1,0 +1,23 @@
+#pragma once
+/// \file reachable_set_constraint.h
+/// The reachable sets as the OCP's constraint (eq. 23): per forward slice of a check, the 2-D
+/// convex hull of the swing sole's (x, y) outputs, A y <= b, grown by a margin, as a
+/// ReachableSlice at the slice's time. Only the slices up to the witness's junction are used:
+/// the certified witness passes through a sample of each of them, so it is a feasible point of
+/// these rows, while after the junction the witness leaves the sampled sets (its bridge
+/// closes the gap to x_f) and the sampled hulls under-approximate the true reachable set.
+
+#include <vector>
+
+#include "reach_trajopt/ocp/transition_request.h"
+#include "reach_trajopt/reach/reachability_analyzer.h"
+
+namespace reach_trajopt {
+
+/// The slices of `result` at times 0 < t <= t_junction (the witness's bridge start; the whole
+/// forward set without a witness), each hull grown by `margin` [m]. Empty when the output has
+/// no x and y axes or a slice's hull is degenerate (that slice is skipped).
+std::vector<ReachableSlice> reachableSetConstraint(const ReachResult& result,
+                                                   const std::string& output_axes, double margin);
+
+}  // namespace reach_trajopt

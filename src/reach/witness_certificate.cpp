@@ -1,0 +1,209 @@
+/// \file witness_certificate.cpp
+/// Junction candidates, bridged witness paths and their certificate (see the header).
+
+#include "reach_trajopt/reach/witness_certificate.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "reach_trajopt/reach/forward_step.h"
+#include "reach_trajopt/reach/junction_bridge.h"
+#include "reach_trajopt/reach/set_propagation.h"
+
+namespace reach_trajopt {
+
+namespace {
+
+/// Bridge-effort features [6 q / T^2; 4 qd / T] of every sample of a slice (2 n_q x size).
+Eigen::MatrixXd effortFeatures(const std::vector<SampleSlice>& slices,
+                               PropagationDirection direction, double dt, bool semi_implicit,
+                               int slice, double T) {
+  const SampleSlice& s = slices[slice];
+  const int n = static_cast<int>(s.qd.rows());
+  Eigen::MatrixXd f(2 * n, s.size());
+  for (int i = 0; i < s.size(); ++i) {
+    f.col(i).head(n) =
+        (6.0 / (T * T)) * sampleConfigurationOf(slices, direction, dt, semi_implicit, slice, i);
+    f.col(i).tail(n) = (4.0 / T) * s.qd.col(i);
+  }
+  return f;
+}
+
+bool before(const JunctionCandidate& a, const JunctionCandidate& b) {
+  return std::tie(a.effort, a.window_index, a.forward_sample, a.backward_sample) <
+         std::tie(b.effort, b.window_index, b.forward_sample, b.backward_sample);
+}
+
+/// The `count` lowest-effort pairs of one window slice.
+std::vector<JunctionCandidate> sliceCandidates(const ReachContext& ctx,
+                                               const std::vector<SampleSlice>& forward,
+                                               const std::vector<SampleSlice>& backward,
+                                               const SliceComparison& c, int window_index,
+                                               int count) {
+  const ReachConfig& cfg = ctx.config;
+  const double T = cfg.horizon - c.time;
+  std::vector<JunctionCandidate> out;
+  // The bridge needs two steps for its deadbeat end.
+  if (T < 2.0 * cfg.dt - 1e-12) return out;
+  if (forward[c.forward_slice].size() == 0 || backward[c.backward_slice].size() == 0) return out;
+  const Eigen::MatrixXd F = effortFeatures(forward, PropagationDirection::kForward, cfg.dt,
+                                           cfg.semiImplicit(), c.forward_slice, T);
+  const Eigen::MatrixXd B =
+      effortFeatures(backward, PropagationDirection::kBackward, cfg.dt, true, c.backward_slice, T);
+  // |f - g|^2 = |f|^2 + |g|^2 - 2 f.g for every pair.
+  Eigen::MatrixXd D = -2.0 * F.transpose() * B;
+  D.colwise() += F.colwise().squaredNorm().transpose();
+  D.rowwise() += B.colwise().squaredNorm();
+  std::vector<JunctionCandidate> all;
+  all.reserve(static_cast<size_t>(D.size()));
+  for (int l = 0; l < D.cols(); ++l)
+    for (int i = 0; i < D.rows(); ++i) all.push_back({window_index, i, l, std::max(0.0, D(i, l))});
+  const size_t keep = std::min(all.size(), static_cast<size_t>(count));
+  std::partial_sort(all.begin(), all.begin() + static_cast<long>(keep), all.end(), before);
+  all.resize(keep);
+  return all;
+}
+
+/// x_0 -> a through the forward set, then the bridge from a along the backward chain from b
+/// (direct: along the cubic from a to x_f); measured (not yet judged).
+WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
+                        const std::vector<SampleSlice>& forward,
+                        const std::vector<SampleSlice>& backward, const SliceComparison& c,
+                        const JunctionCandidate& cand, bool semi_implicit, bool direct) {
+  const double dt = ctx.config.dt;
+  const int n = ctx.n;
+  std::vector<std::pair<int, int>> fchain =
+      chainToRoot(forward, c.forward_slice, cand.forward_sample);
+  std::reverse(fchain.begin(), fchain.end());
+  const std::vector<std::pair<int, int>> bchain =
+      chainToRoot(backward, c.backward_slice, cand.backward_sample);
+  const int N = static_cast<int>(bchain.size()) - 1;  // bridge steps
+  BackwardChain chain;
+  chain.q.resize(n, N + 1);
+  chain.qd.resize(n, N + 1);
+  chain.u.resize(ctx.nu, N);
+  for (int k = 0; k <= N; ++k) {
+    const auto [s, i] = bchain[k];
+    chain.q.col(k) =
+        sampleConfigurationOf(backward, PropagationDirection::kBackward, dt, true, s, i);
+    chain.qd.col(k) = backward[s].qd.col(i);
+    // A backward sample's torque acts during its step toward its parent (one step later).
+    if (k < N) chain.u.col(k) = backward[s].u.col(i);
+  }
+  const int F = static_cast<int>(fchain.size());
+  WitnessPath w;
+  Eigen::MatrixXd q_fwd(n, F);
+  for (int k = 0; k < F; ++k)
+    q_fwd.col(k) = sampleConfigurationOf(forward, PropagationDirection::kForward, dt, semi_implicit,
+                                         fchain[k].first, fchain[k].second);
+  const auto [sa, ia] = fchain.back();
+  if (direct)
+    chain = hermiteChain(q_fwd.col(F - 1), forward[sa].qd.col(ia), chain.q.col(N), chain.qd.col(N),
+                         N, dt, forward[sa].u.col(ia));
+  const BridgeSegment seg =
+      bridgeJunction(ctx, step, q_fwd.col(F - 1), forward[sa].qd.col(ia), chain);
+  const int L = F + seg.steps_done;
+  w.q.resize(n, L);
+  w.qd.resize(n, L);
+  w.output.resize(ctx.ny(), L);
+  w.u = Eigen::MatrixXd::Zero(ctx.nu, L - 1);
+  w.lambda = Eigen::MatrixXd::Zero(ctx.m(), L - 1);
+  w.semi_implicit_step.assign(L - 1, ctx.config.semiImplicit() ? 1 : 0);
+  for (int k = 0; k < F; ++k) {
+    const auto [s, i] = fchain[k];
+    w.time.push_back(forward[s].time);
+    w.q.col(k) = q_fwd.col(k);
+    w.qd.col(k) = forward[s].qd.col(i);
+    w.output.col(k) = forward[s].output.col(i);
+    if (k > 0) {
+      w.u.col(k - 1) = forward[s].u.col(i);
+      w.lambda.col(k - 1) = forward[s].lambda.col(i);
+      w.semi_implicit_step[k - 1] = semi_implicit ? 1 : 0;
+    }
+  }
+  for (int j = 1; j <= seg.steps_done; ++j) {
+    const int k = F - 1 + j;
+    w.time.push_back(forward[sa].time + j * dt);
+    w.q.col(k) = seg.q.col(j);
+    w.qd.col(k) = seg.qd.col(j);
+    w.output.col(k) = seg.output.col(j);
+    w.u.col(k - 1) = seg.u.col(j - 1);
+    w.lambda.col(k - 1) = seg.lambda.col(j - 1);
+  }
+  w.junction = -1;
+  w.bridge_start = F - 1;
+  const SampleSlice& b = backward[c.backward_slice];
+  w.output_gap = (forward[sa].output.col(ia) - b.output.col(cand.backward_sample)).norm();
+  w.position_gap = (q_fwd.col(F - 1) - chain.q.col(0)).cwiseAbs().maxCoeff();
+  w.velocity_gap = (forward[sa].qd.col(ia) - chain.qd.col(0)).cwiseAbs().maxCoeff();
+  if (seg.completed()) {
+    w.terminal_position_gap = (w.q.col(L - 1) - chain.q.col(N)).cwiseAbs().maxCoeff();
+    w.terminal_velocity_gap = (w.qd.col(L - 1) - chain.qd.col(N)).cwiseAbs().maxCoeff();
+    w.terminal_output_gap = (w.output.col(L - 1) - backward[0].output.col(0)).norm();
+  } else {
+    w.terminal_position_gap = w.terminal_velocity_gap = w.terminal_output_gap = HUGE_VAL;
+  }
+  measurePath(ctx, w);
+  w.valid = true;
+  w.certified = seg.completed() && withinCertificate(ctx.config, w);
+  return w;
+}
+
+}  // namespace
+
+std::vector<JunctionCandidate> junctionCandidates(const ReachContext& ctx,
+                                                  const std::vector<SampleSlice>& forward,
+                                                  const std::vector<SampleSlice>& backward,
+                                                  const std::vector<SliceComparison>& window,
+                                                  int count) {
+  const int slices = static_cast<int>(window.size());
+  std::vector<std::vector<JunctionCandidate>> per_slice(slices);
+  const int threads = ctx.config.threads > 0 ? ctx.config.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+  for (int k = 0; k < slices; ++k)
+    per_slice[k] = sliceCandidates(ctx, forward, backward, window[k], k, count);
+  std::vector<JunctionCandidate> all;
+  for (const auto& v : per_slice) all.insert(all.end(), v.begin(), v.end());
+  std::sort(all.begin(), all.end(), before);
+  if (static_cast<int>(all.size()) > count) all.resize(count);
+  return all;
+}
+
+bool withinCertificate(const ReachConfig& config, const WitnessPath& w) {
+  const PathViolation& v = w.violation;
+  return w.bridge_start >= 0 && v.maxWithoutContact() <= config.certificate_tolerance &&
+         v.contact <= config.contact_tolerance &&
+         v.contact_velocity <= config.certificate_contact_velocity_tolerance &&
+         w.terminal_position_gap <= config.terminal_position_tolerance &&
+         w.terminal_velocity_gap <= config.terminal_velocity_tolerance;
+}
+
+WitnessPath certifyWitness(const ReachContext& ctx, const std::vector<SampleSlice>& forward,
+                           const std::vector<SampleSlice>& backward,
+                           const std::vector<SliceComparison>& window, bool semi_implicit) {
+  const std::vector<JunctionCandidate> candidates =
+      junctionCandidates(ctx, forward, backward, window, ctx.config.certificate_candidates);
+  ForwardStep step(ctx, junctionBridgeCost());
+  WitnessPath best;
+  int tried = 0;
+  for (const JunctionCandidate& cand : candidates) {
+    ++tried;
+    for (bool direct : {false, true}) {
+      WitnessPath w = bridgedPath(ctx, step, forward, backward, window[cand.window_index], cand,
+                                  semi_implicit, direct);
+      w.candidates_tried = tried;
+      if (w.certified) return w;
+      // Keep the attempt that ended closest to x_f (a completed bridge before a stopped one).
+      if (!best.valid || w.terminal_position_gap < best.terminal_position_gap ||
+          (std::isinf(best.terminal_position_gap) && w.time.size() > best.time.size()))
+        best = std::move(w);
+    }
+  }
+  best.candidates_tried = tried;
+  return best;
+}
+
+}  // namespace reach_trajopt

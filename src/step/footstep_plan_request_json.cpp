@@ -1,0 +1,90 @@
+/// \file footstep_plan_request_json.cpp
+/// FootstepPlanRequest to and from JSON (see the header).
+
+#include "reach_trajopt/step/footstep_plan_request_json.h"
+
+#include <sstream>
+#include <vector>
+
+#include "reach_trajopt/ocp/transition_request.h"
+
+namespace reach_trajopt {
+
+namespace {
+
+std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+}  // namespace
+
+nlohmann::json footstepPlanRequestJson(const FootstepPlanRequest& r) {
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = r.stance_pose.linear();
+  nlohmann::json j = {{"stance", r.stance == Side::kLeft ? "left" : "right"},
+                      {"stance_pose",
+                       {{"position", asVector(r.stance_pose.translation())},
+                        {"rotation", std::vector<double>(R.data(), R.data() + 9)}}},
+                      {"target", asVector(r.target)},
+                      {"q", asVector(r.q)},
+                      {"qd", asVector(r.qd)}};
+  if (r.target_yaw) j["target_yaw"] = *r.target_yaw;
+  if (r.touchdown_com)
+    j["touchdown_com"] = {{"p", asVector(r.touchdown_com->p)},
+                          {"pd", asVector(r.touchdown_com->pd)}};
+  if (r.reach) j["reach_horizon"] = r.reach->horizon;
+  return j;
+}
+
+FootstepPlanRequest readFootstepPlanRequest(const JsonReader& r, int nq,
+                                            const ReachConfig& base_reach,
+                                            const FootstepPlanRequest& base) {
+  try {
+    r.requireObject("a footstep request object");
+    r.requireOnlyKeys({"stance", "stance_pose", "target", "target_yaw", "q", "qd", "touchdown_com",
+                       "reach_horizon"});
+    FootstepPlanRequest out = base;
+    out.stance = r.at("stance").choice({"left", "right"}) == "left" ? Side::kLeft : Side::kRight;
+    const JsonReader pose = r.at("stance_pose");
+    pose.requireObject("{\"position\": [x, y, z], \"rotation\": [9 numbers]}");
+    pose.requireOnlyKeys({"position", "rotation"});
+    const Eigen::VectorXd p = pose.vector("position", 3);
+    const Eigen::VectorXd rot = pose.vector("rotation", 9);
+    const Eigen::Matrix3d R =
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rot.data());
+    if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || R.determinant() < 0.0)
+      pose.at("rotation").fail("expected a rotation matrix (orthonormal, determinant 1)");
+    out.stance_pose = Eigen::Isometry3d::Identity();
+    out.stance_pose.linear() = R;
+    out.stance_pose.translation() = p;
+    out.target = r.vector("target", 3);
+    double yaw = 0.0;
+    if (r.optionalNumber("target_yaw", yaw)) out.target_yaw = yaw;
+    out.q = r.vector("q", nq);
+    out.qd = r.vector("qd", nq);
+    if (r.has("touchdown_com")) {
+      const JsonReader c = r.at("touchdown_com");
+      c.requireObject("{\"p\": [x, y], \"pd\": [vx, vy]}");
+      c.requireOnlyKeys({"p", "pd"});
+      out.touchdown_com = LipmState{c.vector("p", 2), c.vector("pd", 2)};
+    }
+    double horizon = 0.0;
+    if (r.optionalNumber("reach_horizon", horizon)) {
+      if (!(horizon > 0.0) || horizon > kMaxTransitionHorizon) {
+        std::ostringstream os;
+        os << "expected a horizon in (0, " << kMaxTransitionHorizon << "] s, got " << horizon;
+        r.at("reach_horizon").fail(os.str());
+      }
+      ReachConfig reach = base_reach;
+      reach.horizon = horizon;
+      reach.validate();
+      out.reach = reach;
+    }
+    return out;
+  } catch (const RequestError&) {
+    throw;
+  } catch (const ReachError& e) {
+    throw RequestError(e.what());
+  }
+}
+
+}  // namespace reach_trajopt
