@@ -170,6 +170,45 @@ std::string worstFamily(const ConstraintViolations& v) {
   return os.str();
 }
 
+/// The hull slices of a request: times in [0, T], sizes, finite, no zero normal.
+void validateSlices(const TransitionRequest& r) {
+  const double t_tol = 1e-9 + 1e-9 * r.horizon;
+  for (size_t i = 0; i < r.slices.size(); ++i) {
+    const ReachableSlice& s = r.slices[i];
+    const std::string what = "TransitionOcp: slice " + std::to_string(i);
+    if (!std::isfinite(s.time) || s.time < -t_tol || s.time > r.horizon + t_tol) {
+      std::ostringstream os;
+      os << what << ": time " << s.time << " s outside [0, " << r.horizon << "] s";
+      throw RequestError(os.str());
+    }
+    if (s.A.rows() == 0) throw RequestError(what + ": empty hull");
+    requireSize((what + ": b").c_str(), s.b.size(), s.A.rows());
+    requireFinite((what + ": A").c_str(), s.A);
+    requireFinite((what + ": b").c_str(), s.b);
+    for (Eigen::Index k = 0; k < s.A.rows(); ++k) {
+      if (s.A.row(k).norm() < 1e-12) throw RequestError(what + ": zero normal in A");
+    }
+  }
+}
+
+/// The seed path of a request: sizes (nq rows), finite, times increasing in [0, T].
+void validateSeed(const TransitionRequest& r, int nq) {
+  const double t_tol = 1e-9 + 1e-9 * r.horizon;
+  requireSize("TransitionOcp: seed q columns", r.seed.q.cols(), r.seed.time.size());
+  requireSize("TransitionOcp: seed q rows", r.seed.q.rows(), nq);
+  requireFinite("TransitionOcp: seed time", r.seed.time);
+  requireFinite("TransitionOcp: seed q", r.seed.q);
+  for (Eigen::Index k = 0; k < r.seed.time.size(); ++k) {
+    if (r.seed.time[k] < -t_tol || r.seed.time[k] > r.horizon + t_tol ||
+        (k > 0 && r.seed.time[k] < r.seed.time[k - 1])) {
+      std::ostringstream os;
+      os << "TransitionOcp: seed time " << r.seed.time[k] << " s at index " << k
+         << " is outside [0, " << r.horizon << "] s or not increasing";
+      throw RequestError(os.str());
+    }
+  }
+}
+
 }  // namespace
 
 TransitionOcp::TransitionOcp(std::shared_ptr<const RobotModel> model,
@@ -217,36 +256,8 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
   } catch (const ReachError& e) {
     throw RequestError(std::string("TransitionOcp: stance_pose / swing_target: ") + e.what());
   }
-  const double t_tol = 1e-9 + 1e-9 * r.horizon;
-  for (size_t i = 0; i < r.slices.size(); ++i) {
-    const ReachableSlice& s = r.slices[i];
-    const std::string what = "TransitionOcp: slice " + std::to_string(i);
-    if (!std::isfinite(s.time) || s.time < -t_tol || s.time > r.horizon + t_tol) {
-      os << what << ": time " << s.time << " s outside [0, " << r.horizon << "] s";
-      throw RequestError(os.str());
-    }
-    if (s.A.rows() == 0) throw RequestError(what + ": empty hull");
-    requireSize((what + ": b").c_str(), s.b.size(), s.A.rows());
-    requireFinite((what + ": A").c_str(), s.A);
-    requireFinite((what + ": b").c_str(), s.b);
-    for (Eigen::Index k = 0; k < s.A.rows(); ++k) {
-      if (s.A.row(k).norm() < 1e-12) throw RequestError(what + ": zero normal in A");
-    }
-  }
-  if (!r.seed.empty()) {
-    requireSize("TransitionOcp: seed q columns", r.seed.q.cols(), r.seed.time.size());
-    requireSize("TransitionOcp: seed q rows", r.seed.q.rows(), nq);
-    requireFinite("TransitionOcp: seed time", r.seed.time);
-    requireFinite("TransitionOcp: seed q", r.seed.q);
-    for (Eigen::Index k = 0; k < r.seed.time.size(); ++k) {
-      if (r.seed.time[k] < -t_tol || r.seed.time[k] > r.horizon + t_tol ||
-          (k > 0 && r.seed.time[k] < r.seed.time[k - 1])) {
-        os << "TransitionOcp: seed time " << r.seed.time[k] << " s at index " << k
-           << " is outside [0, " << r.horizon << "] s or not increasing";
-        throw RequestError(os.str());
-      }
-    }
-  }
+  validateSlices(r);
+  if (!r.seed.empty()) validateSeed(r, nq);
   // x_0 on its stance contact.
   Workspace ws(m);
   m.update(ws, r.q0, r.qd0);
