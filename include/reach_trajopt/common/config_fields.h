@@ -30,13 +30,16 @@
 ///   MyConfig MyConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
 ///
 /// then add `MyConfig::fields().table()` to parameterTables() (walk/parameter_tables.cpp) and
-/// regenerate docs/parameters.md. Member types: double, int, unsigned, bool, std::string,
-/// std::vector<double>, fixed-size Eigen vectors (the YAML sequence must have their size), and
-/// enums through choice(). read() ends with validate(), its error prefixed by the section's
+/// regenerate docs/parameters.md. Member types: double, int, bool, std::string,
+/// std::vector<double>, unsigned and std::uint64_t (seeds: read as an int, negative is an
+/// error), fixed-size Eigen vectors (the YAML sequence must have their size), enums through
+/// choice(), anything else through custom(). read(section, base) reads over `base` (missing
+/// keys keep its values) and ends with validate(), its error prefixed by the section's
 /// location (validatedIn). Range checks stay in validate(): the `description` says them in
-/// words for the table.
+/// words for the table. A key is spelled only in its add() call; fromYaml() is fields().read().
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -98,17 +101,18 @@ struct Value<int> {
   static bool read(const YamlSection& s, const std::string& k, int& v) { return s.read(k, v); }
   static std::string text(int v) { return std::to_string(v); }
 };
-/// Read as an int and converted, as the seeds always were (a negative value wraps).
-template <>
-struct Value<unsigned> {
-  static const char* type() { return "integer"; }
-  static bool read(const YamlSection& s, const std::string& k, unsigned& v) {
+/// Seeds: read as an int, a negative value is an error ("<where>: must be >= 0").
+template <typename U>
+struct Value<U, std::enable_if_t<std::is_same_v<U, unsigned> || std::is_same_v<U, std::uint64_t>>> {
+  static const char* type() { return "integer >= 0"; }
+  static bool read(const YamlSection& s, const std::string& k, U& v) {
     int i = static_cast<int>(v);
     if (!s.read(k, i)) return false;
-    v = static_cast<unsigned>(i);
+    if (i < 0) throw ConfigError(s.where(k) + ": must be >= 0");
+    v = static_cast<U>(i);
     return true;
   }
-  static std::string text(unsigned v) { return std::to_string(v); }
+  static std::string text(U v) { return std::to_string(v); }
 };
 template <>
 struct Value<bool> {
@@ -208,6 +212,23 @@ class ConfigFields {
         if (n.second == c.*member) return n.first;
       return std::string("?");
     };
+    fields_.push_back(std::move(f));
+    return *this;
+  }
+
+  /// A field read its own way (a unit conversion, a combined check): `read` runs only when
+  /// the key is present and throws ConfigError naming s.where(key) on a bad value; `text`
+  /// shows the member's value for the table; `type` names the YAML type for the table.
+  ConfigFields& custom(std::string key, std::string type,
+                       std::function<void(const YamlSection&, const std::string&, Config&)> read,
+                       std::function<std::string(const Config&)> text, std::string unit,
+                       std::string description) {
+    Field f;
+    f.row = {std::move(key), std::move(type), "", std::move(unit), std::move(description)};
+    f.read = [read = std::move(read)](const YamlSection& s, const std::string& k, Config& c) {
+      if (s.has(k)) read(s, k, c);
+    };
+    f.text = std::move(text);
     fields_.push_back(std::move(f));
     return *this;
   }
