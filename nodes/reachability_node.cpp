@@ -45,11 +45,11 @@ class ReachabilityNode {
           // The window stays at the same fractions of the horizon (a no-op for duration 0).
           ReachConfig config = rb::reachConfigForDuration(s_.reach, r.duration);
           if (req.forward_samples > static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
-            throw ReachError("forward_samples " + std::to_string(req.forward_samples) +
-                             " is over the limit of " +
-                             std::to_string(ReachLimits::kMaxInitialSamples));
+            throw RequestError("forward_samples " + std::to_string(req.forward_samples) +
+                               " is over the limit of " +
+                               std::to_string(ReachLimits::kMaxInitialSamples));
           if (req.backward_samples > 0 && req.backward_samples != req.forward_samples)
-            throw ReachError(
+            throw RequestError(
                 "backward_samples: both directions draw initial_samples; set "
                 "forward_samples only (or equal)");
           if (req.forward_samples > 0)

@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
     int int_value = 0;
     if (pnh.getParam("steps", int_value)) walk.steps = int_value;
     if (pnh.getParam("seed", int_value)) {
-      if (int_value < 0) throw ReachError("~seed must be >= 0");
+      if (int_value < 0) throw ConfigError("~seed must be >= 0");
       walk.seed = static_cast<unsigned>(int_value);
     }
     pnh.getParam("forward_speed", walk.forward_speed);
@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     const bool exit_when_done = param(pnh, "exit_when_done", true);
     const bool reachability_samples = param(pnh, "reachability_samples", true);
     if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
-      throw ReachError("~publish_period, ~clock_period and ~marker_period must be > 0");
+      throw ConfigError("~publish_period, ~clock_period and ~marker_period must be > 0");
 
     const rb::TempUrdf urdf(urdf_xml);
     WalkingExperiment experiment(urdf.path(), walk, tvr, contact, wbc, sim, &proposed);

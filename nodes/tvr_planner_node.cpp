@@ -60,7 +60,7 @@ class TvrPlannerNode {
     const Side stance = mode.stance();
     Eigen::Vector3d soles[2];
     if (contact_->sole_poses.size() != 2)
-      throw ReachError("contact_state must carry the two sole poses (left, right)");
+      throw RequestError("contact_state must carry the two sole poses (left, right)");
     for (int i = 0; i < 2; ++i) soles[i] = rb::fromPointMsg(contact_->sole_poses[i].position);
     LipmState now;
     now.p = rb::fromPointMsg(com.position).head<2>();

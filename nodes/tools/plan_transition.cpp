@@ -38,6 +38,7 @@
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 
 using reach_trajopt::ReachError;
 using json = nlohmann::json;
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw ReachError(a + ": missing value");
+        if (i + 1 >= argc) throw RequestError(a + ": missing value");
         return argv[++i];
       };
       if (a == "--urdf") {
@@ -96,10 +97,10 @@ int main(int argc, char** argv) {
     if (!config.empty()) {
       const YamlSection yaml = YamlSection::loadFile(config);
       if (yaml.has("contact")) contact_cfg = ContactConfig::fromYaml(yaml.section("contact"));
-      if (yaml.has("ocp")) ocp_cfg = TransitionOcpConfig::fromYaml(yaml.section("ocp"));
-      if (yaml.has("kinematic_feasibility")) {
-        kf_cfg = KinematicFeasibilityConfig::fromYaml(yaml.section("kinematic_feasibility"));
-      }
+      // The OCP's landing height is the IK's pelvis height (FootstepPlannerConfig::fromYaml).
+      const FootstepPlannerConfig stages = FootstepPlannerConfig::fromYaml(yaml);
+      ocp_cfg = stages.ocp;
+      kf_cfg = stages.kinematics;
     }
 
     TransitionRequestJson in = readTransitionRequest(JsonReader(doc, input), model->nq());
@@ -110,7 +111,7 @@ int main(int argc, char** argv) {
       // Planning to a foothold the IK rejected (e.g. inside the stance sole) would "succeed"
       // with a relaxed landing elsewhere: refuse it, as the services do.
       if (!ik.feasible)
-        throw ReachError("swing_target: kinematically infeasible foothold: " + ik.reason);
+        throw RequestError("swing_target: kinematically infeasible foothold: " + ik.reason);
       r.qf = ik.q_f;
       r.qdf = ik.qd_f;
     }

@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
       os << "--samples: the check would print about " << config.estimatedQps()
          << " samples, over the limit of " << kMaxPrintedSamples
          << " (docs/limits.md): lower initial_samples or max_boundary";
-      throw ReachError(os.str());
+      throw RequestError(os.str());
     }
     const bool contacts = req.mode != "none";
     const ContactMode mode = contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};

@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     if (!push.empty()) {
       const auto comma = push.find(',');
       if (comma == std::string::npos)
-        throw ReachError("--push: expected vx,vy [m/s], got '" + push + "'");
+        throw RequestError("--push: expected vx,vy [m/s], got '" + push + "'");
       walk.initial_com_velocity =
           Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
                           parseDoubleOption("--push", push.substr(comma + 1)));

@@ -24,11 +24,11 @@ double parseDoubleOption(const std::string& option, const std::string& text, dou
   if (allow_nonfinite && !finite && end != s && *end == '\0') return v;
   if (text.empty() || end == s || *end != '\0' || !finite) {
     os << option << ": expected a finite number, got '" << text << "'";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   if (v < lo || v > hi) {
     os << option << ": expected a number in [" << lo << ", " << hi << "], got " << text;
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   return v;
 }
@@ -42,7 +42,7 @@ long long parseIntOption(const std::string& option, const std::string& text, lon
   if (text.empty() || end == s || *end != '\0' || errno == ERANGE || v < lo || v > hi) {
     std::ostringstream os;
     os << option << ": expected an integer in [" << lo << ", " << hi << "], got '" << text << "'";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   return v;
 }

@@ -20,7 +20,7 @@ json JsonReader::parse(const std::string& text, const std::string& source) {
     std::ostringstream os;
     os << source << ": request of " << text.size() << " bytes exceeds the limit of "
        << kMaxJsonRequestBytes << " bytes";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   try {
     return json::parse(text);
@@ -30,7 +30,7 @@ json JsonReader::parse(const std::string& text, const std::string& source) {
     const std::size_t bracket = what.find("] ");
     if (what.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos)
       what = what.substr(bracket + 2);
-    throw ReachError(source + ": not valid JSON: " + what);
+    throw RequestError(source + ": not valid JSON: " + what);
   }
 }
 
@@ -41,7 +41,7 @@ json JsonReader::parseFile(const std::string& path) {
     return parse(text, "<stdin>");
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ReachError("cannot open request file '" + path + "'");
+  if (!in) throw RequestError("cannot open request file '" + path + "'");
   text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   return parse(text, path);
 }
@@ -55,7 +55,7 @@ std::string JsonReader::where() const {
 }
 
 void JsonReader::fail(const std::string& message) const {
-  throw ReachError(where() + ": " + message);
+  throw RequestError(where() + ": " + message);
 }
 
 std::string JsonReader::typeName() const {
@@ -95,7 +95,7 @@ void JsonReader::requireOnlyKeys(const std::vector<std::string>& allowed) const 
     os << where() << (path_.empty() ? ": " : ".") << it.key() << ": unknown key (known:";
     for (const auto& a : allowed) os << " " << a;
     os << ")";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
 }
 
@@ -106,7 +106,7 @@ bool JsonReader::has(const std::string& key) const {
 JsonReader JsonReader::at(const std::string& key) const {
   requireObject();
   const auto it = value_->find(key);
-  if (it == value_->end()) throw ReachError(source_ + ": " + childPath(key) + ": missing key");
+  if (it == value_->end()) throw RequestError(source_ + ": " + childPath(key) + ": missing key");
   return JsonReader(*it, source_, childPath(key));
 }
 

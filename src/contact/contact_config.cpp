@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
@@ -19,23 +19,30 @@ void ContactConfig::validate() const {
   requirePositive("half_length", half_length);
   requirePositive("half_width", half_width);
   if (left_sole_frame.empty() || right_sole_frame.empty()) {
-    throw ReachError("ContactConfig: sole frame names must not be empty");
+    throw ConfigError("ContactConfig: sole frame names must not be empty");
   }
   if (left_sole_frame == right_sole_frame) {
-    throw ReachError("ContactConfig: left and right sole frames are both '" + left_sole_frame +
-                     "'");
+    throw ConfigError("ContactConfig: left and right sole frames are both '" + left_sole_frame +
+                      "'");
   }
 }
 
-ContactConfig ContactConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"mu", "half_length", "half_width", "left_sole_frame", "right_sole_frame"});
-  ContactConfig c;
-  s.read("mu", c.mu);
-  s.read("half_length", c.half_length);
-  s.read("half_width", c.half_width);
-  s.read("left_sole_frame", c.left_sole_frame);
-  s.read("right_sole_frame", c.right_sole_frame);
-  return validatedIn(s, c);
+const ConfigFields<ContactConfig>& ContactConfig::fields() {
+  using C = ContactConfig;
+  static const ConfigFields<C> f =
+      ConfigFields<C>("ContactConfig", "contact", "include/reach_trajopt/contact/contact_config.h",
+                      "Contact wrench cone (eq. 7-8) and the sole frames of the contact "
+                      "constraints (eq. 5); the only place the sole frames are named.")
+          .add("mu", &C::mu, "", "friction coefficient, > 0")
+          .add("half_length", &C::half_length, "m", "X: sole half-length along its x axis, > 0")
+          .add("half_width", &C::half_width, "m", "Y: sole half-width along its y axis, > 0")
+          .add("left_sole_frame", &C::left_sole_frame, "",
+               "frame at the left sole centre, z out of the sole")
+          .add("right_sole_frame", &C::right_sole_frame, "",
+               "frame at the right sole centre (not the left one)");
+  return f;
 }
+
+ContactConfig ContactConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
 
 }  // namespace reach_trajopt

@@ -18,7 +18,7 @@ void checkPose(const Eigen::Isometry3d& pose) {
   requireFinite("ContactConstraint: planned pose", pose.matrix());
   const Eigen::Matrix3d R = pose.linear();
   if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-9) || R.determinant() < 0) {
-    throw ReachError("ContactConstraint: planned pose rotation is not a proper rotation matrix");
+    throw RequestError("ContactConstraint: planned pose rotation is not a proper rotation matrix");
   }
 }
 
@@ -33,7 +33,7 @@ Vector6d ContactConstraintTerms::phiddot(const Eigen::Ref<const Eigen::VectorXd>
 
 ContactConstraint::ContactConstraint(FrameId frame, const Eigen::Isometry3d& planned_pose)
     : frame_(frame), planned_(planned_pose) {
-  if (frame < 0) throw ReachError("ContactConstraint: invalid frame id " + std::to_string(frame));
+  if (frame < 0) throw ModelError("ContactConstraint: invalid frame id " + std::to_string(frame));
   checkPose(planned_pose);
 }
 

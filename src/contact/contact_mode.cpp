@@ -22,7 +22,7 @@ ContactMode ContactMode::fromName(const std::string& name) {
   if (name == "DS") return doubleSupport();
   if (name == "SS-L") return singleSupport(Side::kLeft);
   if (name == "SS-R") return singleSupport(Side::kRight);
-  throw ReachError("unknown contact mode '" + name + "' (expected DS, SS-L or SS-R)");
+  throw RequestError("unknown contact mode '" + name + "' (expected DS, SS-L or SS-R)");
 }
 
 }  // namespace reach_trajopt

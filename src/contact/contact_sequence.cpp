@@ -13,7 +13,7 @@ ContactSequence::ContactSequence(std::vector<ContactPhase> phases) {
 
 ContactSequence ContactSequence::walking(int steps, Side first_stance, double ss_duration,
                                          double ds_duration) {
-  if (steps < 0) throw ReachError("ContactSequence::walking: steps must be >= 0");
+  if (steps < 0) throw RequestError("ContactSequence::walking: steps must be >= 0");
   ContactSequence seq;
   seq.append({ContactMode::doubleSupport(), ds_duration});
   Side stance = first_stance;
@@ -31,23 +31,23 @@ void ContactSequence::append(const ContactPhase& phase) {
     std::ostringstream os;
     os << "contact sequence phase " << i << " (" << phase.mode.name()
        << "): duration must be positive and finite, got " << phase.duration << " s";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   if (phase.mode.contactCount() == 0) {
-    throw ReachError("contact sequence phase " + std::to_string(i) +
-                     ": flight phases are not supported (no sole in contact)");
+    throw RequestError("contact sequence phase " + std::to_string(i) +
+                       ": flight phases are not supported (no sole in contact)");
   }
   if (!phases_.empty()) {
     const ContactMode& prev = phases_.back().mode;
     if (prev == phase.mode) {
-      throw ReachError("contact sequence phase " + std::to_string(i) + ": mode " +
-                       phase.mode.name() + " repeats the previous phase (merge the durations)");
+      throw RequestError("contact sequence phase " + std::to_string(i) + ": mode " +
+                         phase.mode.name() + " repeats the previous phase (merge the durations)");
     }
     const bool keeps_contact = (prev.left && phase.mode.left) || (prev.right && phase.mode.right);
     if (!keeps_contact) {
-      throw ReachError("contact sequence phase " + std::to_string(i) + ": switch " + prev.name() +
-                       " -> " + phase.mode.name() +
-                       " has no sole in contact through it (insert a DS phase)");
+      throw RequestError("contact sequence phase " + std::to_string(i) + ": switch " + prev.name() +
+                         " -> " + phase.mode.name() +
+                         " has no sole in contact through it (insert a DS phase)");
     }
   }
   start_times_.push_back(totalDuration());
@@ -56,8 +56,8 @@ void ContactSequence::append(const ContactPhase& phase) {
 
 const ContactPhase& ContactSequence::phase(int i) const {
   if (i < 0 || i >= size()) {
-    throw ReachError("contact sequence: phase index " + std::to_string(i) + " outside [0, " +
-                     std::to_string(size()) + ")");
+    throw RequestError("contact sequence: phase index " + std::to_string(i) + " outside [0, " +
+                       std::to_string(size()) + ")");
   }
   return phases_[i];
 }
@@ -76,7 +76,7 @@ int ContactSequence::phaseIndexAt(double t) const {
   if (empty() || !(t >= 0.0 && t <= total)) {
     std::ostringstream os;
     os << "contact sequence: time " << t << " s outside [0, " << total << "] s";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   int lo = 0;
   for (int i = 1; i < size(); ++i) {

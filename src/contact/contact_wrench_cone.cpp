@@ -16,7 +16,7 @@ ContactWrenchCone::ContactWrenchCone(double mu, double half_length, double half_
     if (!std::isfinite(v) || v <= 0.0) {
       std::ostringstream os;
       os << "ContactWrenchCone: " << name << " must be positive and finite, got " << v;
-      throw ReachError(os.str());
+      throw ConfigError(os.str());
     }
   };
   check("mu", mu);

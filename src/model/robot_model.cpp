@@ -72,7 +72,7 @@ inline Eigen::Matrix3d axisRotation(const Eigen::Vector3d& a, double angle) {
 
 const Frame& frameAt(const ModelTree& tree, FrameId frame, const std::string& source) {
   if (frame < 0 || frame >= static_cast<int>(tree.frames.size()))
-    throw ReachError("invalid frame id " + std::to_string(frame) + " for " + source);
+    throw ModelError("invalid frame id " + std::to_string(frame) + " for " + source);
   return tree.frames[frame];
 }
 
@@ -419,14 +419,14 @@ Eigen::Vector3d RobotModel::centerOfMass(const Workspace& ws) const {
     mc += bodies[i].mass * (d.p_world[i] + d.R_world[i] * bodies[i].com);
     m += bodies[i].mass;
   }
-  if (m <= 0.0) throw ReachError("centerOfMass: the robot in " + source_ + " has no mass");
+  if (m <= 0.0) throw ModelError("centerOfMass: the robot in " + source_ + " has no mass");
   return mc / m;
 }
 
 Eigen::Vector3d RobotModel::centerOfMassJdotQd(const Workspace& ws) const {
   const Workspace::Buffers& d = requireUpdated(ws);
   if (total_mass_ <= 0.0)
-    throw ReachError("centerOfMassJdotQd: the robot in " + source_ + " has no mass");
+    throw ModelError("centerOfMassJdotQd: the robot in " + source_ + " has no mass");
   Eigen::Vector3d ma = Eigen::Vector3d::Zero();
   const auto& bodies = tree_->bodies;
   for (size_t i = 0; i < bodies.size(); ++i) {
@@ -445,7 +445,7 @@ void RobotModel::centerOfMassJacobian(Workspace& ws, Eigen::Ref<Eigen::Matrix3Xd
   const auto& bodies = tree_->bodies;
   const int n = static_cast<int>(bodies.size());
   if (total_mass_ <= 0.0)
-    throw ReachError("centerOfMassJacobian: the robot in " + source_ + " has no mass");
+    throw ModelError("centerOfMassJacobian: the robot in " + source_ + " has no mass");
   for (int i = 0; i < n; ++i) {
     d.sub_m[i] = bodies[i].mass;
     d.sub_mc[i] = bodies[i].mass * (d.p_world[i] + d.R_world[i] * bodies[i].com);

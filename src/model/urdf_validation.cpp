@@ -99,22 +99,8 @@ std::string linkOwner(const std::string& name, const std::string& source) {
   return "link '" + name + "' of " + source;
 }
 
-}  // namespace
-
-void validateUrdfXml(const std::string& xml, const std::string& source) {
-  if (xml.size() > kMaxUrdfBytes) {
-    std::ostringstream os;
-    os << source << ": URDF of " << xml.size() << " bytes exceeds the limit of " << kMaxUrdfBytes
-       << " bytes";
-    throw ModelError(os.str());
-  }
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
-    throw ModelError("malformed URDF in " + source + ": " +
-                     (doc.ErrorStr() ? doc.ErrorStr() : "XML error"));
-  const XMLElement* robot = doc.FirstChildElement("robot");
-  if (!robot) throw ModelError("malformed URDF in " + source + ": no <robot> element");
-
+/// Every <link>: named, once, within the count limit, valid inertia and shapes.
+std::set<std::string> checkLinks(const XMLElement* robot, const std::string& source) {
   std::set<std::string> links;
   for (const XMLElement* l = robot->FirstChildElement("link"); l;
        l = l->NextSiblingElement("link")) {
@@ -130,9 +116,15 @@ void validateUrdfXml(const std::string& xml, const std::string& source) {
     checkLink(l, linkOwner(name, source));
   }
   if (links.empty()) throw ModelError("malformed URDF in " + source + ": no <link>");
+  return links;
+}
 
+/// Every <joint>: named, once, valid numbers, known parent and child links, one parent per
+/// link; fills child link -> parent link / joint.
+void checkJoints(const XMLElement* robot, const std::string& source,
+                 const std::set<std::string>& links, std::map<std::string, std::string>& parent_of,
+                 std::map<std::string, std::string>& joint_of) {
   std::set<std::string> joints;
-  std::map<std::string, std::string> parent_of, joint_of;  // child link -> parent link / joint
   for (const XMLElement* j = robot->FirstChildElement("joint"); j;
        j = j->NextSiblingElement("joint")) {
     const std::string name = nameOf(j);
@@ -158,6 +150,12 @@ void validateUrdfXml(const std::string& xml, const std::string& source) {
     joint_of[cl] = name;
     parent_of[cl] = pl;
   }
+}
+
+/// The links form one tree: no loop, one root.
+void requireTree(const std::set<std::string>& links,
+                 const std::map<std::string, std::string>& parent_of,
+                 std::map<std::string, std::string>& joint_of, const std::string& source) {
   // Loops: walking up from any link must end at a root within |links| steps.
   std::set<std::string> reaches_root;
   for (const std::string& start : links) {
@@ -186,6 +184,28 @@ void validateUrdfXml(const std::string& xml, const std::string& source) {
     os << (roots.size() > 5 ? ", ..." : "") << "): every link but one needs a parent joint";
     throw ModelError(os.str());
   }
+}
+
+}  // namespace
+
+void validateUrdfXml(const std::string& xml, const std::string& source) {
+  if (xml.size() > kMaxUrdfBytes) {
+    std::ostringstream os;
+    os << source << ": URDF of " << xml.size() << " bytes exceeds the limit of " << kMaxUrdfBytes
+       << " bytes";
+    throw ModelError(os.str());
+  }
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw ModelError("malformed URDF in " + source + ": " +
+                     (doc.ErrorStr() ? doc.ErrorStr() : "XML error"));
+  const XMLElement* robot = doc.FirstChildElement("robot");
+  if (!robot) throw ModelError("malformed URDF in " + source + ": no <robot> element");
+
+  const std::set<std::string> links = checkLinks(robot, source);
+  std::map<std::string, std::string> parent_of, joint_of;  // child link -> parent link / joint
+  checkJoints(robot, source, links, parent_of, joint_of);
+  requireTree(links, parent_of, joint_of, source);
 }
 
 void validateUrdf(const urdf::ModelInterface& urdf, const std::string& source) {

@@ -14,11 +14,11 @@ CubicBSplineBasis::CubicBSplineBasis(double duration, int segments)
   if (!std::isfinite(duration) || duration <= 0.0) {
     std::ostringstream os;
     os << "CubicBSplineBasis: duration must be positive and finite, got " << duration;
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   if (segments < 1) {
-    throw ReachError("CubicBSplineBasis: need at least one segment, got " +
-                     std::to_string(segments));
+    throw RequestError("CubicBSplineBasis: need at least one segment, got " +
+                       std::to_string(segments));
   }
 }
 

@@ -22,13 +22,13 @@ StanceReducedDynamics::StanceReducedDynamics(std::shared_ptr<const RobotModel> m
       swing_(swing_frame, swing_target),
       yaw_reference_(yaw_reference) {
   if (!model_ || !model_->floatingBase()) {
-    throw ReachError("StanceReducedDynamics: needs a floating-base model");
+    throw ModelError("StanceReducedDynamics: needs a floating-base model");
   }
   // Validates the stance pose the same way as the swing target.
   const ContactConstraint check(stance_frame, stance_pose);
   (void)check;
   if (!std::isfinite(yaw_reference)) {
-    throw ReachError("StanceReducedDynamics: non-finite yaw reference");
+    throw RequestError("StanceReducedDynamics: non-finite yaw reference");
   }
 }
 

@@ -15,7 +15,7 @@ namespace {
 void requireTrajectorySizes(const RobotModel& model, const TransitionResult& traj) {
   const int nq = model.nq(), nu = model.nu();
   const int n = static_cast<int>(traj.time.size());
-  if (n < 2) throw ReachError("checkTransition: the trajectory needs at least two samples");
+  if (n < 2) throw RequestError("checkTransition: the trajectory needs at least two samples");
   requireSize("checkTransition: q columns", traj.q.cols(), n);
   requireSize("checkTransition: q rows", traj.q.rows(), nq);
   requireSize("checkTransition: qd", traj.qd.cols(), n);

@@ -38,13 +38,32 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   weight_ = m.totalMass() * m.gravity().norm();
   u_max_inv_ = m.effortLimits().cwiseInverse();
 
+  layOutVariables();
+  // Ground clearance floor: the target height, or lower when x_0's swing sole is lower.
+  Eigen::VectorXd q_start(nq_);
+  dyn_->configuration(*scratch_, request.q0.tail(nu_), q_start);
+  ground_clearance_ = config.ground_clearance;
+  ground_floor_ = std::min(request.swing_target.translation().z(), scratch_->swing_position.z());
+
+  prepareSlices();
+  rebuildSamples();
+
+  input_.resize(dyn_->inputCount());
+  signals_.resize(dyn_->signalCount());
+  u_scaled_.resize(nu_);
+  jin_.resize(dyn_->signalCount(), dyn_->inputCount());
+  jloc_.resize(dyn_->signalCount(), 4 * nu_ + 6);
+}
+
+void TransitionNlp::layOutVariables() {
+  const RobotModel& m = *model_;
   // Fixed control points: x_0 always, x_f in the strict problem.
   const int K = basis_.controlPoints();
   fixed_points_ = Eigen::MatrixXd::Zero(K, nu_);
   Eigen::VectorXd c0, c1, c2, c3;
-  CubicBSplineBasis::boundaryControlPoints(basis_.knotSpacing(), request.q0.tail(nu_),
-                                           request.qd0.tail(nu_), request.qf.tail(nu_),
-                                           request.qdf.tail(nu_), c0, c1, c2, c3);
+  CubicBSplineBasis::boundaryControlPoints(basis_.knotSpacing(), request_.q0.tail(nu_),
+                                           request_.qd0.tail(nu_), request_.qf.tail(nu_),
+                                           request_.qdf.tail(nu_), c0, c1, c2, c3);
   fixed_points_.row(0) = c0.transpose();
   fixed_points_.row(1) = c1.transpose();
   if (!relaxed_) {
@@ -67,15 +86,11 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
     lower_.segment(k * nu_, nu_) = q_lo;
     upper_.segment(k * nu_, nu_) = q_hi;
   }
+}
 
-  // Ground clearance floor: the target height, or lower when x_0's swing sole is lower.
-  Eigen::VectorXd q_start(nq_);
-  dyn_->configuration(*scratch_, request.q0.tail(nu_), q_start);
-  ground_clearance_ = config.ground_clearance;
-  ground_floor_ = std::min(request.swing_target.translation().z(), scratch_->swing_position.z());
-
+void TransitionNlp::prepareSlices() {
   // Hulls with unit normals (violations in metres).
-  for (const ReachableSlice& s : request.slices) {
+  for (const ReachableSlice& s : request_.slices) {
     Eigen::MatrixX2d A = s.A;
     Eigen::VectorXd b = s.b;
     for (Eigen::Index r = 0; r < A.rows(); ++r) {
@@ -88,12 +103,12 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   }
   // Initially, the slice nearest to each grid time.
   const int grid = static_cast<int>(std::ceil(basis_.duration() / config_.check_interval - 1e-9));
-  for (int j = 0; j <= grid && !request.slices.empty(); ++j) {
+  for (int j = 0; j <= grid && !request_.slices.empty(); ++j) {
     const double t = basis_.duration() * j / grid;
     int best = -1;
     double best_dt = 0.5 * config_.check_interval + 1e-12;
-    for (size_t i = 0; i < request.slices.size(); ++i) {
-      const double dt = std::abs(request.slices[i].time - t);
+    for (size_t i = 0; i < request_.slices.size(); ++i) {
+      const double dt = std::abs(request_.slices[i].time - t);
       if (dt <= best_dt) {
         best_dt = dt;
         best = static_cast<int>(i);
@@ -104,13 +119,6 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
       enforced_slices_.push_back(best);
     }
   }
-  rebuildSamples();
-
-  input_.resize(dyn_->inputCount());
-  signals_.resize(dyn_->signalCount());
-  u_scaled_.resize(nu_);
-  jin_.resize(dyn_->signalCount(), dyn_->inputCount());
-  jloc_.resize(dyn_->signalCount(), 4 * nu_ + 6);
 }
 
 void TransitionNlp::rebuildSamples() {
@@ -263,9 +271,36 @@ void TransitionNlp::state(const Eigen::VectorXd& x, double t, TransitionSampleSt
   out.phiddot2 = signals_.segment<6>(d.phiddot2Offset());
 }
 
+/// The scratch of one evaluate() call, shared by its per-sample parts.
+struct TransitionNlp::EvalState {
+  EvalState(const Eigen::VectorXd& x_in, bool gradients_in, NlpValues& out_in, int lcols,
+            int signals)
+      : x(x_in),
+        gradients(gradients_in),
+        out(out_in),
+        grow(lcols),
+        coeff(signals),
+        cone_rows(ContactWrenchCone::kRows, lcols) {}
+  const Eigen::VectorXd& x;
+  const bool gradients;
+  NlpValues& out;
+  int row = 0;                  ///< next inequality row
+  CubicBSplineBasis::Row brow;  ///< spline row of the current sample
+  Eigen::RowVectorXd grow, coeff;
+  Eigen::Matrix<double, ContactWrenchCone::kRows, Eigen::Dynamic> cone_rows;
+};
+
+void TransitionNlp::scatter(const EvalState& e, Eigen::Ref<Eigen::RowVectorXd> target,
+                            const StridedRow& local, bool final) const {
+  for (int j = 0; j < 4; ++j) {
+    const int idx = freeIndex(e.brow.first + j);
+    if (idx >= 0) target.segment(idx, nu_) += local.segment(j * nu_, nu_);
+  }
+  if (final) target.segment(lambda_index_, 6) += local.tail(6);
+}
+
 void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues& out) {
   requireSize("TransitionNlp::evaluate x", x.size(), n_x_);
-  const StanceReducedDynamics& d = *dyn_;
   const int m_eq = equalityCount(), m_in = inequalityCount();
   out.cost = 0.0;
   out.equality.setZero(m_eq);
@@ -275,173 +310,182 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
     out.equality_jacobian.setZero(m_eq, n_x_);
     out.inequality_jacobian.setZero(m_in, n_x_);
   }
+  EvalState e(x, gradients, out, 4 * nu_ + 6, dyn_->signalCount());
+  const int n_s = static_cast<int>(samples_.size());
+  for (int i = 0; i < n_s; ++i) {
+    const Sample& smp = samples_[i];
+    sampleSignals(smp, e);
+    addSampleCost(smp, e);
+    addPathInequalities(smp, i, e);
+    if (smp.final) addTerminalRows(e);
+  }
+  if (relaxed_) {
+    const Eigen::Vector2d ev = x.segment<2>(eps_index_);
+    out.cost += config_.w_eps * ev.squaredNorm();
+    if (gradients) out.cost_gradient.segment<2>(eps_index_) += 2.0 * config_.w_eps * ev;
+  }
+  if (e.row != m_in) throw ReachError("TransitionNlp: internal error, inequality count mismatch");
+}
+
+void TransitionNlp::sampleSignals(const Sample& smp, EvalState& e) {
+  const StanceReducedDynamics& d = *dyn_;
+  e.brow = basis_.evaluate(smp.t);
+  splineInput(e.x, e.brow, input_);
+  input_.tail<6>() = smp.final ? lambdaNew(e.x) : Vector6d::Zero();
+  if (e.gradients) {
+    d.evaluate(*scratch_, input_, signals_, jin_, config_.fd_step, config_.central_differences);
+    const CubicBSplineBasis::Row& brow = e.brow;
+    for (int j = 0; j < 4; ++j) {
+      jloc_.middleCols(j * nu_, nu_) = brow.value[j] * jin_.leftCols(nu_);
+      jloc_.middleCols(j * nu_, nu_) += brow.d1[j] * jin_.middleCols(nu_, nu_);
+      jloc_.middleCols(j * nu_, nu_) += brow.d2[j] * jin_.middleCols(2 * nu_, nu_);
+    }
+    jloc_.rightCols<6>() = weight_ * jin_.rightCols<6>();  // variables are lambda_2 / (m g)
+  } else {
+    d.evaluate(*scratch_, input_, signals_);
+  }
+}
+
+void TransitionNlp::addSampleCost(const Sample& smp, EvalState& e) {
+  const StanceReducedDynamics& d = *dyn_;
+  NlpValues& out = e.out;
   const double W = weight_;
   const Eigen::VectorXd& qf = request_.qf;
   const Eigen::VectorXd& qdf = request_.qdf;
-  const int n_s = static_cast<int>(samples_.size());
-  const int lcols = 4 * nu_ + 6;
-  int row = 0;
-  CubicBSplineBasis::Row brow;
-  // Adds a local gradient (over the 4 control points of this sample and lambda_2) to a row.
-  using StridedRow = Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
-  auto scatter = [&](Eigen::Ref<Eigen::RowVectorXd> target, const StridedRow& local, bool final) {
-    for (int j = 0; j < 4; ++j) {
-      const int idx = freeIndex(brow.first + j);
-      if (idx >= 0) target.segment(idx, nu_) += local.segment(j * nu_, nu_);
+  const auto u = signals_.segment(d.uOffset(), nu_);
+  const auto lam = signals_.segment<6>(d.lambdaOffset());
+  const auto q = signals_.segment(d.qOffset(), nq_);
+  const auto qd = signals_.segment(d.qdOffset(), nq_);
+  u_scaled_ = u.cwiseProduct(u_max_inv_);
+  const Eigen::VectorXd& us = u_scaled_;
+  const double c_u = config_.w_torque * us.squaredNorm();
+  const double c_l = config_.w_wrench * lam.squaredNorm() / (W * W);
+  const double c_q = config_.w_position * (q - qf).squaredNorm();
+  const double c_v = config_.w_velocity * (qd - qdf).squaredNorm();
+  out.cost += smp.weight * (c_u + c_l + c_q + c_v);
+  if (e.gradients) {
+    e.coeff.setZero();
+    e.coeff.segment(d.uOffset(), nu_) =
+        (2.0 * config_.w_torque) * us.cwiseProduct(u_max_inv_).transpose();
+    e.coeff.segment<6>(d.lambdaOffset()) = (2.0 * config_.w_wrench / (W * W)) * lam.transpose();
+    e.coeff.segment(d.qOffset(), nq_) = (2.0 * config_.w_position) * (q - qf).transpose();
+    e.coeff.segment(d.qdOffset(), nq_) = (2.0 * config_.w_velocity) * (qd - qdf).transpose();
+    e.grow.noalias() = smp.weight * e.coeff * jloc_;
+    scatter(e, out.cost_gradient.transpose(), e.grow, smp.final);
+  }
+  if (smp.final) {
+    const Vector6d xl = e.x.segment<6>(lambda_index_);
+    out.cost += smp.weight * config_.w_wrench * xl.squaredNorm();
+    if (e.gradients) {
+      out.cost_gradient.segment<6>(lambda_index_) += smp.weight * 2.0 * config_.w_wrench * xl;
     }
-    if (final) target.segment(lambda_index_, 6) += local.tail(6);
-  };
-  Eigen::RowVectorXd grow(lcols), coeff(d.signalCount());
-  Eigen::Matrix<double, ContactWrenchCone::kRows, Eigen::Dynamic> cone_rows(
-      ContactWrenchCone::kRows, lcols);
+  }
+}
 
-  for (int i = 0; i < n_s; ++i) {
-    const Sample& smp = samples_[i];
-    const bool final = smp.final;
-    brow = basis_.evaluate(smp.t);
-    splineInput(x, brow, input_);
-    input_.tail<6>() = final ? lambdaNew(x) : Vector6d::Zero();
-    if (gradients) {
-      d.evaluate(*scratch_, input_, signals_, jin_, config_.fd_step, config_.central_differences);
-      for (int j = 0; j < 4; ++j) {
-        jloc_.middleCols(j * nu_, nu_) = brow.value[j] * jin_.leftCols(nu_);
-        jloc_.middleCols(j * nu_, nu_) += brow.d1[j] * jin_.middleCols(nu_, nu_);
-        jloc_.middleCols(j * nu_, nu_) += brow.d2[j] * jin_.middleCols(2 * nu_, nu_);
-      }
-      jloc_.rightCols<6>() = W * jin_.rightCols<6>();  // variables are lambda_2 / (m g)
-    } else {
-      d.evaluate(*scratch_, input_, signals_);
+void TransitionNlp::addPathInequalities(const Sample& smp, int i, EvalState& e) {
+  const StanceReducedDynamics& d = *dyn_;
+  NlpValues& out = e.out;
+  const double W = weight_;
+  const bool final = smp.final;
+  const auto lam = signals_.segment<6>(d.lambdaOffset());
+  const Eigen::VectorXd& us = u_scaled_;  // set by addSampleCost
+  int& row = e.row;
+  // Stance cone (8): -(C lambda_s) / (m g) + margin <= 0.
+  out.inequality.segment<ContactWrenchCone::kRows>(row) =
+      -(C_stance_ * lam) / W + Eigen::Matrix<double, 16, 1>::Constant(config_.cone_margin);
+  if (e.gradients) {
+    e.cone_rows.noalias() = (-1.0 / W) * C_stance_ * jloc_.middleRows<6>(d.lambdaOffset());
+    for (int r = 0; r < ContactWrenchCone::kRows; ++r) {
+      scatter(e, out.inequality_jacobian.row(row + r), e.cone_rows.row(r), final);
     }
-    const auto u = signals_.segment(d.uOffset(), nu_);
-    const auto lam = signals_.segment<6>(d.lambdaOffset());
-    const auto q = signals_.segment(d.qOffset(), nq_);
-    const auto qd = signals_.segment(d.qdOffset(), nq_);
-
-    // ---- cost (22), scaled ---------------------------------------------------------------
-    u_scaled_ = u.cwiseProduct(u_max_inv_);
-    const Eigen::VectorXd& us = u_scaled_;
-    const double c_u = config_.w_torque * us.squaredNorm();
-    const double c_l = config_.w_wrench * lam.squaredNorm() / (W * W);
-    const double c_q = config_.w_position * (q - qf).squaredNorm();
-    const double c_v = config_.w_velocity * (qd - qdf).squaredNorm();
-    out.cost += smp.weight * (c_u + c_l + c_q + c_v);
-    if (gradients) {
-      coeff.setZero();
-      coeff.segment(d.uOffset(), nu_) =
-          (2.0 * config_.w_torque) * us.cwiseProduct(u_max_inv_).transpose();
-      coeff.segment<6>(d.lambdaOffset()) = (2.0 * config_.w_wrench / (W * W)) * lam.transpose();
-      coeff.segment(d.qOffset(), nq_) = (2.0 * config_.w_position) * (q - qf).transpose();
-      coeff.segment(d.qdOffset(), nq_) = (2.0 * config_.w_velocity) * (qd - qdf).transpose();
-      grow.noalias() = smp.weight * coeff * jloc_;
-      scatter(out.cost_gradient.transpose(), grow, final);
-    }
-    if (final) {
-      const Vector6d xl = x.segment<6>(lambda_index_);
-      out.cost += smp.weight * config_.w_wrench * xl.squaredNorm();
-      if (gradients) {
-        out.cost_gradient.segment<6>(lambda_index_) += smp.weight * 2.0 * config_.w_wrench * xl;
-      }
-    }
-
-    // ---- inequalities (<= 0) ---------------------------------------------------------------
-    // Stance cone (8): -(C lambda_s) / (m g) + margin <= 0.
-    out.inequality.segment<ContactWrenchCone::kRows>(row) =
-        -(C_stance_ * lam) / W + Eigen::Matrix<double, 16, 1>::Constant(config_.cone_margin);
-    if (gradients) {
-      cone_rows.noalias() = (-1.0 / W) * C_stance_ * jloc_.middleRows<6>(d.lambdaOffset());
-      for (int r = 0; r < ContactWrenchCone::kRows; ++r) {
-        scatter(out.inequality_jacobian.row(row + r), cone_rows.row(r), final);
-      }
-    }
-    row += ContactWrenchCone::kRows;
-    // Torque bounds: +-u / u_max - (1 - margin) <= 0.
-    for (int a = 0; a < nu_; ++a) {
-      for (int sgn = -1; sgn <= 1; sgn += 2) {
-        out.inequality[row] = sgn * us[a] - (1.0 - config_.torque_margin);
-        if (gradients) {
-          grow = (sgn * u_max_inv_[a]) * jloc_.row(d.uOffset() + a);
-          scatter(out.inequality_jacobian.row(row), grow, final);
-        }
-        ++row;
-      }
-    }
-    // Ground clearance: floor(t) - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality).
-    if (ground_clearance_ && i > 0 && smp.t < basis_.duration()) {
-      out.inequality[row] = groundFloor(smp.t) - signals_[d.swingPositionOffset() + 2];
-      if (gradients) {
-        grow = -jloc_.row(d.swingPositionOffset() + 2);
-        scatter(out.inequality_jacobian.row(row), grow, final);
+  }
+  row += ContactWrenchCone::kRows;
+  // Torque bounds: +-u / u_max - (1 - margin) <= 0.
+  for (int a = 0; a < nu_; ++a) {
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      out.inequality[row] = sgn * us[a] - (1.0 - config_.torque_margin);
+      if (e.gradients) {
+        e.grow = (sgn * u_max_inv_[a]) * jloc_.row(d.uOffset() + a);
+        scatter(e, out.inequality_jacobian.row(row), e.grow, final);
       }
       ++row;
     }
-    // Reachable-set hulls: A y - b <= 0, y the swing sole's (x, y).
-    for (int s : smp.slices) {
-      const Eigen::MatrixX2d& A = slice_A_[s];
-      const Eigen::VectorXd& b = slice_b_[s];
-      const Eigen::Vector2d y = signals_.segment<2>(d.swingPositionOffset());
-      for (Eigen::Index r = 0; r < A.rows(); ++r) {
-        out.inequality[row] = A.row(r).dot(y) - b[r];
-        if (gradients) {
-          grow = A(r, 0) * jloc_.row(d.swingPositionOffset()) +
+  }
+  // Ground clearance: floor(t) - z_swing <= 0 (not at t_0, fixed, nor t_f, an equality).
+  if (ground_clearance_ && i > 0 && smp.t < basis_.duration()) {
+    out.inequality[row] = groundFloor(smp.t) - signals_[d.swingPositionOffset() + 2];
+    if (e.gradients) {
+      e.grow = -jloc_.row(d.swingPositionOffset() + 2);
+      scatter(e, out.inequality_jacobian.row(row), e.grow, final);
+    }
+    ++row;
+  }
+  // Reachable-set hulls: A y - b <= 0, y the swing sole's (x, y).
+  for (int s : smp.slices) {
+    const Eigen::MatrixX2d& A = slice_A_[s];
+    const Eigen::VectorXd& b = slice_b_[s];
+    const Eigen::Vector2d y = signals_.segment<2>(d.swingPositionOffset());
+    for (Eigen::Index r = 0; r < A.rows(); ++r) {
+      out.inequality[row] = A.row(r).dot(y) - b[r];
+      if (e.gradients) {
+        e.grow = A(r, 0) * jloc_.row(d.swingPositionOffset()) +
                  A(r, 1) * jloc_.row(d.swingPositionOffset() + 1);
-          scatter(out.inequality_jacobian.row(row), grow, final);
-        }
-        ++row;
+        scatter(e, out.inequality_jacobian.row(row), e.grow, final);
       }
+      ++row;
     }
-    if (!final) continue;
+  }
+}
 
-    // New contact's cone at t_f: -(C lambda_2) / (m g) <= 0, linear in the variables.
-    const Vector6d xl = x.segment<6>(lambda_index_);
-    out.inequality.segment<ContactWrenchCone::kRows>(row) = -(C_new_ * xl);
+void TransitionNlp::addTerminalRows(EvalState& e) {
+  const StanceReducedDynamics& d = *dyn_;
+  NlpValues& out = e.out;
+  const Eigen::VectorXd& x = e.x;
+  const bool gradients = e.gradients;
+  // New contact's cone at t_f: -(C lambda_2) / (m g) <= 0, linear in the variables.
+  const Vector6d xl = x.segment<6>(lambda_index_);
+  out.inequality.segment<ContactWrenchCone::kRows>(e.row) = -(C_new_ * xl);
+  if (gradients) {
+    out.inequality_jacobian.block<ContactWrenchCone::kRows, 6>(e.row, lambda_index_) = -C_new_;
+  }
+  e.row += ContactWrenchCone::kRows;
+
+  // ---- equalities: new-mode contact at t_f ------------------------------------------------
+  int erow = 0;
+  // Rows scaled to metres by the knot spacing h (phidot h, phiddot h^2): a control point
+  // moves q by O(1), qd by O(1/h) and qdd by O(1/h^2), so unscaled acceleration rows would be
+  // ~100x more sensitive than the others and SLSQP would stall short of feasibility on them.
+  const double h = basis_.knotSpacing();
+  auto addEquality = [&](int signal_offset, double scale) {
+    out.equality.segment<6>(erow) = scale * signals_.segment<6>(signal_offset);
     if (gradients) {
-      out.inequality_jacobian.block<ContactWrenchCone::kRows, 6>(row, lambda_index_) = -C_new_;
-    }
-    row += ContactWrenchCone::kRows;
-
-    // ---- equalities: new-mode contact at t_f ------------------------------------------------
-    int erow = 0;
-    // Rows scaled to metres by the knot spacing h (phidot h, phiddot h^2): a control point
-    // moves q by O(1), qd by O(1/h) and qdd by O(1/h^2), so unscaled acceleration rows would be
-    // ~100x more sensitive than the others and SLSQP would stall short of feasibility on them.
-    const double h = basis_.knotSpacing();
-    auto addEquality = [&](int signal_offset, double scale) {
-      out.equality.segment<6>(erow) = scale * signals_.segment<6>(signal_offset);
-      if (gradients) {
-        for (int r = 0; r < 6; ++r) {
-          grow = scale * jloc_.row(signal_offset + r);
-          scatter(out.equality_jacobian.row(erow + r), grow, true);
-        }
-      }
-      erow += 6;
-    };
-    if (relaxed_) {
-      addEquality(d.phi2Offset(), 1.0);
-      out.equality.head<2>() -= x.segment<2>(eps_index_);
-      if (gradients) {
-        out.equality_jacobian(0, eps_index_) -= 1.0;
-        out.equality_jacobian(1, eps_index_ + 1) -= 1.0;
-      }
-      addEquality(d.phidot2Offset(), h);
-    }
-    addEquality(d.phiddot2Offset(), h * h);
-    if (pelvis_posture_) {  // base z, pitch, roll at t_f
-      const int rows[3] = {2, 4, 5};
-      for (int r : rows) {
-        out.equality[erow] = signals_[d.qOffset() + r] - (r == 2 ? pelvis_height_target_ : 0.0);
-        if (gradients) {
-          scatter(out.equality_jacobian.row(erow), jloc_.row(d.qOffset() + r), true);
-        }
-        ++erow;
+      for (int r = 0; r < 6; ++r) {
+        e.grow = scale * jloc_.row(signal_offset + r);
+        scatter(e, out.equality_jacobian.row(erow + r), e.grow, true);
       }
     }
-  }
+    erow += 6;
+  };
   if (relaxed_) {
-    const Eigen::Vector2d e = x.segment<2>(eps_index_);
-    out.cost += config_.w_eps * e.squaredNorm();
-    if (gradients) out.cost_gradient.segment<2>(eps_index_) += 2.0 * config_.w_eps * e;
+    addEquality(d.phi2Offset(), 1.0);
+    out.equality.head<2>() -= x.segment<2>(eps_index_);
+    if (gradients) {
+      out.equality_jacobian(0, eps_index_) -= 1.0;
+      out.equality_jacobian(1, eps_index_ + 1) -= 1.0;
+    }
+    addEquality(d.phidot2Offset(), h);
   }
-  if (row != m_in) throw ReachError("TransitionNlp: internal error, inequality count mismatch");
+  addEquality(d.phiddot2Offset(), h * h);
+  if (pelvis_posture_) {  // base z, pitch, roll at t_f
+    const int rows[3] = {2, 4, 5};
+    for (int r : rows) {
+      out.equality[erow] = signals_[d.qOffset() + r] - (r == 2 ? pelvis_height_target_ : 0.0);
+      if (gradients) {
+        scatter(e, out.equality_jacobian.row(erow), jloc_.row(d.qOffset() + r), true);
+      }
+      ++erow;
+    }
+  }
 }
 
 /// Samples the solution at dt (and exactly at t_f) into `res`.

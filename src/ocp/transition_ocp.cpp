@@ -170,13 +170,52 @@ std::string worstFamily(const ConstraintViolations& v) {
   return os.str();
 }
 
+/// The hull slices of a request: times in [0, T], sizes, finite, no zero normal.
+void validateSlices(const TransitionRequest& r) {
+  const double t_tol = 1e-9 + 1e-9 * r.horizon;
+  for (size_t i = 0; i < r.slices.size(); ++i) {
+    const ReachableSlice& s = r.slices[i];
+    const std::string what = "TransitionOcp: slice " + std::to_string(i);
+    if (!std::isfinite(s.time) || s.time < -t_tol || s.time > r.horizon + t_tol) {
+      std::ostringstream os;
+      os << what << ": time " << s.time << " s outside [0, " << r.horizon << "] s";
+      throw RequestError(os.str());
+    }
+    if (s.A.rows() == 0) throw RequestError(what + ": empty hull");
+    requireSize((what + ": b").c_str(), s.b.size(), s.A.rows());
+    requireFinite((what + ": A").c_str(), s.A);
+    requireFinite((what + ": b").c_str(), s.b);
+    for (Eigen::Index k = 0; k < s.A.rows(); ++k) {
+      if (s.A.row(k).norm() < 1e-12) throw RequestError(what + ": zero normal in A");
+    }
+  }
+}
+
+/// The seed path of a request: sizes (nq rows), finite, times increasing in [0, T].
+void validateSeed(const TransitionRequest& r, int nq) {
+  const double t_tol = 1e-9 + 1e-9 * r.horizon;
+  requireSize("TransitionOcp: seed q columns", r.seed.q.cols(), r.seed.time.size());
+  requireSize("TransitionOcp: seed q rows", r.seed.q.rows(), nq);
+  requireFinite("TransitionOcp: seed time", r.seed.time);
+  requireFinite("TransitionOcp: seed q", r.seed.q);
+  for (Eigen::Index k = 0; k < r.seed.time.size(); ++k) {
+    if (r.seed.time[k] < -t_tol || r.seed.time[k] > r.horizon + t_tol ||
+        (k > 0 && r.seed.time[k] < r.seed.time[k - 1])) {
+      std::ostringstream os;
+      os << "TransitionOcp: seed time " << r.seed.time[k] << " s at index " << k
+         << " is outside [0, " << r.horizon << "] s or not increasing";
+      throw RequestError(os.str());
+    }
+  }
+}
+
 }  // namespace
 
 TransitionOcp::TransitionOcp(std::shared_ptr<const RobotModel> model,
                              const TransitionOcpConfig& config, const ContactConfig& contact)
     : model_(std::move(model)), config_(config), contact_(contact) {
-  if (!model_) throw ReachError("TransitionOcp: null robot model");
-  if (!model_->floatingBase()) throw ReachError("TransitionOcp: needs a floating-base model");
+  if (!model_) throw ModelError("TransitionOcp: null robot model");
+  if (!model_->floatingBase()) throw ModelError("TransitionOcp: needs a floating-base model");
   config_.validate();
   contact_.validate();
   model_->frameId(contact_.left_sole_frame);
@@ -196,57 +235,29 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
   requireFinite("TransitionOcp: qdf", r.qdf);
   if (!std::isnan(r.terminal_pelvis_height) &&
       !(std::isfinite(r.terminal_pelvis_height) && r.terminal_pelvis_height > 0.0))
-    throw ReachError("TransitionOcp: terminal_pelvis_height must be > 0 (or NaN: the config's)");
+    throw RequestError("TransitionOcp: terminal_pelvis_height must be > 0 (or NaN: the config's)");
   std::ostringstream os;
   if (!std::isfinite(r.horizon) || r.horizon <= 0.0 || r.horizon < config_.output_dt) {
     os << "TransitionOcp: inconsistent horizon " << r.horizon
        << " s: must be finite and at least one output sample (" << config_.output_dt << " s)";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   if (r.horizon > kMaxTransitionHorizon) {
     // The NLP's size and each evaluation grow with the horizon (output_dt samples): a bound
     // keeps every solve inside its time limit (docs/limits.md).
     os << "TransitionOcp: horizon " << r.horizon << " s is over the limit of "
        << kMaxTransitionHorizon << " s";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   // Poses: finite, proper rotations (ContactConstraint checks both).
   try {
     ContactConstraint(0, r.stance_pose);
     ContactConstraint(0, r.swing_target);
   } catch (const ReachError& e) {
-    throw ReachError(std::string("TransitionOcp: stance_pose / swing_target: ") + e.what());
+    throw RequestError(std::string("TransitionOcp: stance_pose / swing_target: ") + e.what());
   }
-  const double t_tol = 1e-9 + 1e-9 * r.horizon;
-  for (size_t i = 0; i < r.slices.size(); ++i) {
-    const ReachableSlice& s = r.slices[i];
-    const std::string what = "TransitionOcp: slice " + std::to_string(i);
-    if (!std::isfinite(s.time) || s.time < -t_tol || s.time > r.horizon + t_tol) {
-      os << what << ": time " << s.time << " s outside [0, " << r.horizon << "] s";
-      throw ReachError(os.str());
-    }
-    if (s.A.rows() == 0) throw ReachError(what + ": empty hull");
-    requireSize((what + ": b").c_str(), s.b.size(), s.A.rows());
-    requireFinite((what + ": A").c_str(), s.A);
-    requireFinite((what + ": b").c_str(), s.b);
-    for (Eigen::Index k = 0; k < s.A.rows(); ++k) {
-      if (s.A.row(k).norm() < 1e-12) throw ReachError(what + ": zero normal in A");
-    }
-  }
-  if (!r.seed.empty()) {
-    requireSize("TransitionOcp: seed q columns", r.seed.q.cols(), r.seed.time.size());
-    requireSize("TransitionOcp: seed q rows", r.seed.q.rows(), nq);
-    requireFinite("TransitionOcp: seed time", r.seed.time);
-    requireFinite("TransitionOcp: seed q", r.seed.q);
-    for (Eigen::Index k = 0; k < r.seed.time.size(); ++k) {
-      if (r.seed.time[k] < -t_tol || r.seed.time[k] > r.horizon + t_tol ||
-          (k > 0 && r.seed.time[k] < r.seed.time[k - 1])) {
-        os << "TransitionOcp: seed time " << r.seed.time[k] << " s at index " << k
-           << " is outside [0, " << r.horizon << "] s or not increasing";
-        throw ReachError(os.str());
-      }
-    }
-  }
+  validateSlices(r);
+  if (!r.seed.empty()) validateSeed(r, nq);
   // x_0 on its stance contact.
   Workspace ws(m);
   m.update(ws, r.q0, r.qd0);
@@ -257,10 +268,10 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
   if (off > config_.input_tolerance) {
     os << "TransitionOcp: x_0 is off its stance contact " << contact_.soleFrame(r.stance)
        << ": max(|phi|, |phidot|) = " << off << " > " << config_.input_tolerance;
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   if (r.relaxation == RelaxationMode::kStrict && !finalStateOnContacts(r)) {
-    throw ReachError(
+    throw RequestError(
         "TransitionOcp: x_f does not hold both contacts (stance pose and swing target) within "
         "input_tolerance: the strict problem x(t_f) = x_f is inconsistent (use kRelaxed or "
         "kAuto)");

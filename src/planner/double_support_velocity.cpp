@@ -13,7 +13,7 @@ Eigen::VectorXd doubleSupportVelocity(const RobotModel& model, const Eigen::Vect
                                       FrameId left_sole, FrameId right_sole,
                                       const Eigen::Vector3d& com_velocity) {
   const int n = model.nq(), nu = model.nu();
-  if (n - nu != 6) throw ReachError("doubleSupportVelocity: needs a floating-base model");
+  if (n - nu != 6) throw ModelError("doubleSupportVelocity: needs a floating-base model");
   requireSize("doubleSupportVelocity: q", q.size(), n);
   requireFinite("doubleSupportVelocity: q", q);
   requireFinite("doubleSupportVelocity: com_velocity", com_velocity);

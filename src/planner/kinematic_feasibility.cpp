@@ -7,7 +7,7 @@
 #include <optional>
 #include <sstream>
 
-#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_constraint.h"
 
@@ -51,7 +51,7 @@ std::string fmt(double v) {
 }  // namespace
 
 void KinematicFeasibilityConfig::validate() const {
-  if (pelvis_frame.empty()) throw ReachError("KinematicFeasibilityConfig: empty pelvis_frame");
+  if (pelvis_frame.empty()) throw ConfigError("KinematicFeasibilityConfig: empty pelvis_frame");
   requirePositive("pelvis_height", pelvis_height);
   requirePositive("position_tolerance", position_tolerance);
   requirePositive("orientation_tolerance", orientation_tolerance);
@@ -60,35 +60,50 @@ void KinematicFeasibilityConfig::validate() const {
   requirePositive("workspace_radius", workspace_radius);
   requirePositive("workspace_height", workspace_height);
   if (max_iterations < 1) {
-    throw ReachError("KinematicFeasibilityConfig: max_iterations must be >= 1, got " +
-                     std::to_string(max_iterations));
+    throw ConfigError("KinematicFeasibilityConfig: max_iterations must be >= 1, got " +
+                      std::to_string(max_iterations));
   }
   if (!std::isfinite(sole_clearance) || sole_clearance < 0.0) {
-    throw ReachError("KinematicFeasibilityConfig: sole_clearance must be >= 0, got " +
-                     fmt(sole_clearance));
+    throw ConfigError("KinematicFeasibilityConfig: sole_clearance must be >= 0, got " +
+                      fmt(sole_clearance));
   }
   if (!std::isfinite(min_lateral_offset)) {
-    throw ReachError("KinematicFeasibilityConfig: min_lateral_offset must be finite");
+    throw ConfigError("KinematicFeasibilityConfig: min_lateral_offset must be finite");
   }
 }
 
+const ConfigFields<KinematicFeasibilityConfig>& KinematicFeasibilityConfig::fields() {
+  using C = KinematicFeasibilityConfig;
+  static const ConfigFields<C> f =
+      ConfigFields<C>("KinematicFeasibilityConfig", "kinematic_feasibility",
+                      "include/reach_trajopt/planner/kinematic_feasibility.h",
+                      "Kinematic feasibility of the next contact (Sec. III-B): joint-limited IK, "
+                      "both soles flat; the sole frames and sizes are those of `contact:`.")
+          .add("pelvis_frame", &C::pelvis_frame, "", "frame held upright at the nominal height")
+          .add("pelvis_height", &C::pelvis_height, "m",
+               "pelvis origin above the mean sole height, > 0; also the relaxed OCP's landing "
+               "height (ocp.terminal_pelvis_height)")
+          .add("position_tolerance", &C::position_tolerance, "m",
+               "max sole / pelvis height error accepted, > 0")
+          .add("orientation_tolerance", &C::orientation_tolerance, "rad",
+               "max orientation error accepted, > 0")
+          .add("max_iterations", &C::max_iterations, "",
+               "Newton iterations, >= 1 (a few more per decade of tolerance)")
+          .add("damping", &C::damping, "m^2", "DLS damping lambda^2 floor, > 0")
+          .add("max_joint_step", &C::max_joint_step, "rad or m", "largest update per iteration")
+          .add("sole_clearance", &C::sole_clearance, "m",
+               "minimal gap between the two sole rectangles, >= 0")
+          .add("min_lateral_offset", &C::min_lateral_offset, "m",
+               "swing sole centre towards its own side of the stance sole centre, at least this")
+          .add("workspace_radius", &C::workspace_radius, "m",
+               "soles farther apart horizontally: an error, not a step")
+          .add("workspace_height", &C::workspace_height, "m",
+               "same for the sole height difference");
+  return f;
+}
+
 KinematicFeasibilityConfig KinematicFeasibilityConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"pelvis_frame", "pelvis_height", "position_tolerance", "orientation_tolerance",
-                     "max_iterations", "damping", "max_joint_step", "sole_clearance",
-                     "min_lateral_offset", "workspace_radius", "workspace_height"});
-  KinematicFeasibilityConfig c;
-  s.read("pelvis_frame", c.pelvis_frame);
-  s.read("pelvis_height", c.pelvis_height);
-  s.read("position_tolerance", c.position_tolerance);
-  s.read("orientation_tolerance", c.orientation_tolerance);
-  s.read("max_iterations", c.max_iterations);
-  s.read("damping", c.damping);
-  s.read("max_joint_step", c.max_joint_step);
-  s.read("sole_clearance", c.sole_clearance);
-  s.read("min_lateral_offset", c.min_lateral_offset);
-  s.read("workspace_radius", c.workspace_radius);
-  s.read("workspace_height", c.workspace_height);
-  return validatedIn(s, c);
+  return fields().read(s);
 }
 
 Eigen::Isometry3d FlatContact::pose() const {
@@ -252,11 +267,11 @@ KinematicFeasibility::KinematicFeasibility(std::shared_ptr<const RobotModel> mod
                                            const KinematicFeasibilityConfig& config,
                                            const ContactConfig& contact)
     : model_(std::move(model)), config_(config), contact_(contact) {
-  if (!model_) throw ReachError("KinematicFeasibility: null robot model");
+  if (!model_) throw ModelError("KinematicFeasibility: null robot model");
   config_.validate();
   contact_.validate();
   if (!model_->floatingBase()) {
-    throw ReachError("KinematicFeasibility: model " + model_->source() +
+    throw ModelError("KinematicFeasibility: model " + model_->source() +
                      " has no floating base (the pelvis must be free)");
   }
   left_sole_ = model_->frameId(contact_.left_sole_frame);
@@ -272,7 +287,7 @@ KinematicFeasibilityResult KinematicFeasibility::check(
   requireFinite("KinematicFeasibility: current contact position", current.position);
   requireFinite("KinematicFeasibility: planned contact position", planned.position);
   if (!std::isfinite(current.yaw) || !std::isfinite(planned.yaw)) {
-    throw ReachError("KinematicFeasibility: non-finite contact yaw");
+    throw RequestError("KinematicFeasibility: non-finite contact yaw");
   }
   if (pelvis_position) requireFinite("KinematicFeasibility: pelvis position", *pelvis_position);
   if (q_init.size() != 0) {
@@ -286,11 +301,11 @@ KinematicFeasibilityResult KinematicFeasibility::check(
   const Eigen::Vector3d delta = planned.position - current.position;
   if (delta.head<2>().norm() > config_.workspace_radius ||
       std::abs(delta.z()) > config_.workspace_height) {
-    throw ReachError("KinematicFeasibility: step outside the workspace: planned " + swing_name +
-                     " is " + fmt(delta.head<2>().norm()) + " m from " + stance_name +
-                     " horizontally and " + fmt(delta.z()) + " m vertically (limits " +
-                     fmt(config_.workspace_radius) + " m, " + fmt(config_.workspace_height) +
-                     " m)");
+    throw RequestError("KinematicFeasibility: step outside the workspace: planned " + swing_name +
+                       " is " + fmt(delta.head<2>().norm()) + " m from " + stance_name +
+                       " horizontally and " + fmt(delta.z()) + " m vertically (limits " +
+                       fmt(config_.workspace_radius) + " m, " + fmt(config_.workspace_height) +
+                       " m)");
   }
 
   KinematicFeasibilityResult result;

@@ -12,7 +12,7 @@ Lipm::Lipm(double height, double gravity) : height_(height), gravity_(gravity) {
     std::ostringstream os;
     os << "Lipm: CoM height and gravity must be positive and finite, got h = " << height
        << " m, g = " << gravity << " m/s^2";
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
   omega_ = std::sqrt(gravity / height);
 }
@@ -21,7 +21,7 @@ LipmState Lipm::propagate(const LipmState& x0, const Eigen::Vector2d& a, double 
   requireFinite("Lipm::propagate CoM position", x0.p);
   requireFinite("Lipm::propagate CoM velocity", x0.pd);
   requireFinite("Lipm::propagate contact point", a);
-  if (!std::isfinite(t)) throw ReachError("Lipm::propagate: non-finite time");
+  if (!std::isfinite(t)) throw RequestError("Lipm::propagate: non-finite time");
   const double C = std::cosh(omega_ * t), S = std::sinh(omega_ * t);
   LipmState x;
   x.p = a + (x0.p - a) * C + x0.pd * (S / omega_);

@@ -5,29 +5,37 @@
 
 #include <cmath>
 
-#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/config_fields.h"
 
 namespace reach_trajopt {
 
 void NearestFootholdConfig::validate() const {
   if (!(ring_step > 0.0) || !std::isfinite(ring_step))
-    throw ReachError("NearestFootholdConfig: ring_step must be > 0 m, got " +
-                     std::to_string(ring_step));
+    throw ConfigError("NearestFootholdConfig: ring_step must be > 0 m, got " +
+                      std::to_string(ring_step));
   if (rings < 1 || rings > 1000)
-    throw ReachError("NearestFootholdConfig: rings must be in [1, 1000], got " +
-                     std::to_string(rings));
+    throw ConfigError("NearestFootholdConfig: rings must be in [1, 1000], got " +
+                      std::to_string(rings));
   if (directions < 1 || directions > 360)
-    throw ReachError("NearestFootholdConfig: directions must be in [1, 360], got " +
-                     std::to_string(directions));
+    throw ConfigError("NearestFootholdConfig: directions must be in [1, 360], got " +
+                      std::to_string(directions));
+}
+
+const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
+  using C = NearestFootholdConfig;
+  static const ConfigFields<C> f =
+      ConfigFields<C>("NearestFootholdConfig", "nearest_foothold",
+                      "include/reach_trajopt/planner/nearest_feasible_foothold.h",
+                      "Ring search for the closest kinematically feasible foothold when the TVR "
+                      "one fails the kinematic check (not in config/biped.yaml: the defaults).")
+          .add("ring_step", &C::ring_step, "m", "radius increment between rings, > 0")
+          .add("rings", &C::rings, "", "rings searched, in [1, 1000]")
+          .add("directions", &C::directions, "", "points per ring, in [1, 360], first along +x");
+  return f;
 }
 
 NearestFootholdConfig NearestFootholdConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"ring_step", "rings", "directions"});
-  NearestFootholdConfig c;
-  s.read("ring_step", c.ring_step);
-  s.read("rings", c.rings);
-  s.read("directions", c.directions);
-  return validatedIn(s, c);
+  return fields().read(s);
 }
 
 NearestFeasibleFoothold::NearestFeasibleFoothold(

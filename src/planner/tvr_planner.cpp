@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
@@ -16,7 +16,7 @@ void requireFiniteValue(const char* name, double v) {
   if (!std::isfinite(v)) {
     std::ostringstream os;
     os << "TvrConfig: " << name << " must be finite, got " << v;
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
 }
 
@@ -25,7 +25,7 @@ void requirePositiveValue(const char* name, double v) {
   if (v <= 0.0) {
     std::ostringstream os;
     os << "TvrConfig: " << name << " must be positive, got " << v;
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
 }
 
@@ -35,7 +35,7 @@ void requireInterval(const char* name, double lo, double hi) {
   if (lo > hi) {
     std::ostringstream os;
     os << "TvrConfig: " << name << " interval is empty: [" << lo << ", " << hi << "]";
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
 }
 
@@ -45,43 +45,56 @@ void TvrConfig::validate() const {
   requirePositiveValue("com_height", com_height);
   requirePositiveValue("gravity", gravity);
   requirePositiveValue("t_s", t_s);
-  requirePositiveValue("step_duration", step_duration);
   requireFiniteValue("kappa_x", kappa_x);
   requireFiniteValue("kappa_y", kappa_y);
   requireInterval("foot_offset_x", foot_offset_x_min, foot_offset_x_max);
   requireInterval("foot_offset_y", foot_offset_y_min, foot_offset_y_max);
   requireInterval("com_speed", com_speed_min, com_speed_max);
   if (foot_offset_y_min < 0.0) {
-    throw ReachError(
+    throw ConfigError(
         "TvrConfig: foot_offset_y_min is a distance towards the swing side, "
         "must be >= 0, got " +
         std::to_string(foot_offset_y_min));
   }
   if (com_speed_min < 0.0) {
-    throw ReachError("TvrConfig: com_speed_min must be >= 0, got " + std::to_string(com_speed_min));
+    throw ConfigError("TvrConfig: com_speed_min must be >= 0, got " +
+                      std::to_string(com_speed_min));
   }
 }
 
-TvrConfig TvrConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"com_height", "gravity", "t_s", "step_duration", "kappa_x", "kappa_y",
-                     "heuristic_bounds", "foot_offset_x_min", "foot_offset_x_max",
-                     "foot_offset_y_min", "foot_offset_y_max", "com_speed_min", "com_speed_max"});
-  TvrConfig c;
-  s.read("com_height", c.com_height);
-  s.read("gravity", c.gravity);
-  s.read("t_s", c.t_s);
-  s.read("step_duration", c.step_duration);
-  s.read("kappa_x", c.kappa_x);
-  s.read("kappa_y", c.kappa_y);
-  s.read("heuristic_bounds", c.heuristic_bounds);
-  s.read("foot_offset_x_min", c.foot_offset_x_min);
-  s.read("foot_offset_x_max", c.foot_offset_x_max);
-  s.read("foot_offset_y_min", c.foot_offset_y_min);
-  s.read("foot_offset_y_max", c.foot_offset_y_max);
-  s.read("com_speed_min", c.com_speed_min);
-  s.read("com_speed_max", c.com_speed_max);
-  return validatedIn(s, c);
+const ConfigFields<TvrConfig>& TvrConfig::fields() {
+  using C = TvrConfig;
+  static const ConfigFields<C> f =
+      ConfigFields<C>("TvrConfig", "planner", "include/reach_trajopt/planner/tvr_planner.h",
+                      "TVR footstep planner (eq. 9-12), values of Sec. IV-A; sign convention of "
+                      "docs/method.md Sec. 3.")
+          .add("com_height", &C::com_height, "m",
+               "h of the LIPM, > 0 (the walk uses the standing CoM height)")
+          .add("gravity", &C::gravity, "m/s^2", "g, > 0")
+          .add("t_s", &C::t_s, "s", "time to velocity reversal, > 0")
+          .add("kappa_x", &C::kappa_x, "",
+               "sagittal bias (< 0 stabilizes); the authors' code value: with the paper's -0.66 "
+               "our robot walks in place but not forward")
+          .add("kappa_y", &C::kappa_y, "", "lateral bias (the paper's)")
+          .add("foot_offset_x_min", &C::foot_offset_x_min, "m",
+               "heuristic bound: next sole x offset from the stance sole, in its heading")
+          .add("foot_offset_x_max", &C::foot_offset_x_max, "m", ">= foot_offset_x_min")
+          .add("foot_offset_y_min", &C::foot_offset_y_min, "m",
+               "heuristic bound: |y| offset towards the swing side, >= 0")
+          .add("foot_offset_y_max", &C::foot_offset_y_max, "m", ">= foot_offset_y_min")
+          .add("com_speed_min", &C::com_speed_min, "m/s",
+               "heuristic bound on the horizontal CoM speed the planner uses, >= 0")
+          .add("com_speed_max", &C::com_speed_max, "m/s", ">= com_speed_min")
+          .removed("step_duration",
+                   "removed: it had no effect on the gait; the step period is "
+                   "walk.single_support_duration + walk.double_support_duration")
+          .removed("heuristic_bounds",
+                   "removed: the walk mode sets the heuristic bounds (baseline: on, "
+                   "proposed: off)");
+  return f;
 }
+
+TvrConfig TvrConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
 
 TvrPlanner::TvrPlanner(const TvrConfig& config)
     : config_((config.validate(), config)), lipm_(config.com_height, config.gravity) {}
@@ -101,7 +114,7 @@ TvrStep TvrPlanner::plan(const TvrInput& in) const {
   requireFinite("TvrPlanner::plan CoM velocity", in.com.pd);
   requireFinite("TvrPlanner::plan p_des", in.p_des);
   requireFinite("TvrPlanner::plan stance sole position", in.stance);
-  if (!std::isfinite(in.stance_yaw)) throw ReachError("TvrPlanner::plan: non-finite stance yaw");
+  if (!std::isfinite(in.stance_yaw)) throw RequestError("TvrPlanner::plan: non-finite stance yaw");
 
   const Eigen::Vector2d kappa(config_.kappa_x, config_.kappa_y);
   const double w = lipm_.omega();
@@ -141,8 +154,8 @@ TvrStep TvrPlanner::plan(const TvrInput& in) const {
 
 Eigen::Matrix4d TvrPlanner::closedLoopMatrix(double T) const {
   if (!std::isfinite(T) || T <= 0.0) {
-    throw ReachError("TvrPlanner: step duration must be positive and finite, got " +
-                     std::to_string(T));
+    throw RequestError("TvrPlanner: step duration must be positive and finite, got " +
+                       std::to_string(T));
   }
   return lipm_.A(T) + lipm_.B(T) * gain();
 }

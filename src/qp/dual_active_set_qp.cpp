@@ -308,8 +308,42 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
   x0_.noalias() = J0.triangularView<Eigen::Upper>() * w_;
   x0_ = -x0_;
 
+  activateEqualities(factor, A_eq);
+  if (warm_start != nullptr) {
+    for (int idx : *warm_start) {
+      const int j = idx - m_eq;
+      if (j < 0 || j >= m_in || is_active_[j]) continue;
+      if (appendWithJ(A_in.row(j), idx)) is_active_[j] = 1;
+    }
+  }
+  solveOnActiveSet(A_eq, b_eq, A_in, b_in);
+  if (!redundantEqualitiesHold(A_eq, b_eq)) {
+    finish(factor, g, m_eq, m_in);
+    return;
+  }
+  dropNegativeMultipliers(A_eq, b_eq, A_in, b_in);
+
+  if (m_in > 0) row_norm_.head(m_in) = A_in.rowwise().norm();
+  for (;;) {
+    // Step 1: the most violated inequality (violation per unit row norm).
+    const int p = mostViolatedRow(A_in, b_in);
+    if (p < 0) {
+      result_.status = QpStatus::kOptimal;
+      break;
+    }
+    // Step 2: move towards satisfying row p, dropping blocking rows, until it can be added.
+    if (!addViolatedRow(A_in, p)) {
+      finish(factor, g, m_eq, m_in);
+      return;
+    }
+  }
+  finish(factor, g, m_eq, m_in);
+}
+
+void DualActiveSetQp::activateEqualities(const HessianFactor& factor, const MatrixRef& A_eq) {
   // Initial active set: equality rows first (dependent ones are redundant), with one Householder
   // QR of L^{-1} A_eq^T, or from the cache when the factor and A_eq are those of the last solve.
+  const int m_eq = static_cast<int>(A_eq.rows());
   const bool reuse = cache_valid_ && factor.id() == cache_factor_id_ && m_eq == cache_m_eq_ &&
                      (m_eq == 0 || cache_A_eq_.topRows(m_eq) == A_eq);
   if (reuse) {
@@ -319,37 +353,32 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
     std::copy(cache_active_.begin(), cache_active_.begin() + q_, active_.begin());
     std::copy(cache_eq_redundant_.begin(), cache_eq_redundant_.begin() + m_eq,
               eq_redundant_.begin());
-  } else {
-    for (int i = 0; i < m_eq; ++i) {
-      if (householderAppend(A_eq.row(i)))
-        active_[q_++] = i;
-      else
-        eq_redundant_[i] = 1;
-    }
-    formJ(J0);
-    // Only a factor that outlives this call is worth caching for (not the solve(G) one).
-    cache_valid_ = &factor != &own_factor_;
-    if (cache_valid_) {
-      cache_factor_id_ = factor.id();
-      cache_m_eq_ = m_eq;
-      cache_q_ = q_;
-      if (m_eq > 0) cache_A_eq_.topRows(m_eq) = A_eq;
-      cache_J_ = J_;
-      cache_R_.topLeftCorner(q_, q_) = R_.topLeftCorner(q_, q_);
-      std::copy(active_.begin(), active_.begin() + q_, cache_active_.begin());
-      std::copy(eq_redundant_.begin(), eq_redundant_.begin() + m_eq, cache_eq_redundant_.begin());
-    }
+    return;
   }
-  if (warm_start != nullptr) {
-    for (int idx : *warm_start) {
-      const int j = idx - m_eq;
-      if (j < 0 || j >= m_in || is_active_[j]) continue;
-      if (appendWithJ(A_in.row(j), idx)) is_active_[j] = 1;
-    }
+  for (int i = 0; i < m_eq; ++i) {
+    if (householderAppend(A_eq.row(i)))
+      active_[q_++] = i;
+    else
+      eq_redundant_[i] = 1;
   }
-  solveOnActiveSet(A_eq, b_eq, A_in, b_in);
+  formJ(factor.J0());
+  // Only a factor that outlives this call is worth caching for (not the solve(G) one).
+  cache_valid_ = &factor != &own_factor_;
+  if (cache_valid_) {
+    cache_factor_id_ = factor.id();
+    cache_m_eq_ = m_eq;
+    cache_q_ = q_;
+    if (m_eq > 0) cache_A_eq_.topRows(m_eq) = A_eq;
+    cache_J_ = J_;
+    cache_R_.topLeftCorner(q_, q_) = R_.topLeftCorner(q_, q_);
+    std::copy(active_.begin(), active_.begin() + q_, cache_active_.begin());
+    std::copy(eq_redundant_.begin(), eq_redundant_.begin() + m_eq, cache_eq_redundant_.begin());
+  }
+}
 
+bool DualActiveSetQp::redundantEqualitiesHold(const MatrixRef& A_eq, const VectorRef& b_eq) {
   // Redundant equality rows must hold on the affine set of the independent ones.
+  const int m_eq = static_cast<int>(A_eq.rows());
   const double xnorm0 = x_.norm();
   const double consistency_tol = std::max(config_.feasibility_tol, config_.dependence_tol);
   for (int i = 0; i < m_eq; ++i) {
@@ -360,12 +389,16 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
       fail(QpStatus::kInfeasible,
            "equality row %d is linearly dependent on the others but inconsistent (residual %.3g)",
            i, s);
-      finish(factor, g, m_eq, m_in);
-      return;
+      return false;
     }
   }
+  return true;
+}
 
+void DualActiveSetQp::dropNegativeMultipliers(const MatrixRef& A_eq, const VectorRef& b_eq,
+                                              const MatrixRef& A_in, const VectorRef& b_in) {
   // A warm start is only usable while dual feasible: drop rows with negative multipliers.
+  const int m_eq = m_eq_;
   for (;;) {
     int worst = -1;
     double most_negative = 0.0;
@@ -379,99 +412,91 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
     ++result_.iterations;
     solveOnActiveSet(A_eq, b_eq, A_in, b_in);
   }
+}
 
-  if (m_in > 0) row_norm_.head(m_in) = A_in.rowwise().norm();
-  const double tol_dep_sq = config_.dependence_tol * config_.dependence_tol;
-  for (;;) {
-    // Step 1: the most violated inequality (violation per unit row norm).
-    int p = -1;
-    if (m_in > 0) {
-      s_.head(m_in).noalias() = A_in * x_;
-      s_.head(m_in) -= b_in;
-      const double xnorm = x_.norm();
-      double best = 0.0;
-      for (int j = 0; j < m_in; ++j) {
-        if (is_active_[j]) continue;
-        const double tol =
-            config_.feasibility_tol * (1.0 + std::abs(b_in(j)) + row_norm_(j) * xnorm);
-        if (s_(j) < -tol) {
-          const double v = s_(j) / std::max(row_norm_(j), std::numeric_limits<double>::min());
-          if (v < best) {
-            best = v;
-            p = j;
-          }
+int DualActiveSetQp::mostViolatedRow(const MatrixRef& A_in, const VectorRef& b_in) {
+  const int m_in = static_cast<int>(A_in.rows());
+  int p = -1;
+  if (m_in > 0) {
+    s_.head(m_in).noalias() = A_in * x_;
+    s_.head(m_in) -= b_in;
+    const double xnorm = x_.norm();
+    double best = 0.0;
+    for (int j = 0; j < m_in; ++j) {
+      if (is_active_[j]) continue;
+      const double tol = config_.feasibility_tol * (1.0 + std::abs(b_in(j)) + row_norm_(j) * xnorm);
+      if (s_(j) < -tol) {
+        const double v = s_(j) / std::max(row_norm_(j), std::numeric_limits<double>::min());
+        if (v < best) {
+          best = v;
+          p = j;
         }
-      }
-    }
-    if (p < 0) {
-      result_.status = QpStatus::kOptimal;
-      break;
-    }
-
-    // Step 2: move towards satisfying row p, dropping blocking rows, until it can be added.
-    double sp = s_(p);
-    double u_plus = 0.0;
-    const auto a_p = A_in.row(p);
-    bool added = false;
-    while (!added) {
-      if (result_.iterations >= config_.max_iterations) {
-        fail(QpStatus::kIterationLimit, "iteration limit %d reached (%d rows active)",
-             config_.max_iterations, q_);
-        finish(factor, g, m_eq, m_in);
-        return;
-      }
-      ++result_.iterations;
-      d_.noalias() = J_.transpose() * a_p.transpose();
-      const int nf = n_ - q_;
-      const double d2sq = d_.tail(nf).squaredNorm();
-      const bool has_z = nf > 0 && d2sq > 0.0 && d2sq > tol_dep_sq * d_.squaredNorm();
-      if (has_z) z_.noalias() = J_.rightCols(nf) * d_.tail(nf);
-      if (q_ > 0) {
-        r_.head(q_) = d_.head(q_);
-        R_.topLeftCorner(q_, q_).triangularView<Eigen::Upper>().solveInPlace(r_.head(q_));
-      }
-      // Partial (dual) step length t1: the first active inequality whose multiplier hits zero.
-      double t1 = kInf;
-      int k_drop = -1;
-      for (int k = 0; k < q_; ++k) {
-        if (active_[k] >= m_eq && r_(k) > 0.0) {
-          const double ratio = u_(k) / r_(k);
-          if (ratio < t1) {
-            t1 = ratio;
-            k_drop = k;
-          }
-        }
-      }
-      // Full (primal) step length t2: row p becomes satisfied.
-      const double t2 = has_z ? -sp / d2sq : kInf;
-      if (t1 == kInf && t2 == kInf) {
-        fail(QpStatus::kInfeasible,
-             "infeasible: inequality row %d (violation %.3g) cannot be satisfied together with the "
-             "%d active rows",
-             p, sp, q_);
-        finish(factor, g, m_eq, m_in);
-        return;
-      }
-      const double t = std::min(t1, t2);
-      if (q_ > 0) u_.head(q_) -= t * r_.head(q_);
-      u_plus += t;
-      if (t2 == kInf) {  // dual step only
-        dropConstraint(k_drop);
-        continue;
-      }
-      x_.noalias() += t * z_;
-      sp += t * d2sq;
-      if (t2 <= t1) {
-        u_(q_) = u_plus;
-        addConstraint(m_eq + p);
-        is_active_[p] = 1;
-        added = true;
-      } else {
-        dropConstraint(k_drop);
       }
     }
   }
-  finish(factor, g, m_eq, m_in);
+  return p;
+}
+
+bool DualActiveSetQp::addViolatedRow(const MatrixRef& A_in, int p) {
+  const int m_eq = m_eq_;
+  const double tol_dep_sq = config_.dependence_tol * config_.dependence_tol;
+  double sp = s_(p);
+  double u_plus = 0.0;
+  const auto a_p = A_in.row(p);
+  for (;;) {
+    if (result_.iterations >= config_.max_iterations) {
+      fail(QpStatus::kIterationLimit, "iteration limit %d reached (%d rows active)",
+           config_.max_iterations, q_);
+      return false;
+    }
+    ++result_.iterations;
+    d_.noalias() = J_.transpose() * a_p.transpose();
+    const int nf = n_ - q_;
+    const double d2sq = d_.tail(nf).squaredNorm();
+    const bool has_z = nf > 0 && d2sq > 0.0 && d2sq > tol_dep_sq * d_.squaredNorm();
+    if (has_z) z_.noalias() = J_.rightCols(nf) * d_.tail(nf);
+    if (q_ > 0) {
+      r_.head(q_) = d_.head(q_);
+      R_.topLeftCorner(q_, q_).triangularView<Eigen::Upper>().solveInPlace(r_.head(q_));
+    }
+    // Partial (dual) step length t1: the first active inequality whose multiplier hits zero.
+    double t1 = kInf;
+    int k_drop = -1;
+    for (int k = 0; k < q_; ++k) {
+      if (active_[k] >= m_eq && r_(k) > 0.0) {
+        const double ratio = u_(k) / r_(k);
+        if (ratio < t1) {
+          t1 = ratio;
+          k_drop = k;
+        }
+      }
+    }
+    // Full (primal) step length t2: row p becomes satisfied.
+    const double t2 = has_z ? -sp / d2sq : kInf;
+    if (t1 == kInf && t2 == kInf) {
+      fail(QpStatus::kInfeasible,
+           "infeasible: inequality row %d (violation %.3g) cannot be satisfied together with the "
+           "%d active rows",
+           p, sp, q_);
+      return false;
+    }
+    const double t = std::min(t1, t2);
+    if (q_ > 0) u_.head(q_) -= t * r_.head(q_);
+    u_plus += t;
+    if (t2 == kInf) {  // dual step only
+      dropConstraint(k_drop);
+      continue;
+    }
+    x_.noalias() += t * z_;
+    sp += t * d2sq;
+    if (t2 <= t1) {
+      u_(q_) = u_plus;
+      addConstraint(m_eq + p);
+      is_active_[p] = 1;
+      return true;
+    }
+    dropConstraint(k_drop);
+  }
 }
 
 void DualActiveSetQp::finish(const HessianFactor& factor, const VectorRef& g, int m_eq, int m_in) {

@@ -15,7 +15,7 @@ std::atomic<unsigned long long> g_next_factor_id{1};
 
 int checkedSize(int n) {
   if (n <= 0)
-    throw ReachError("HessianFactor: number of variables must be > 0, got " + std::to_string(n));
+    throw QpInputError("HessianFactor: number of variables must be > 0, got " + std::to_string(n));
   return n;
 }
 }  // namespace

@@ -48,8 +48,8 @@ Eigen::Matrix3d fromQuaternionMsg(const geometry_msgs::Quaternion& m, const char
   const Eigen::Vector4d c(m.x, m.y, m.z, m.w);
   requireFinite(what, c);
   if (std::abs(c.norm() - 1.0) > 1e-3)
-    throw ReachError(std::string(what) + ": quaternion norm " + std::to_string(c.norm()) +
-                     " is not 1");
+    throw RequestError(std::string(what) + ": quaternion norm " + std::to_string(c.norm()) +
+                       " is not 1");
   return Eigen::Quaterniond(m.w, m.x, m.y, m.z).normalized().toRotationMatrix();
 }
 }  // namespace
@@ -236,7 +236,7 @@ reach_trajopt::ContactPlan toContactPlanMsg(const TvrInput& input, const TvrStep
                                             double ground_z, const ros::Time& stamp) {
   if (!(single_support > 0.0) || !(double_support > 0.0) || !std::isfinite(single_support) ||
       !std::isfinite(double_support))
-    throw ReachError("contact plan: phase durations must be positive and finite");
+    throw RequestError("contact plan: phase durations must be positive and finite");
   reach_trajopt::ContactPlan m;
   m.header.stamp = stamp;
   m.header.frame_id = kWorldFrame;

@@ -16,7 +16,7 @@ namespace ros_bridge {
 std::string robotDescription(const ros::NodeHandle& nh) {
   std::string urdf;
   if (!nh.getParam("robot_description", urdf) || urdf.empty())
-    throw ReachError("parameter 'robot_description' (URDF text) is not set");
+    throw ConfigError("parameter 'robot_description' (URDF text) is not set");
   return urdf;
 }
 

@@ -69,14 +69,14 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
                                      double default_duration, const Eigen::VectorXd& standing_q,
                                      const FootholdRequestLimits& limits) {
   if (!frame_id.empty() && frame_id != kWorldFrame)
-    throw ReachError("unknown frame '" + frame_id + "': positions must be in 'world'");
+    throw RequestError("unknown frame '" + frame_id + "': positions must be in 'world'");
   if (contact_mode.empty() || contact_mode == "flight")
-    throw ReachError("empty contact set (mode '" + contact_mode +
-                     "'): the robot must stand on one sole (SS-L or SS-R)");
+    throw RequestError("empty contact set (mode '" + contact_mode +
+                       "'): the robot must stand on one sole (SS-L or SS-R)");
   const ContactMode mode = ContactMode::fromName(contact_mode);  // throws on unknown names
   if (!mode.isSingleSupport())
-    throw ReachError("contact mode " + contact_mode +
-                     " has no swing sole: the check needs single support (SS-L or SS-R)");
+    throw RequestError("contact mode " + contact_mode +
+                       " has no swing sole: the check needs single support (SS-L or SS-R)");
   FootholdRequest r;
   r.stance = mode.stance();
   if (q.empty() && qd.empty()) {
@@ -94,10 +94,10 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
   requireFinite("foothold", target);
   r.duration = duration == 0.0 ? default_duration : duration;
   if (!(r.duration > 0.0) || !std::isfinite(r.duration))
-    throw ReachError("swing_duration " + std::to_string(r.duration) + " s must be positive");
+    throw RequestError("swing_duration " + std::to_string(r.duration) + " s must be positive");
   if (r.duration > limits.max_duration)
-    throw ReachError("swing_duration " + std::to_string(r.duration) + " s is over the limit of " +
-                     std::to_string(limits.max_duration) + " s");
+    throw RequestError("swing_duration " + std::to_string(r.duration) + " s is over the limit of " +
+                       std::to_string(limits.max_duration) + " s");
 
   Workspace ws(model);
   model.update(ws, r.q, r.qd);
@@ -112,7 +112,7 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
     os << "foothold at z = " << target.z() << " m is " << height
        << " m from the ground (stance sole at z = " << stance.translation().z() << " m, tolerance "
        << limits.ground_tolerance << " m): a foothold must lie on the ground";
-    throw ReachError(os.str());
+    throw RequestError(os.str());
   }
   r.target.position = target;
   r.target.yaw = r.stance_contact.yaw;

@@ -89,7 +89,7 @@ BulletWorld::BulletWorld(const SimBodyTree& tree, const std::vector<std::string>
                          const SimConfig& config)
     : tree_(tree), config_(config), floating_(tree.floating_base) {
   config_.validate();
-  if (tree_.bodies.empty()) throw ReachError(tree_.source + ": no bodies");
+  if (tree_.bodies.empty()) throw ModelError(tree_.source + ": no bodies");
   nu_ = static_cast<int>(joint_order.size());
   const int offset = floating_ ? 6 : 0;
   nq_ = nu_ + offset;
@@ -97,7 +97,7 @@ BulletWorld::BulletWorld(const SimBodyTree& tree, const std::vector<std::string>
     std::ostringstream os;
     os << tree_.source << ": the URDF has " << tree_.bodies.size() - 1
        << " revolute/prismatic joints but the joint order names " << nu_;
-    throw ReachError(os.str());
+    throw ModelError(os.str());
   }
   body_to_q_.assign(tree_.bodies.size(), -1);
   effort_max_.resize(nu_);
@@ -106,11 +106,11 @@ BulletWorld::BulletWorld(const SimBodyTree& tree, const std::vector<std::string>
     const SimBody& b = tree_.bodies[k];
     auto it = std::find(joint_order.begin(), joint_order.end(), b.joint);
     if (it == joint_order.end()) {
-      throw ReachError("joint '" + b.joint + "' of " + tree_.source +
+      throw ModelError("joint '" + b.joint + "' of " + tree_.source +
                        " is not in the simulator's joint order");
     }
     const int j = static_cast<int>(it - joint_order.begin());
-    if (used[j]) throw ReachError("joint '" + b.joint + "' appears twice in the joint order");
+    if (used[j]) throw ModelError("joint '" + b.joint + "' appears twice in the joint order");
     used[j] = true;
     body_to_q_[k] = offset + j;
     effort_max_[j] = b.effort_max;
@@ -125,7 +125,7 @@ BulletWorld::BulletWorld(const SimBodyTree& tree, const std::vector<std::string>
     soles_[s].frame = sole_names[s];
   }
   if (sole_body_[0] == sole_body_[1]) {
-    throw ReachError(tree_.source + ": both sole frames are on body '" +
+    throw ModelError(tree_.source + ": both sole frames are on body '" +
                      tree_.bodies[sole_body_[0]].name + "'");
   }
   reset(Eigen::VectorXd::Zero(nq_), Eigen::VectorXd::Zero(nq_));
@@ -136,7 +136,7 @@ std::unique_ptr<BulletWorld> BulletWorld::fromUrdfFile(const std::string& urdf_p
                                                        const SimConfig& config) {
   SimBodyTree tree = SimBodyTree::fromUrdfFile(urdf_path);
   if (tree.floating_base != model.floatingBase()) {
-    throw ReachError(urdf_path + ": the robot model and the simulator disagree on the base (" +
+    throw ModelError(urdf_path + ": the robot model and the simulator disagree on the base (" +
                      std::string(model.floatingBase() ? "floating" : "fixed") + " in the model)");
   }
   std::vector<std::string> order;

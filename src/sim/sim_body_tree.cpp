@@ -45,7 +45,7 @@ class Builder {
 
   SimBodyTree build() {
     urdf::LinkConstSharedPtr root = model_.getRoot();
-    if (!root) throw ReachError(tree_.source + ": URDF has no root link");
+    if (!root) throw ModelError(tree_.source + ": URDF has no root link");
     tree_.floating_base = root->name != "world";
     SimBody body;
     body.name = root->name;
@@ -73,7 +73,7 @@ class Builder {
 
     for (const urdf::JointSharedPtr& joint : link.child_joints) {
       urdf::LinkConstSharedPtr child = model_.getLink(joint->child_link_name);
-      if (!child) throw ReachError(tree_.source + ": joint '" + joint->name + "' has no child");
+      if (!child) throw ModelError(tree_.source + ": joint '" + joint->name + "' has no child");
       const Eigen::Isometry3d T_joint = toIsometry(joint->parent_to_joint_origin_transform);
       switch (joint->type) {
         case urdf::Joint::FIXED:
@@ -91,12 +91,12 @@ class Builder {
           next.parent_to_body = T * T_joint;
           next.axis = Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
           if (next.axis.norm() < 1e-12) {
-            throw ReachError(tree_.source + ": joint '" + joint->name + "' has a zero axis");
+            throw ModelError(tree_.source + ": joint '" + joint->name + "' has a zero axis");
           }
           next.axis.normalize();
           if (joint->type != urdf::Joint::CONTINUOUS) {
             if (!joint->limits) {
-              throw ReachError(tree_.source + ": joint '" + joint->name + "' has no <limit>");
+              throw ModelError(tree_.source + ": joint '" + joint->name + "' has no <limit>");
             }
             next.q_min = joint->limits->lower;
             next.q_max = joint->limits->upper;
@@ -109,7 +109,7 @@ class Builder {
           break;
         }
         default:
-          throw ReachError(tree_.source + ": joint '" + joint->name +
+          throw ModelError(tree_.source + ": joint '" + joint->name +
                            "' is floating or planar; the simulator supports fixed, revolute, "
                            "continuous and prismatic joints");
       }
@@ -145,7 +145,7 @@ class Builder {
         return;  // meshes do not collide in the simulator (documented in bullet_world.h)
     }
     if (!(shape.size.array() >= 0.0).all() || !shape.size.allFinite()) {
-      throw ReachError(tree_.source + ": link '" + link + "' has a collision shape of bad size");
+      throw ModelError(tree_.source + ": link '" + link + "' has a collision shape of bad size");
     }
     tree_.bodies[b].shapes.push_back(shape);
   }
@@ -173,7 +173,7 @@ class Builder {
       body.principal_inertia = eig.eigenvalues();
     }
     if ((body.principal_inertia.array() < 0.0).any()) {
-      throw ReachError(tree_.source + ": body '" + body.name +
+      throw ModelError(tree_.source + ": body '" + body.name +
                        "' has an inertia that is not positive semi-definite");
     }
   }
@@ -187,7 +187,7 @@ class Builder {
 
 SimBodyTree SimBodyTree::fromUrdfFile(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw ReachError("cannot open URDF file '" + path + "'");
+  if (!in) throw ModelError("cannot open URDF file '" + path + "'");
   std::stringstream ss;
   ss << in.rdbuf();
   return fromUrdfString(ss.str(), path);
@@ -195,13 +195,13 @@ SimBodyTree SimBodyTree::fromUrdfFile(const std::string& path) {
 
 SimBodyTree SimBodyTree::fromUrdfString(const std::string& xml, const std::string& source) {
   urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
-  if (!model) throw ReachError(source + ": malformed URDF (urdfdom could not parse it)");
+  if (!model) throw ModelError(source + ": malformed URDF (urdfdom could not parse it)");
   return Builder(*model, source).build();
 }
 
 const std::pair<int, Eigen::Isometry3d>& SimBodyTree::frame(const std::string& link) const {
   auto it = frames.find(link);
-  if (it == frames.end()) throw ReachError("unknown frame '" + link + "' in " + source);
+  if (it == frames.end()) throw ModelError("unknown frame '" + link + "' in " + source);
   return it->second;
 }
 

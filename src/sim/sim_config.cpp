@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
@@ -16,42 +16,52 @@ void SimConfig::validate() const {
   requirePositive("time_step", time_step);
   requirePositive("mu", mu);
   requirePositive("max_coordinate_velocity", max_coordinate_velocity);
-  if (!gravity.allFinite()) throw ReachError("SimConfig: gravity must be finite");
+  if (!gravity.allFinite()) throw ConfigError("SimConfig: gravity must be finite");
   if (solver_iterations < 1) {
-    throw ReachError("SimConfig: solver_iterations must be >= 1, got " +
-                     std::to_string(solver_iterations));
+    throw ConfigError("SimConfig: solver_iterations must be >= 1, got " +
+                      std::to_string(solver_iterations));
   }
   if (!std::isfinite(collision_margin) || collision_margin < 0.0) {
     std::ostringstream os;
     os << "SimConfig: collision_margin must be >= 0 and finite, got " << collision_margin;
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
   if (left_sole_frame.empty() || right_sole_frame.empty()) {
-    throw ReachError("SimConfig: sole frame names must not be empty");
+    throw ConfigError("SimConfig: sole frame names must not be empty");
   }
   if (left_sole_frame == right_sole_frame) {
-    throw ReachError("SimConfig: left and right sole frames are both '" + left_sole_frame + "'");
+    throw ConfigError("SimConfig: left and right sole frames are both '" + left_sole_frame + "'");
   }
 }
 
-SimConfig SimConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"time_step", "mu", "gravity", "contacts", "joint_limits", "clamp_torques",
-                     "left_sole_frame", "right_sole_frame", "solver_iterations", "collision_margin",
-                     "max_coordinate_velocity"});
-  SimConfig c;
-  s.read("time_step", c.time_step);
-  s.read("mu", c.mu);
-  Eigen::VectorXd g = c.gravity;
-  if (s.read("gravity", Eigen::Ref<Eigen::VectorXd>(g))) c.gravity = g;
-  s.read("contacts", c.contacts);
-  s.read("joint_limits", c.joint_limits);
-  s.read("clamp_torques", c.clamp_torques);
-  s.read("left_sole_frame", c.left_sole_frame);
-  s.read("right_sole_frame", c.right_sole_frame);
-  s.read("solver_iterations", c.solver_iterations);
-  s.read("collision_margin", c.collision_margin);
-  s.read("max_coordinate_velocity", c.max_coordinate_velocity);
-  return validatedIn(s, c);
+const ConfigFields<SimConfig>& SimConfig::fields() {
+  using C = SimConfig;
+  const std::string frames =
+      "removed: the sole frames are contact.left_sole_frame and contact.right_sole_frame of the "
+      "robot's config (config/biped.yaml)";
+  static const ConfigFields<C> f =
+      ConfigFields<C>("SimConfig", "sim", "include/reach_trajopt/sim/sim_config.h",
+                      "Bullet multibody world (config/sim.yaml); its sole frames are those of "
+                      "`contact:`.")
+          .add("time_step", &C::time_step, "s", "fixed step (1 kHz), > 0")
+          .add("mu", &C::mu, "", "Coulomb friction with the ground, > 0")
+          .add("gravity", &C::gravity, "m/s^2", "world frame, finite")
+          .add("contacts", &C::contacts, "", "false removes the ground (free-fall checks)")
+          .add("joint_limits", &C::joint_limits, "",
+               "URDF position limits as unilateral constraints")
+          .add("clamp_torques", &C::clamp_torques, "", "saturate torques at the URDF effort limits")
+          .add("solver_iterations", &C::solver_iterations, "",
+               "Bullet constraint-solver iterations per step, >= 1: more, stiffer and more "
+               "accurate contacts; slower steps")
+          .add("collision_margin", &C::collision_margin, "m",
+               "Bullet convex margin (rounds box corners), >= 0")
+          .add("max_coordinate_velocity", &C::max_coordinate_velocity, "m/s, rad/s",
+               "Bullet's velocity clamp, kept out of reach, > 0")
+          .removed("left_sole_frame", frames)
+          .removed("right_sole_frame", frames);
+  return f;
 }
+
+SimConfig SimConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
 
 }  // namespace reach_trajopt

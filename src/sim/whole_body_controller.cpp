@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/config_fields.h"
 
 namespace reach_trajopt {
 namespace {
@@ -22,34 +22,41 @@ void WbcConfig::validate() const {
   const double vals[] = {w_com,   w_com_xy, kp_com,   kd_com,    w_pelvis,   kp_pelvis, kd_pelvis,
                          w_swing, kp_swing, kd_swing, w_posture, kp_posture, kd_posture};
   for (double v : vals)
-    if (!std::isfinite(v) || v < 0.0) throw ReachError("WbcConfig: weights and gains must be >= 0");
+    if (!std::isfinite(v) || v < 0.0)
+      throw ConfigError("WbcConfig: weights and gains must be >= 0");
   if (!(w_qdd > 0.0) || !(w_lambda > 0.0) || !std::isfinite(w_qdd) || !std::isfinite(w_lambda))
-    throw ReachError(
+    throw ConfigError(
         "WbcConfig: w_qdd and w_lambda must be > 0 (they keep the QP strictly convex)");
 }
 
-WbcConfig WbcConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"w_com", "w_com_xy", "kp_com", "kd_com", "w_pelvis", "kp_pelvis", "kd_pelvis",
-                     "w_swing", "kp_swing", "kd_swing", "w_posture", "kp_posture", "kd_posture",
-                     "w_qdd", "w_lambda"});
-  WbcConfig c;
-  s.read("w_com", c.w_com);
-  s.read("w_com_xy", c.w_com_xy);
-  s.read("kp_com", c.kp_com);
-  s.read("kd_com", c.kd_com);
-  s.read("w_pelvis", c.w_pelvis);
-  s.read("kp_pelvis", c.kp_pelvis);
-  s.read("kd_pelvis", c.kd_pelvis);
-  s.read("w_swing", c.w_swing);
-  s.read("kp_swing", c.kp_swing);
-  s.read("kd_swing", c.kd_swing);
-  s.read("w_posture", c.w_posture);
-  s.read("kp_posture", c.kp_posture);
-  s.read("kd_posture", c.kd_posture);
-  s.read("w_qdd", c.w_qdd);
-  s.read("w_lambda", c.w_lambda);
-  return validatedIn(s, c);
+const ConfigFields<WbcConfig>& WbcConfig::fields() {
+  using C = WbcConfig;
+  static const ConfigFields<C> f =
+      ConfigFields<C>("WbcConfig", "wbc", "include/reach_trajopt/sim/whole_body_controller.h",
+                      "Whole-body controller: task weights (>= 0; larger wins over the other "
+                      "tasks) and PD gains (>= 0; larger tracks faster but amplifies the "
+                      "simulator's contact noise).")
+          .add("w_com", &C::w_com, "", "weight of the CoM height task")
+          .add("kp_com", &C::kp_com, "1/s^2", "its stiffness")
+          .add("kd_com", &C::kd_com, "1/s", "its damping")
+          .add("w_com_xy", &C::w_com_xy, "",
+               "horizontal CoM weight; small: the CoM moves as the pendulum the TVR planner "
+               "assumes")
+          .add("w_pelvis", &C::w_pelvis, "", "weight of the pelvis orientation task")
+          .add("kp_pelvis", &C::kp_pelvis, "1/s^2", "its stiffness")
+          .add("kd_pelvis", &C::kd_pelvis, "1/s", "its damping")
+          .add("w_swing", &C::w_swing, "", "weight of the swing sole pose task")
+          .add("kp_swing", &C::kp_swing, "1/s^2", "its stiffness")
+          .add("kd_swing", &C::kd_swing, "1/s", "its damping")
+          .add("w_posture", &C::w_posture, "", "weight of the joint posture task")
+          .add("kp_posture", &C::kp_posture, "1/s^2", "its stiffness")
+          .add("kd_posture", &C::kd_posture, "1/s", "its damping")
+          .add("w_qdd", &C::w_qdd, "", "regularization of qdd, > 0 (keeps the QP strictly convex)")
+          .add("w_lambda", &C::w_lambda, "1/N^2", "regularization of the contact wrenches, > 0");
+  return f;
 }
+
+WbcConfig WbcConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
 
 WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model,
                                          const ContactConfig& contact, const WbcConfig& config,
@@ -68,7 +75,7 @@ WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model
   contact_.validate();
   config_.validate();
   if (!model_->floatingBase())
-    throw ReachError("WholeBodyController needs a floating-base model, got " + model_->source());
+    throw ModelError("WholeBodyController needs a floating-base model, got " + model_->source());
   requireSize("WholeBodyController: posture", posture_.size(), model_->nq());
   requireFinite("WholeBodyController: posture", posture_);
   const int n = model_->nq();

@@ -55,6 +55,8 @@ FootstepPlannerConfig FootstepPlannerConfig::fromYaml(const YamlSection& root) {
     c.kinematics = KinematicFeasibilityConfig::fromYaml(root.section("kinematic_feasibility"));
   if (root.has("reach")) c.reach = ReachConfig::fromYaml(root.section("reach"));
   if (root.has("ocp")) c.ocp = TransitionOcpConfig::fromYaml(root.section("ocp"));
+  // The robot's pelvis height is written once: the relaxed OCP lands at the IK's height.
+  c.ocp.terminal_pelvis_height = c.kinematics.pelvis_height;
   if (root.has("nearest_foothold"))
     c.nearest_foothold = NearestFootholdConfig::fromYaml(root.section("nearest_foothold"));
   return c;

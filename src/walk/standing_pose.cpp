@@ -5,8 +5,8 @@ namespace reach_trajopt {
 Eigen::VectorXd standingConfiguration(const RobotModel& model, double knee_bend,
                                       const std::string& sole_frame, const LegJointNames& names) {
   if (!model.floatingBase())
-    throw ReachError("standingConfiguration needs a floating-base model: " + model.source());
-  if (!std::isfinite(knee_bend)) throw ReachError("standingConfiguration: non-finite knee bend");
+    throw ModelError("standingConfiguration needs a floating-base model: " + model.source());
+  if (!std::isfinite(knee_bend)) throw RequestError("standingConfiguration: non-finite knee bend");
   Eigen::VectorXd q = model.neutralConfiguration();
   q.head(6).setZero();
   for (const std::string& prefix : {names.left_prefix, names.right_prefix}) {

@@ -19,9 +19,9 @@ SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& start, const Eigen::Vect
   requireFinite("SwingTrajectory: start", start);
   requireFinite("SwingTrajectory: target", target);
   if (!(duration > 0.0) || !std::isfinite(duration))
-    throw ReachError("SwingTrajectory: duration must be > 0 s");
+    throw RequestError("SwingTrajectory: duration must be > 0 s");
   if (!(apex_height >= 0.0) || !(touchdown_depth >= 0.0))
-    throw ReachError("SwingTrajectory: apex height and touchdown depth must be >= 0 m");
+    throw RequestError("SwingTrajectory: apex height and touchdown depth must be >= 0 m");
 }
 
 void SwingTrajectory::retarget(const Eigen::Vector3d& target) {

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/walk/com_reference.h"
@@ -25,7 +25,7 @@ namespace reach_trajopt {
 WalkConfig::Mode WalkConfig::parseMode(const std::string& name) {
   if (name == "baseline") return Mode::kBaseline;
   if (name == "proposed") return Mode::kProposed;
-  throw ReachError("walk mode must be 'baseline' or 'proposed', got '" + name + "'");
+  throw RequestError("walk mode must be 'baseline' or 'proposed', got '" + name + "'");
 }
 
 const char* WalkConfig::modeName(Mode mode) {
@@ -35,15 +35,15 @@ const char* WalkConfig::modeName(Mode mode) {
 void WalkConfig::validate() const {
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0) || !std::isfinite(v))
-      throw ReachError(std::string("WalkConfig: ") + name + " must be > 0, got " +
-                       std::to_string(v));
+      throw ConfigError(std::string("WalkConfig: ") + name + " must be > 0, got " +
+                        std::to_string(v));
   };
   auto nonNegative = [](const char* name, double v) {
     if (!(v >= 0.0) || !std::isfinite(v))
-      throw ReachError(std::string("WalkConfig: ") + name + " must be >= 0, got " +
-                       std::to_string(v));
+      throw ConfigError(std::string("WalkConfig: ") + name + " must be >= 0, got " +
+                        std::to_string(v));
   };
-  if (steps < 0) throw ReachError("WalkConfig: steps must be >= 0");
+  if (steps < 0) throw ConfigError("WalkConfig: steps must be >= 0");
   positive("single_support_duration", single_support_duration);
   positive("double_support_duration", double_support_duration);
   nonNegative("settle_duration", settle_duration);
@@ -53,52 +53,59 @@ void WalkConfig::validate() const {
   nonNegative("late_touchdown", late_touchdown);
   positive("check_horizon", check_horizon);
   if (!(check_horizon < single_support_duration))
-    throw ReachError("WalkConfig: check_horizon must be shorter than single_support_duration");
+    throw ConfigError("WalkConfig: check_horizon must be shorter than single_support_duration");
   if (!(replan_fraction >= 0.0 && replan_fraction <= 1.0))
-    throw ReachError("WalkConfig: replan_fraction must be in [0, 1]");
+    throw ConfigError("WalkConfig: replan_fraction must be in [0, 1]");
   nonNegative("knee_bend", knee_bend);
   positive("fall_pelvis_height", fall_pelvis_height);
   positive("max_sim_time", max_sim_time);
-  if (!std::isfinite(forward_speed)) throw ReachError("WalkConfig: forward_speed is not finite");
+  if (!std::isfinite(forward_speed)) throw ConfigError("WalkConfig: forward_speed is not finite");
   requireFinite("WalkConfig: initial_com_velocity", initial_com_velocity);
 }
 
-WalkConfig WalkConfig::fromYaml(const YamlSection& s) {
-  s.requireOnlyKeys({"mode", "steps", "single_support_duration", "double_support_duration",
-                     "settle_duration", "swing_height", "touchdown_depth", "touchdown_force",
-                     "late_touchdown", "check_horizon", "replan_fraction", "knee_bend",
-                     "forward_speed", "initial_com_velocity", "first_swing", "fall_pelvis_height",
-                     "seed", "max_sim_time"});
-  WalkConfig c;
-  std::string mode = modeName(c.mode), first = c.first_swing == Side::kLeft ? "left" : "right";
-  s.read("mode", mode);
-  c.mode = parseMode(mode);
-  s.read("steps", c.steps);
-  s.read("single_support_duration", c.single_support_duration);
-  s.read("double_support_duration", c.double_support_duration);
-  s.read("settle_duration", c.settle_duration);
-  s.read("swing_height", c.swing_height);
-  s.read("touchdown_depth", c.touchdown_depth);
-  s.read("touchdown_force", c.touchdown_force);
-  s.read("late_touchdown", c.late_touchdown);
-  s.read("check_horizon", c.check_horizon);
-  s.read("replan_fraction", c.replan_fraction);
-  s.read("knee_bend", c.knee_bend);
-  s.read("forward_speed", c.forward_speed);
-  Eigen::VectorXd v = c.initial_com_velocity;
-  s.read("initial_com_velocity", v);
-  c.initial_com_velocity = v;
-  s.read("first_swing", first);
-  if (first != "left" && first != "right")
-    throw ReachError(s.where("first_swing") + ": expected 'left' or 'right', got '" + first + "'");
-  c.first_swing = first == "left" ? Side::kLeft : Side::kRight;
-  s.read("fall_pelvis_height", c.fall_pelvis_height);
-  int seed = static_cast<int>(c.seed);
-  s.read("seed", seed);
-  c.seed = static_cast<unsigned>(seed);
-  s.read("max_sim_time", c.max_sim_time);
-  return validatedIn(s, c);
+const ConfigFields<WalkConfig>& WalkConfig::fields() {
+  using C = WalkConfig;
+  static const ConfigFields<C> f =
+      ConfigFields<C>("WalkConfig", "walk", "include/reach_trajopt/walk/walking_experiment.h",
+                      "The walking experiment of Sec. IV. Step period T = "
+                      "single_support_duration + double_support_duration (0.26 s < 2 t_s, as "
+                      "the step map (12) needs).")
+          .choice("mode", &C::mode, {{"baseline", Mode::kBaseline}, {"proposed", Mode::kProposed}},
+                  "baseline: TVR with heuristic bounds; proposed: no bounds, every foothold "
+                  "checked (the mode sets TvrConfig::heuristic_bounds)")
+          .add("steps", &C::steps, "", "footsteps to walk (touchdowns), >= 0")
+          .add("single_support_duration", &C::single_support_duration, "s", "nominal swing time")
+          .add("double_support_duration", &C::double_support_duration, "s",
+               "weight transfer between steps")
+          .add("settle_duration", &C::settle_duration, "s",
+               "initial standing before the first lift-off")
+          .add("swing_height", &C::swing_height, "m", "swing apex above the ground")
+          .add("touchdown_depth", &C::touchdown_depth, "m",
+               "nominal swing end below the ground (touchdown by contact)")
+          .add("touchdown_force", &C::touchdown_force, "N",
+               "sole normal force that counts as touchdown, > 0")
+          .add("late_touchdown", &C::late_touchdown, "s",
+               "time past the nominal swing end before a fall is declared")
+          .add("check_horizon", &C::check_horizon, "s",
+               "proposed mode: the check and the OCP start this long before the nominal "
+               "touchdown (replaces reach.horizon), < single_support_duration")
+          .add("replan_fraction", &C::replan_fraction, "",
+               "eq. (11) re-evaluated from the measured CoM during this fraction of the swing, "
+               "in [0, 1]")
+          .add("knee_bend", &C::knee_bend, "rad", "standing posture")
+          .add("forward_speed", &C::forward_speed, "m/s",
+               "desired CoM speed along x (drives p_des of eq. 11)")
+          .add("initial_com_velocity", &C::initial_com_velocity, "m/s", "push at t = 0, feet still")
+          .choice("first_swing", &C::first_swing, {{"left", Side::kLeft}, {"right", Side::kRight}},
+                  "the sole that swings first (right: SS-L comes first)")
+          .add("fall_pelvis_height", &C::fall_pelvis_height, "m",
+               "pelvis origin below this height = fall, > 0")
+          .add("seed", &C::seed, "", "seed of every random draw of the run")
+          .add("max_sim_time", &C::max_sim_time, "s", "hard stop, > 0");
+  return f;
 }
+
+WalkConfig WalkConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
 
 std::string WalkResult::summaryLine() const {
   std::ostringstream os;
@@ -162,6 +169,9 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
   impl_->contact = contact;
   impl_->wbc_config = wbc;
   impl_->sim_config = sim;
+  // The robot's sole frames are named once, in ContactConfig.
+  impl_->sim_config.left_sole_frame = contact.left_sole_frame;
+  impl_->sim_config.right_sole_frame = contact.right_sole_frame;
   impl_->urdf = urdf_path;
 }
 

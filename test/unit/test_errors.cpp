@@ -3,13 +3,19 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/planner/lipm.h"
+#include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"
+#include "reach_trajopt/sim/bullet_world.h"
 
 namespace reach_trajopt {
 namespace {
@@ -61,6 +67,30 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
         YamlSection::loadString("contact:\n  mu: -1\n", "t.yaml").section("contact"));
   });
   EXPECT_NE(invalid.find("mu"), std::string::npos) << invalid;
+}
+
+TEST(Errors, RequestsAndParametersHaveTheirCategories) {
+  // A request: its JSON, a tool option, a planner input.
+  EXPECT_NE(thrownMessage<RequestError>([] { JsonReader::parse("{", "r.json"); }).find("r.json"),
+            std::string::npos);
+  EXPECT_NE(
+      thrownMessage<RequestError>([] { parseIntOption("--steps", "5x", 0, 10); }).find("--steps"),
+      std::string::npos);
+  TvrInput in;
+  in.stance_yaw = std::nan("");
+  EXPECT_NE(thrownMessage<RequestError>([&] { TvrPlanner(TvrConfig{}).plan(in); }).find("yaw"),
+            std::string::npos);
+  // A parameter: a config struct's value.
+  EXPECT_NE(thrownMessage<ConfigError>([] { Lipm(-1.0); }).find("height"), std::string::npos);
+  TvrConfig bad;
+  bad.t_s = 0.0;
+  EXPECT_NE(thrownMessage<ConfigError>([&] { bad.validate(); }).find("t_s"), std::string::npos);
+  // The simulator's robot description.
+  const auto model = RobotModel::fromUrdfFile(REACH_TRAJOPT_SOURCE_DIR "/urdf/biped.urdf");
+  EXPECT_NE(thrownMessage<ModelError>([&] {
+              BulletWorld::fromUrdfFile("/nonexistent/sim_xyz.urdf", *model, SimConfig{});
+            }).find("sim_xyz.urdf"),
+            std::string::npos);
 }
 
 TEST(Errors, EverySubclassIsAReachError) {

@@ -32,6 +32,16 @@ namespace {
 
 constexpr double kTol = 1e-4;
 
+/// The OCP settings these cases were tuned with (the struct defaults before the defaults became
+/// the shipped values): 4 segments over their 0.3 s horizons (the shipped 5 are for the walk's
+/// 0.2 s check horizon) and no extra mid-horizon swing clearance.
+TransitionOcpConfig caseConfig() {
+  TransitionOcpConfig c;
+  c.segments = 4;
+  c.swing_clearance = 0.0;
+  return c;
+}
+
 std::shared_ptr<const RobotModel> biped() {
   static const auto model =
       RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
@@ -203,7 +213,7 @@ TEST(TransitionOcp, ReachableStepConvergesAndPassesIndependentCheck) {
     const double t = 0.05 * j, s = t / req.horizon;
     req.slices.push_back(box(t, -0.1, 0.26 + 0.2 * (1 - s), -0.2, -0.05 + 0.05 * s));
   }
-  const TransitionOcp ocp(biped());
+  const TransitionOcp ocp(biped(), caseConfig());
   const TransitionResult res = ocp.solve(req);
   ASSERT_EQ(res.status, OcpStatus::kConverged) << res.reason;
   EXPECT_FALSE(res.relaxed);
@@ -240,7 +250,7 @@ TEST(TransitionOcp, StepBeyondReachableSetIsRelaxedToItsEdge) {
   const double edge = 0.25, beyond = 0.3;
   TransitionRequest req = stepRequest(edge + beyond);
   req.slices.push_back(box(req.horizon, -0.5, edge, -0.4, 0.0));
-  const TransitionOcp ocp(biped());
+  const TransitionOcp ocp(biped(), caseConfig());
   const TransitionResult res = ocp.solve(req);
   ASSERT_EQ(res.status, OcpStatus::kRelaxed) << res.reason;
   EXPECT_TRUE(res.relaxed);
@@ -271,7 +281,7 @@ TEST(TransitionOcp, StepBeyondLegReachLandsOnFeasibleFoothold) {
   }
   const double beyond = 0.3;
   TransitionRequest req = stepRequest(lo + beyond);
-  TransitionOcpConfig cfg;
+  TransitionOcpConfig cfg = caseConfig();
   cfg.time_limit = 60.0;  // a shared, loaded test machine: this test is not about speed
   const TransitionOcp ocp(m, cfg);
   ASSERT_FALSE(ocp.finalStateOnContacts(req));  // x_f is the IK's failed iterate
@@ -289,7 +299,7 @@ TEST(TransitionOcp, StepBeyondLegReachLandsOnFeasibleFoothold) {
 }
 
 TEST(TransitionOcp, TimeLimitGivesFailedStatus) {
-  TransitionOcpConfig cfg;
+  TransitionOcpConfig cfg = caseConfig();
   cfg.time_limit = 1e-3;
   const TransitionOcp ocp(biped(), cfg);
   const TransitionResult res = ocp.solve(stepRequest(0.25));
@@ -301,7 +311,7 @@ TEST(TransitionOcp, InfeasibleTransitionFailsWithReason) {
   // 0.25 m in 60 ms from rest: far beyond the torque and cone limits.
   TransitionRequest req = stepRequest(0.25, 0.06);
   req.relaxation = RelaxationMode::kStrict;
-  TransitionOcpConfig cfg;
+  TransitionOcpConfig cfg = caseConfig();
   cfg.max_refinements = 1;
   const TransitionResult res = TransitionOcp(biped(), cfg).solve(req);
   EXPECT_EQ(res.status, OcpStatus::kFailed);
@@ -311,7 +321,7 @@ TEST(TransitionOcp, InfeasibleTransitionFailsWithReason) {
 
 TEST(TransitionOcp, BadInputThrows) {
   const auto m = biped();
-  const TransitionOcp ocp(m);
+  const TransitionOcp ocp(m, caseConfig());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const TransitionRequest good = stepRequest(0.25);
   auto expectThrow = [&](TransitionRequest r, const std::string& what) {
@@ -355,10 +365,10 @@ TEST(TransitionOcp, BadInputThrows) {
   r.relaxation = RelaxationMode::kStrict;
   expectThrow(r, "x_f does not hold both contacts");
   // Invalid configurations.
-  TransitionOcpConfig cfg;
+  TransitionOcpConfig cfg = caseConfig();
   cfg.segments = 1;
   EXPECT_THROW(TransitionOcp(m, cfg), ReachError);
-  cfg = TransitionOcpConfig();
+  cfg = caseConfig();
   cfg.check_interval = nan;
   EXPECT_THROW(TransitionOcp(m, cfg), ReachError);
 }

@@ -69,12 +69,13 @@ void requireFinite(const char* what, const Eigen::DenseBase<Derived>& v) {
   }
 }
 
-/// Throws ReachError("<owner>: <name> must be positive and finite, got <v>") unless 0 < v < inf.
+/// Throws ConfigError("<owner>: <name> must be positive and finite, got <v>") unless
+/// 0 < v < inf (the check of a config struct's field).
 inline void requirePositiveFinite(const char* owner, const char* name, double v) {
   if (!std::isfinite(v) || v <= 0.0) {
     std::ostringstream os;
     os << owner << ": " << name << " must be positive and finite, got " << v;
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
 }
 

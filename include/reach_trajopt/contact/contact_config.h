@@ -10,6 +10,8 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Rectangular-sole contact parameters. Defaults: a Valkyrie-like sole (docs/method.md).
 struct ContactConfig {
@@ -19,11 +21,13 @@ struct ContactConfig {
   std::string left_sole_frame = "l_sole";   ///< frame at the left sole centre, z out of the sole
   std::string right_sole_frame = "r_sole";  ///< frame at the right sole centre
 
-  /// Throws ReachError with the offending value when mu <= 0, a size <= 0, non-finite values
+  /// Throws ConfigError with the offending value when mu <= 0, a size <= 0, non-finite values
   /// or empty frame names.
   void validate() const;
-  /// Reads the keys mu, half_length, half_width, left_sole_frame, right_sole_frame of a YAML
-  /// section (missing keys keep the defaults, unknown keys throw), then validates.
+  /// The YAML keys of section `contact:` (the member names), their units and meaning.
+  static const ConfigFields<ContactConfig>& fields();
+  /// Reads fields() from a YAML section (missing keys keep the defaults, unknown keys throw),
+  /// then validates.
   static ContactConfig fromYaml(const YamlSection& section);
 
   /// The frame of the sole on `side`.

@@ -18,6 +18,8 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Transition OCP settings. The cost (22) is written in scaled form:
 ///   J = (1/T) int [ w_torque |u ./ u_max|^2 + w_wrench |lambda / (m g)|^2
@@ -25,7 +27,7 @@ class YamlSection;
 /// i.e. Qu = w_torque diag(u_max)^-2 / T, Ql = w_wrench / (m g)^2 / T, Qx = diag(w_position,
 /// w_velocity) / T, integrated by the trapezoid rule over the check samples.
 struct TransitionOcpConfig {
-  int segments = 4;              ///< cubic B-spline segments over the horizon (>= 2)
+  int segments = 5;              ///< cubic B-spline segments over the horizon (>= 2)
   double check_interval = 0.02;  ///< NLP sample spacing [s]
   double output_dt = 0.001;      ///< output / verification sample spacing [s] (controller)
   double w_torque = 1.0;         ///< weight of |u / u_max|^2
@@ -37,11 +39,13 @@ struct TransitionOcpConfig {
   /// (roll = pitch = 0) at this height above the mean sole height [m], the posture of the
   /// kinematic feasibility check (Sec. III-B), so the landing configuration is an IK solution
   /// of that check. <= 0 disables it (the base is then free, e.g. it may crouch to reach).
+  /// Not a YAML key: the YAML readers set it to kinematic_feasibility.pelvis_height
+  /// (FootstepPlannerConfig::fromYaml), the one place the robot's pelvis height is written.
   double terminal_pelvis_height = 1.05;
   double cone_margin = 0.01;        ///< cone rows required >= margin m g inside the NLP
   double torque_margin = 0.01;      ///< |u| <= (1 - margin) u_max inside the NLP
   bool ground_clearance = true;     ///< swing sole z >= min(z_target, z(t_0)) at NLP samples,
-  double swing_clearance = 0.0;     ///< plus this much in the middle of the horizon [m], with
+  double swing_clearance = 0.0075;  ///< plus this much in the middle of the horizon [m], with
                                     ///< quadratic ramps over its first and last thirds (the
                                     ///< sole lands with phidot = 0: z ~ (t_f - t)^2), so it
                                     ///< cannot graze the ground and touch down early
@@ -59,9 +63,13 @@ struct TransitionOcpConfig {
   bool central_differences = false;    ///< see file comment
   double fit_regularization = 1.0e-6;  ///< seed fit: weight of the second differences
 
-  /// Throws ReachError naming the first bad value.
+  /// Throws ConfigError naming the first bad value.
   void validate() const;
-  /// Reads the keys of this struct (same names) from a YAML section, then validates.
+  /// The YAML keys of section `ocp:` (the member names but terminal_pelvis_height), their
+  /// units and meaning.
+  static const ConfigFields<TransitionOcpConfig>& fields();
+  /// Reads fields() from a YAML section, then validates. terminal_pelvis_height keeps its
+  /// value: FootstepPlannerConfig::fromYaml sets it from kinematic_feasibility.pelvis_height.
   static TransitionOcpConfig fromYaml(const YamlSection& section);
 };
 

@@ -122,7 +122,24 @@ class TransitionNlp {
     std::vector<int> slices;  ///< hull slices enforced at this sample
     double weight = 0.0;      ///< trapezoid cost weight (1/T int dt)
   };
+  struct EvalState;  ///< scratch of one evaluate() call (transition_nlp.cpp)
+  using StridedRow = Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
+  /// Constructor parts: the fixed control points, variable layout and bounds; the hulls with
+  /// unit normals and the slices enforced at first.
+  void layOutVariables();
+  void prepareSlices();
   void rebuildSamples();
+  /// evaluate() per sample, in this order: spline input, dynamics and the local Jacobian
+  /// jloc_; the cost (22) (sets u_scaled_); the stance cone, torque, clearance and hull rows;
+  /// at t_f the new contact's cone and the equalities.
+  void sampleSignals(const Sample& smp, EvalState& e);
+  void addSampleCost(const Sample& smp, EvalState& e);
+  void addPathInequalities(const Sample& smp, int i, EvalState& e);
+  void addTerminalRows(EvalState& e);
+  /// Adds a local gradient (over the 4 control points of the current sample and lambda_2) to
+  /// a row of the full gradient.
+  void scatter(const EvalState& e, Eigen::Ref<Eigen::RowVectorXd> target, const StridedRow& local,
+               bool final) const;
   /// q_a, qd_a, qdd_a at t from x into `input` (lambda_2 part set by the caller).
   void splineInput(const Eigen::VectorXd& x, const CubicBSplineBasis::Row& row,
                    Eigen::Ref<Eigen::VectorXd> input) const;

@@ -27,6 +27,8 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Parameters of the kinematic feasibility check. Sole frames and sizes come from
 /// ContactConfig. Tolerances trade accuracy for iterations (Newton: a few more per decade).
@@ -45,9 +47,11 @@ struct KinematicFeasibilityConfig {
                                         ///< are errors, not steps [m]
   double workspace_height = 0.5;        ///< same for the sole height difference [m]
 
-  /// Throws ReachError naming the first bad value.
+  /// Throws ConfigError naming the first bad value.
   void validate() const;
-  /// Reads the keys of this struct (same names) from a YAML section, then validates.
+  /// The YAML keys of section `kinematic_feasibility:` (the member names), units and meaning.
+  static const ConfigFields<KinematicFeasibilityConfig>& fields();
+  /// Reads fields() from a YAML section, then validates.
   static KinematicFeasibilityConfig fromYaml(const YamlSection& section);
 };
 

@@ -16,15 +16,19 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Parameters of the ring search. Defaults: 15 rings of 2 cm (0.3 m), 12 directions.
 struct NearestFootholdConfig {
   double ring_step = 0.02;  ///< radius increment between rings [m]
   int rings = 15;           ///< rings searched
   int directions = 12;      ///< points per ring
-  /// \throws ReachError naming the first bad field.
+  /// \throws ConfigError naming the first bad field.
   void validate() const;
-  /// Reads the keys of this struct (same names) from a YAML section, then validates.
+  /// The YAML keys of section `nearest_foothold:` (the member names), units and meaning.
+  static const ConfigFields<NearestFootholdConfig>& fields();
+  /// Reads fields() from a YAML section, then validates.
   static NearestFootholdConfig fromYaml(const YamlSection& section);
   double searchRadius() const { return rings * ring_step; }  ///< [m]
 };

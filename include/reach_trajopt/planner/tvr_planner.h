@@ -19,16 +19,22 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
-/// TVR parameters; defaults are the paper's (Sec. IV-A) where it gives them.
+/// TVR parameters; defaults are the shipped ones (config/biped.yaml, section `planner:`), the
+/// paper's (Sec. IV-A) except kappa_x.
 struct TvrConfig {
-  double com_height = 1.0;           ///< h [m] of the LIPM (> 0)
-  double gravity = 9.81;             ///< g [m/s^2] (> 0)
-  double t_s = 0.15;                 ///< time to velocity reversal [s] (> 0)
-  double step_duration = 0.28;       ///< T [s] of the step map (12); keep T < 2 t_s (see report)
-  double kappa_x = -0.66;            ///< bias kappa_1 (< 0 stabilizes; authors' code also -0.16)
-  double kappa_y = -0.66;            ///< bias kappa_2
-  bool heuristic_bounds = true;      ///< clip the step and the CoM speed (baseline of Sec. IV-A)
+  double com_height = 1.0;  ///< h [m] of the LIPM (> 0)
+  double gravity = 9.81;    ///< g [m/s^2] (> 0)
+  double t_s = 0.15;        ///< time to velocity reversal [s] (> 0)
+  /// Sagittal bias kappa_1 (< 0 stabilizes): the authors' code value; with the paper's -0.66
+  /// our biped walks in place but not forward.
+  double kappa_x = -0.16;
+  double kappa_y = -0.66;  ///< lateral bias kappa_2 (the paper's)
+  /// Clip the step and the CoM speed (baseline of Sec. IV-A). Not a YAML key: the walk mode
+  /// sets it (WalkingExperiment, tvr_planner_node: baseline on, proposed off).
+  bool heuristic_bounds = true;
   double foot_offset_x_min = -0.42;  ///< next sole x offset from the stance sole [m] (heading)
   double foot_offset_x_max = 0.42;   ///< [m]
   double foot_offset_y_min = 0.25;   ///< |y| offset towards the swing side, lower bound [m]
@@ -36,10 +42,12 @@ struct TvrConfig {
   double com_speed_min = 0.0;        ///< bounds on the horizontal CoM speed used by the planner
   double com_speed_max = 1.3;        ///< [m/s]
 
-  /// Throws ReachError naming the first bad value (non-finite, non-positive h, g, t_s, T,
-  /// or a bound interval with min > max, or negative |y| / speed bounds).
+  /// Throws ConfigError naming the first bad value (non-finite, non-positive h, g, t_s, or a
+  /// bound interval with min > max, or negative |y| / speed bounds).
   void validate() const;
-  /// Reads the keys of this struct (same names) from a YAML section, then validates.
+  /// The YAML keys of section `planner:` (the member names), their units and meaning.
+  static const ConfigFields<TvrConfig>& fields();
+  /// Reads fields() from a YAML section, then validates.
   static TvrConfig fromYaml(const YamlSection& section);
 };
 
@@ -81,7 +89,7 @@ class TvrPlanner {
   const Lipm& lipm() const { return lipm_; }
 
   /// The next contact point of eq. (11) (bounded when config.heuristic_bounds).
-  /// Throws ReachError on a non-finite input.
+  /// Throws RequestError on a non-finite input.
   TvrStep plan(const TvrInput& input) const;
 
   /// Eq. (11) from a measured CoM state, as the walking loop and tvr_planner_node plan: the
@@ -98,8 +106,8 @@ class TvrPlanner {
   Eigen::Matrix<double, 2, 4> gain() const;
   /// Closed-loop matrix A(T) + B(T) K of eq. (12) for step duration T [s].
   Eigen::Matrix4d closedLoopMatrix(double step_duration) const;
-  /// Stability report of (12) at T = config.step_duration, or at the given T [s].
-  TvrStabilityReport stability() const { return stability(config_.step_duration); }
+  /// Stability report of (12) at step duration T [s] (the walk's period:
+  /// WalkConfig::single_support_duration + double_support_duration).
   TvrStabilityReport stability(double step_duration) const;
 
  private:

@@ -116,6 +116,19 @@ class DualActiveSetQp {
                         const VectorRef& b_in);
   void addConstraint(int index);
   void dropConstraint(int position);
+  /// run()'s parts. The equality rows as the initial active set (J formed), from the cache
+  /// when the factor and A_eq are those of the last solve.
+  void activateEqualities(const HessianFactor& factor, const MatrixRef& A_eq);
+  /// False (status set) when a dependent equality row is inconsistent with the others at x.
+  bool redundantEqualitiesHold(const MatrixRef& A_eq, const VectorRef& b_eq);
+  /// Drops warm-start rows with negative multipliers until dual feasible.
+  void dropNegativeMultipliers(const MatrixRef& A_eq, const VectorRef& b_eq, const MatrixRef& A_in,
+                               const VectorRef& b_in);
+  /// Step 1: the most violated inactive inequality per unit row norm (sets s_), -1 if none.
+  int mostViolatedRow(const MatrixRef& A_in, const VectorRef& b_in);
+  /// Step 2: primal and dual steps, dropping blocking rows, until row p is added; false
+  /// (status set) at the iteration limit or when p cannot be satisfied.
+  bool addViolatedRow(const MatrixRef& A_in, int p);
   void finish(const HessianFactor& factor, const VectorRef& g, int m_eq, int m_in);
 
   QpSolverConfig config_;

@@ -10,6 +10,8 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Simulation parameters. Speed versus accuracy: `solver_iterations` (contact and joint-limit
 /// impulses: more iterations, stiffer and more accurate contacts, slower steps).
@@ -20,17 +22,21 @@ struct SimConfig {
   bool contacts = true;       ///< false: no ground (free fall, for checks against the model)
   bool joint_limits = true;   ///< unilateral joint-limit constraints from the URDF limits
   bool clamp_torques = true;  ///< saturate u at the URDF effort limits, as actuators do
-  std::string left_sole_frame = "l_sole";  ///< sole-centre frames where wrenches are reported
+  /// Sole-centre frames where wrenches are reported. Not YAML keys: the robot's sole frames
+  /// are ContactConfig's (section `contact:`), which WalkingExperiment copies here.
+  std::string left_sole_frame = "l_sole";
   std::string right_sole_frame = "r_sole";
   int solver_iterations = 20;      ///< Bullet constraint-solver iterations per step
   double collision_margin = 1e-3;  ///< Bullet convex margin [m] (rounds box corners)
   /// Bullet clamps every velocity coordinate to this [m/s, rad/s]; kept out of reach.
   double max_coordinate_velocity = 1e3;
 
-  /// Throws ReachError naming the offending value (non-positive step, mu, iterations,
+  /// Throws ConfigError naming the offending value (non-positive step, mu, iterations,
   /// negative margin, non-finite gravity, empty or equal sole frames).
   void validate() const;
-  /// Reads the keys above (missing keys keep the defaults, unknown keys throw), validates.
+  /// The YAML keys of section `sim:` (the member names but the sole frames), units, meaning.
+  static const ConfigFields<SimConfig>& fields();
+  /// Reads fields() (missing keys keep the defaults, unknown keys throw), validates.
   static SimConfig fromYaml(const YamlSection& section);
 };
 

@@ -27,6 +27,8 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Task weights and PD gains of the whole-body controller (gains in 1/s^2 and 1/s).
 /// Larger weights make a task win over the others; larger gains track faster but amplify
@@ -41,9 +43,11 @@ struct WbcConfig {
   double w_posture = 0.03, kp_posture = 60.0, kd_posture = 12.0;  ///< actuated joints
   double w_qdd = 1e-4;                                            ///< regularization of qdd
   double w_lambda = 1e-6;  ///< regularization of contact wrenches (N^2 -> cost)
-  /// \throws ReachError naming a negative or non-finite field.
+  /// \throws ConfigError naming a negative or non-finite field.
   void validate() const;
-  /// Reads the keys of this struct (same names) from a YAML section, then validates.
+  /// The YAML keys of section `wbc:` (the member names), their units and meaning.
+  static const ConfigFields<WbcConfig>& fields();
+  /// Reads fields() from a YAML section, then validates.
   static WbcConfig fromYaml(const YamlSection& section);
 };
 

@@ -40,8 +40,8 @@ struct FootstepPlannerConfig {
   TransitionOcpConfig ocp;
   NearestFootholdConfig nearest_foothold;
   /// From a config file's root: its `kinematic_feasibility`, `reach`, `ocp` and
-  /// `nearest_foothold` sections (each optional: defaults). \throws ReachError naming a bad
-  /// key or value.
+  /// `nearest_foothold` sections (each optional: defaults); ocp.terminal_pelvis_height is
+  /// kinematics.pelvis_height. \throws ConfigError naming a bad key or value.
   static FootstepPlannerConfig fromYaml(const YamlSection& root);
 };
 

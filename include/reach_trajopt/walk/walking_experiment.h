@@ -28,6 +28,8 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Parameters of a walking run. Durations [s], lengths [m], speeds [m/s].
 struct WalkConfig {
@@ -54,8 +56,11 @@ struct WalkConfig {
   unsigned seed = 1;                ///< seed of every random draw of the run
   double max_sim_time = 60.0;       ///< hard stop [s]
 
-  /// \throws ReachError naming the first bad field.
+  /// \throws ConfigError naming the first bad field.
   void validate() const;
+  /// The YAML keys of section `walk:` (the member names), their units and meaning.
+  static const ConfigFields<WalkConfig>& fields();
+  /// Reads fields() from a YAML section, then validates.
   static WalkConfig fromYaml(const YamlSection& section);
   static Mode parseMode(const std::string& name);  ///< "baseline" | "proposed"
   static const char* modeName(Mode mode);
@@ -128,6 +133,7 @@ class WalkingExperiment {
   /// \throws ReachError on invalid configs or a URDF the simulator cannot load.
   /// `proposed` configures the reachability check and the OCP; used in the proposed mode
   /// (defaults when null).
+  /// The simulator reports the wrenches of `contact`'s sole frames (`sim`'s are replaced).
   WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk, const TvrConfig& tvr,
                     const ContactConfig& contact, const WbcConfig& wbc, const SimConfig& sim,
                     const FootstepPlannerConfig* proposed = nullptr);

@@ -1,0 +1,58 @@
+/// \file config_fields.cpp
+/// Value text and the Markdown of the parameter tables (see config_fields.h).
+
+#include "reach_trajopt/common/config_fields.h"
+
+#include <charconv>
+#include <sstream>
+
+namespace reach_trajopt {
+
+std::string parameterText(double v) {
+  char buf[64];
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof(buf), v);  // shortest exact
+  return std::string(buf, r.ptr);
+}
+
+std::string parameterText(const std::vector<double>& v) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + parameterText(v[i]);
+  return out + "]";
+}
+
+namespace {
+
+/// A table cell: '|' would end the cell.
+std::string cell(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+}  // namespace
+
+std::string parameterTableMarkdown(const std::vector<ParameterTable>& tables) {
+  std::ostringstream os;
+  os << "# Parameters\n\n"
+     << "Generated from the field tables of the config structs (include/reach_trajopt/common/"
+        "config_fields.h)\nby `parameter_table > docs/parameters.md`; do not edit by hand "
+        "(test_parameter_table fails\nwhen this file is out of date). Each section of "
+        "config/biped.yaml and config/sim.yaml is read\nby the struct named in its heading; a "
+        "missing key keeps the value below, which is the struct's\ndefault and the shipped "
+        "value; an unknown key is an error. Units SI, angles in radians.\n";
+  for (const ParameterTable& t : tables) {
+    os << "\n## `" << t.section << ":` (" << t.struct_name << ")\n\n"
+       << t.summary << " Documented in `" << t.header << "`.\n\n"
+       << "| key | type | value | unit | meaning |\n|---|---|---|---|---|\n";
+    for (const ParameterRow& r : t.rows)
+      os << "| `" << r.key << "` | " << cell(r.type) << " | " << cell(r.value) << " | "
+         << cell(r.unit) << " | " << cell(r.description) << " |\n";
+    if (!t.removed.empty()) {
+      os << "\nRemoved keys (a file that still has one is an error):\n\n";
+      for (const auto& r : t.removed) os << "- `" << r.first << "`: " << r.second << "\n";
+    }
+  }
+  return os.str();
+}
+
+}  // namespace reach_trajopt
