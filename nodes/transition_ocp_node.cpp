@@ -72,6 +72,7 @@ class TransitionOcpNode {
             res.reachability = rb::toReachabilityResultMsg(step.check.reach, r,
                                                            rb::swingFrame(s_.contact, r.stance),
                                                            step_request.reach->delta, t0, false);
+            rb::applyPlannerVerdict(step, res.reachability);
             reach_pub_.publish(res.reachability);
           }
           const TransitionResult& result = step.trajectory;

@@ -39,9 +39,9 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
-#include "reach_trajopt/reach/swing_state.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/step/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -49,31 +49,6 @@ namespace {
 
 constexpr long long kMaxGrid = 41;      ///< --grid (docs/limits.md): N^2 checks per state
 constexpr long long kMaxStates = 1000;  ///< --max-states
-
-/// bench/reach's case: left stance at (0, 0.1), the right sole 3 cm short of (0.25, -0.12)
-/// and 2 cm up, moving to stop there at t_f.
-FootstepPlanRequest benchCase(const std::shared_ptr<const RobotModel>& model,
-                              const FootstepPlannerConfig& cfg, const ContactConfig& contact) {
-  FootstepPlanRequest r;
-  r.stance = Side::kLeft;
-  FlatContact stance;
-  stance.position << 0.0, 0.1, 0.0;
-  r.stance_pose = stance.pose();
-  r.target << 0.25, -0.12, 0.0;
-  const Eigen::Vector3d p0 = r.target + Eigen::Vector3d(-0.03, 0.0, 0.02);
-  Eigen::VectorXd guess = Eigen::VectorXd::Zero(model->nq());
-  guess.head<3>() << 0.5 * p0.x(), 0.5 * (0.1 + p0.y()), 1.1;
-  for (const std::string s : {"l_", "r_"}) {
-    guess[model->jointIndex(s + "hip_pitch")] = -0.4;
-    guess[model->jointIndex(s + "knee")] = 0.8;
-    guess[model->jointIndex(s + "ankle_pitch")] = -0.4;
-  }
-  const RobotState x0 = swingState(model, cfg.kinematics, contact, Side::kLeft, stance, p0, 0.0,
-                                   2.0 * (r.target - p0) / cfg.reach.horizon, guess);
-  r.q = x0.q;
-  r.qd = x0.qd;
-  return r;
-}
 
 /// A path to re-check: samples k = 0..L-1 at time[k]; step k (k < L-1) has the acceleration
 /// qdd[k], torques u[k] and the stance wrench lambda[k] (world orientation at the sole centre).
@@ -262,7 +237,7 @@ int main(int argc, char** argv) {
     const FootstepTransitionPlanner planner(model, contact, cfg);
 
     std::vector<FootstepPlanRequest> states;
-    if (bench_case) states.push_back(benchCase(model, cfg, contact));
+    if (bench_case) states.push_back(benchSwingCase(model, cfg, contact));
     if (!requests_path.empty()) {
       std::ifstream in(requests_path);
       if (!in) throw ReachError("cannot read --requests file '" + requests_path + "'");

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 
@@ -15,7 +16,7 @@ namespace reach_trajopt {
 namespace {
 
 [[noreturn]] void bad(const std::string& field, const std::string& why) {
-  throw ReachError("ReachConfig: " + field + " " + why);
+  throw ConfigError("ReachConfig: " + field + " " + why);
 }
 
 void requirePositive(const char* field, double v) {
@@ -145,7 +146,7 @@ void ReachConfig::requireResourcesWithinLimits(int nq) const {
        << initial_samples << ", max_boundary " << max_boundary << ", interior_samples "
        << interior_samples << ", horizon " << horizon << " s at dt " << dt
        << " s), over the limit of " << ReachLimits::kMaxQps << " (minutes of wall time)";
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
   const double bytes = estimatedMemoryBytes(nq);
   if (bytes > ReachLimits::kMaxMemoryBytes) {
@@ -155,87 +156,77 @@ void ReachConfig::requireResourcesWithinLimits(int nq) const {
        << ", children_per_parent " << children_per_parent << ", horizon " << horizon << " s at dt "
        << dt << " s), over the limit of "
        << std::lround(ReachLimits::kMaxMemoryBytes / (1024 * 1024)) << " MiB";
-    throw ReachError(os.str());
+    throw ConfigError(os.str());
   }
 }
 
+const ConfigFields<ReachConfig>& ReachConfig::fields() {
+  using C = ReachConfig;
+  static const ConfigFields<C> f =
+      ConfigFields<C>("ReachConfig", "reach", "include/reach_trajopt/reach/reach_config.h",
+                      "The reachability check (eq. 13-21) and its certificate (docs/method.md "
+                      "Sec. 4); the walk replaces `horizon` by walk.check_horizon.")
+          .add("dt", &C::dt, "s", "time step of (16) and (20), > 0 (paper: 1 ms)")
+          .add("horizon", &C::horizon, "s", "t_f - t_0, a multiple of dt")
+          .add("window_start", &C::window_start, "s", "t_2: the backward set reaches back to here")
+          .add("window_end", &C::window_end, "s",
+               "t_1: the forward set reaches up to here; window_start <= window_end <= horizon")
+          .add("initial_samples", &C::initial_samples, "",
+               "draws at the first step of each direction (paper: 1e4); one QP each")
+          .add("children_per_parent", &C::children_per_parent, "",
+               "forward draws per kept sample at later steps")
+          .add("backward_children_per_parent", &C::backward_children_per_parent, "",
+               "backward draws per kept sample (most are rejected by (19))")
+          .add("max_boundary", &C::max_boundary, "", "boundary samples (21) kept per slice")
+          .add("interior_samples", &C::interior_samples, "", "interior samples kept besides them")
+          .add("angular_bins", &C::angular_bins, "", "bins per output plane (keeps concave parts)")
+          .add("boundary_lookahead", &C::boundary_lookahead, "s",
+               "tau of y + tau ydot in the boundary rule, each >= 0")
+          .add("vertex_fraction", &C::vertex_fraction, "",
+               "share of bang-bang draws (antithetic pairs), in [0, 1]")
+          .add("seed", &C::seed, "", "random stream (same results for any thread count)")
+          .add("threads", &C::threads, "", "OpenMP threads, 0: OpenMP's default")
+          .add("forward_integrator", &C::forward_integrator, "",
+               "semi_implicit (the inverse of (20)) or explicit (eq. 16 as printed)")
+          .add("w_qdd", &C::w_qdd, "1/(rad/s^2)^2", "W_qdd of the forward QP (15), > 0")
+          .add("w_du", &C::w_du, "1/(N m)^2", "W_u of (15), > 0")
+          .add("w_lambda", &C::w_lambda, "1/N^2", "W_lambda of (15), > 0")
+          .add("contact_stabilization", &C::contact_stabilization, "",
+               "beta in [0, 1] of the drift stabilization (0: eq. 5 as printed)")
+          .add("backward_joint_accel", &C::backward_joint_accel, "rad/s^2",
+               "a_max of the backward draws (17), actuated joints")
+          .add("backward_base_accel", &C::backward_base_accel, "m/s^2 or rad/s^2",
+               "same for the floating-base coordinates")
+          .add("delta", &C::delta, "m", "Prop. 2 threshold (paper 1e-5), reported only")
+          .add("overlap_gap_max", &C::overlap_gap_max, "m",
+               "output sets meet when a pair is closer than min(K, this); reported only")
+          .add("certificate_candidates", &C::certificate_candidates, "",
+               "junction pairs bridged at most (witness_certificate.h), >= 1")
+          .add("certificate_tolerance", &C::certificate_tolerance, "N, N m, m, rad",
+               "largest violation on a certified path of eq. (1), (8), the limits, the ground")
+          .add("certificate_contact_velocity_tolerance", &C::certificate_contact_velocity_tolerance,
+               "m/s, rad/s", "|J qd| of the held soles on a certified path")
+          .add("terminal_position_tolerance", &C::terminal_position_tolerance, "m, rad",
+               "|q(t_f) - q_f| of a certified path")
+          .add("terminal_velocity_tolerance", &C::terminal_velocity_tolerance, "m/s, rad/s",
+               "|qd(t_f) - qd_f| of a certified path")
+          .add("constraint_margin", &C::constraint_margin, "m",
+               "eq. (23): the swing sole hulls handed to the OCP grow by this")
+          .add("output_frame", &C::output_frame, "", "frame of y; empty: the swing sole")
+          .add("output_axes", &C::output_axes, "", "world axes of the frame origin in y")
+          .add("swing_ground_margin", &C::swing_ground_margin, "m",
+               "the swing sole may not go below the target foothold minus this")
+          .add("contact_tolerance", &C::contact_tolerance, "m, rad",
+               "|phi| allowed at x_0, x_f and along a certified path")
+          .add("contact_velocity_tolerance", &C::contact_velocity_tolerance, "m/s, rad/s",
+               "|J qd| allowed at x_0 and x_f")
+          .add("limit_tolerance", &C::limit_tolerance, "",
+               "slack on the position / velocity / torque limits");
+  return f;
+}
+
 ReachConfig ReachConfig::fromYaml(const YamlSection& s, const ReachConfig& base) {
-  s.requireOnlyKeys({"dt",
-                     "horizon",
-                     "window_start",
-                     "window_end",
-                     "initial_samples",
-                     "children_per_parent",
-                     "max_boundary",
-                     "angular_bins",
-                     "interior_samples",
-                     "backward_children_per_parent",
-                     "boundary_lookahead",
-                     "vertex_fraction",
-                     "seed",
-                     "threads",
-                     "forward_integrator",
-                     "w_qdd",
-                     "w_du",
-                     "w_lambda",
-                     "contact_stabilization",
-                     "backward_joint_accel",
-                     "backward_base_accel",
-                     "delta",
-                     "overlap_gap_max",
-                     "certificate_candidates",
-                     "certificate_tolerance",
-                     "certificate_contact_velocity_tolerance",
-                     "terminal_position_tolerance",
-                     "terminal_velocity_tolerance",
-                     "constraint_margin",
-                     "output_frame",
-                     "output_axes",
-                     "swing_ground_margin",
-                     "contact_tolerance",
-                     "contact_velocity_tolerance",
-                     "limit_tolerance"});
-  ReachConfig c = base;
-  s.read("dt", c.dt);
-  s.read("horizon", c.horizon);
-  s.read("window_start", c.window_start);
-  s.read("window_end", c.window_end);
-  s.read("initial_samples", c.initial_samples);
-  s.read("children_per_parent", c.children_per_parent);
-  s.read("max_boundary", c.max_boundary);
-  s.read("angular_bins", c.angular_bins);
-  s.read("interior_samples", c.interior_samples);
-  s.read("backward_children_per_parent", c.backward_children_per_parent);
-  s.read("boundary_lookahead", c.boundary_lookahead);
-  s.read("vertex_fraction", c.vertex_fraction);
-  int seed = static_cast<int>(c.seed);
-  if (s.read("seed", seed)) {
-    if (seed < 0) throw ReachError(s.where("seed") + ": must be >= 0");
-    c.seed = static_cast<std::uint64_t>(seed);
-  }
-  s.read("threads", c.threads);
-  s.read("forward_integrator", c.forward_integrator);
-  s.read("w_qdd", c.w_qdd);
-  s.read("w_du", c.w_du);
-  s.read("w_lambda", c.w_lambda);
-  s.read("contact_stabilization", c.contact_stabilization);
-  s.read("backward_joint_accel", c.backward_joint_accel);
-  s.read("backward_base_accel", c.backward_base_accel);
-  s.read("delta", c.delta);
-  s.read("overlap_gap_max", c.overlap_gap_max);
-  s.read("certificate_candidates", c.certificate_candidates);
-  s.read("certificate_tolerance", c.certificate_tolerance);
-  s.read("certificate_contact_velocity_tolerance", c.certificate_contact_velocity_tolerance);
-  s.read("terminal_position_tolerance", c.terminal_position_tolerance);
-  s.read("terminal_velocity_tolerance", c.terminal_velocity_tolerance);
-  s.read("constraint_margin", c.constraint_margin);
-  s.read("output_frame", c.output_frame);
-  s.read("output_axes", c.output_axes);
-  s.read("swing_ground_margin", c.swing_ground_margin);
-  s.read("contact_tolerance", c.contact_tolerance);
-  s.read("contact_velocity_tolerance", c.contact_velocity_tolerance);
-  s.read("limit_tolerance", c.limit_tolerance);
-  return validatedIn(s, c);
+  return fields().read(s, base);
 }
 
 ReachConfig ReachConfig::fromYaml(const YamlSection& s) { return fromYaml(s, ReachConfig()); }

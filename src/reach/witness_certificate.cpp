@@ -100,6 +100,9 @@ WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
     q_fwd.col(k) = sampleConfigurationOf(forward, PropagationDirection::kForward, dt, semi_implicit,
                                          fchain[k].first, fchain[k].second);
   const auto [sa, ia] = fchain.back();
+  // The pair's gap, before a direct bridge replaces the chain.
+  w.position_gap = (q_fwd.col(F - 1) - chain.q.col(0)).cwiseAbs().maxCoeff();
+  w.velocity_gap = (forward[sa].qd.col(ia) - chain.qd.col(0)).cwiseAbs().maxCoeff();
   if (direct)
     chain = hermiteChain(q_fwd.col(F - 1), forward[sa].qd.col(ia), chain.q.col(N), chain.qd.col(N),
                          N, dt, forward[sa].u.col(ia));
@@ -137,8 +140,6 @@ WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
   w.bridge_start = F - 1;
   const SampleSlice& b = backward[c.backward_slice];
   w.output_gap = (forward[sa].output.col(ia) - b.output.col(cand.backward_sample)).norm();
-  w.position_gap = (q_fwd.col(F - 1) - chain.q.col(0)).cwiseAbs().maxCoeff();
-  w.velocity_gap = (forward[sa].qd.col(ia) - chain.qd.col(0)).cwiseAbs().maxCoeff();
   if (seg.completed()) {
     w.terminal_position_gap = (w.q.col(L - 1) - chain.q.col(N)).cwiseAbs().maxCoeff();
     w.terminal_velocity_gap = (w.qd.col(L - 1) - chain.qd.col(N)).cwiseAbs().maxCoeff();

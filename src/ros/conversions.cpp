@@ -225,6 +225,10 @@ reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, WalkConfig::Mode 
   m.com_velocity_predicted = toVector3Msg(r.com_predicted.pd);
   m.verdict = r.verdict;
   m.hausdorff_distance = r.hausdorff_distance;
+  m.certificate = r.certificate;
+  m.witness_violation = r.witness_violation;
+  m.terminal_position_gap = r.terminal_position_gap;
+  m.terminal_velocity_gap = r.terminal_velocity_gap;
   m.check_time = r.check_time_s;
   m.ocp_time = r.ocp_time_s;
   m.ocp_status = r.ocp_status;

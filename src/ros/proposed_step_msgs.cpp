@@ -19,9 +19,11 @@ ProposedStepMsgs toProposedStepMsgs(const RobotModel& model, const ContactConfig
   const FootstepResult& check = step.check;
   if (!check.kinematically_feasible)
     m.reachability = infeasibleFootholdMsg(check.kinematics.reason, swing_frame, foothold, t0);
-  else
+  else {
     m.reachability =
         toReachabilityResultMsg(check.reach, foothold, swing_frame, delta, t0, samples, max_points);
+    applyPlannerVerdict(step, m.reachability);
+  }
   m.markers = reachabilityMarkers(m.reachability);
   m.trajectory = toTransitionTrajectoryMsg(step.trajectory, model,
                                            {contact.left_sole_frame, contact.right_sole_frame}, t0);

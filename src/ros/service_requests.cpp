@@ -230,15 +230,27 @@ reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
     if (c.distance.closest_b >= 0)
       m.witness_backward = columnsToPoints(b.output, {c.distance.closest_b})[0];
   }
+  m.certificate = r.reachable ? "bridge" : "";
+  m.witness_terminal_position_gap = m.witness_terminal_velocity_gap = -1.0;
   if (r.witness.valid) {
     m.witness_max_violation = r.witness.violation.max();
     m.witness_path_length = static_cast<uint32_t>(r.witness.time.size());
+    if (std::isfinite(r.witness.terminal_position_gap)) {
+      m.witness_terminal_position_gap = r.witness.terminal_position_gap;
+      m.witness_terminal_velocity_gap = r.witness.terminal_velocity_gap;
+    }
   }
   m.forward_time = r.timings.forward;
   m.backward_time = r.timings.backward;
   m.test_time = r.timings.boundary + r.timings.hausdorff + r.timings.witness;
   m.total_time = r.timings.total;
   return m;
+}
+
+void applyPlannerVerdict(const FootstepTransition& step, reach_trajopt::ReachabilityResult& m) {
+  m.verdict = step.reachable ? "reachable" : "unreachable";
+  m.certificate = step.certificate;
+  m.message = step.reason;
 }
 
 reach_trajopt::TransitionTrajectory toTransitionTrajectoryMsg(

@@ -8,6 +8,7 @@
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/planner/nearest_feasible_foothold.h"
 #include "reach_trajopt/planner/tvr_planner.h"
+#include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/sim/sim_config.h"
 #include "reach_trajopt/sim/whole_body_controller.h"
 #include "reach_trajopt/walk/walking_experiment.h"
@@ -15,11 +16,10 @@
 namespace reach_trajopt {
 
 std::vector<ParameterTable> parameterTables() {
-  // ReachConfig (section `reach:`) is not ported yet: its keys are documented in
-  // include/reach_trajopt/reach/reach_config.h.
   return {ContactConfig::fields().table(),
           TvrConfig::fields().table(),
           KinematicFeasibilityConfig::fields().table(),
+          ReachConfig::fields().table(),
           WbcConfig::fields().table(),
           WalkConfig::fields().table(),
           TransitionOcpConfig::fields().table(),

@@ -78,12 +78,17 @@ TEST(RosProposedStepMsgs, ReachableStepGivesSetsMarkersAndTrajectory) {
   step.check.reachable = true;
   step.check.reach = makeReach(4);
   step.trajectory = makeTrajectory(*model, 5);
+  // The planner's verdict (certified by the local solve) is what the message carries.
+  step.reachable = true;
+  step.certificate = "local_solve";
+  step.verdict = "reachable";
   const Eigen::Vector3d foothold(0.1, 0.2, 0.0);
   const ros::Time t0(2.14);
   const rb::ProposedStepMsgs m =
       rb::toProposedStepMsgs(*model, contact, record, step, foothold, 1e-5, t0, true);
 
   EXPECT_EQ(m.reachability.verdict, "reachable");
+  EXPECT_EQ(m.reachability.certificate, "local_solve");
   EXPECT_EQ(m.reachability.header.frame_id, "world");
   EXPECT_EQ(m.reachability.header.stamp, t0);
   EXPECT_EQ(m.reachability.swing_frame, "l_sole");  // the left sole swings

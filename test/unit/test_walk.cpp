@@ -115,6 +115,14 @@ void expectCheckedAndTracked(const WalkResult& r, int failures_allowed) {
                 s.verdict == "kinematically_infeasible")
         << s.verdict << ": " << s.reason;
     if (s.verdict != "kinematically_infeasible") EXPECT_GT(s.check_time_s, 0.0);
+    // "reachable" only with a certificate, and then the strict OCP converged.
+    if (s.verdict == "reachable") {
+      EXPECT_TRUE(s.certificate == "bridge" || s.certificate == "local_solve") << s.index;
+      EXPECT_EQ(s.ocp_status, "converged") << "step " << s.index << ": " << s.reason;
+      if (s.certificate == "bridge") EXPECT_LE(s.witness_violation, 1e-2) << s.index;
+    } else {
+      EXPECT_TRUE(s.certificate.empty()) << s.index;
+    }
     failed += s.ocp_status != "converged" && s.ocp_status != "relaxed";
     EXPECT_LT(s.touchdown_error, 0.02) << "step " << s.index << ": " << s.reason;
   }

@@ -22,6 +22,8 @@
 namespace reach_trajopt {
 
 class YamlSection;
+template <typename Config>
+class ConfigFields;
 
 /// Upper bounds of ReachConfig (docs/limits.md), checked by validate(): a request beyond them
 /// is rejected up front instead of running for minutes or exhausting memory. The paper's
@@ -133,8 +135,9 @@ struct ReachConfig {
   /// Throws ReachError when estimatedMemoryBytes(nq) > ReachLimits::kMaxMemoryBytes or
   /// estimatedQps() > ReachLimits::kMaxQps (called before a check starts).
   void requireResourcesWithinLimits(int nq) const;
-  /// Reads the keys (same names as the fields) of a YAML section on top of `base`, then
-  /// validates. Unknown keys throw.
+  /// Its YAML keys (section `reach:`, docs/parameters.md).
+  static const ConfigFields<ReachConfig>& fields();
+  /// Reads fields() of a YAML section on top of `base`, then validates. Unknown keys throw.
   static ReachConfig fromYaml(const YamlSection& section, const ReachConfig& base);
   /// Same on top of the defaults.
   static ReachConfig fromYaml(const YamlSection& section);

@@ -22,6 +22,7 @@
 #include "reach_trajopt/ocp/transition_result.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
@@ -102,6 +103,10 @@ reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_re
 reach_trajopt::ReachabilityResult reachabilityVerdictMsg(const std::string& verdict,
                                                          const std::string& message,
                                                          const ros::Time& t0);
+
+/// The planner's verdict on a result built from its check (toReachabilityResultMsg): "reachable"
+/// when a certificate exists (the bridge or the local solve), its kind and the reason.
+void applyPlannerVerdict(const FootstepTransition& step, reach_trajopt::ReachabilityResult& m);
 
 /// A TransitionTrajectory message from an OCP result (row-major N x n matrices).
 /// \param lambda_frames  names of the 12 rows of result.lambda in blocks of 6 (left, right)

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The verdict oracle (nodes/tools/verdict_grid.cpp): from bench/reach's case and the footsteps
+# of the demo's pushed proposed walk (steps 1, 2 and 5, test/fixtures/pushed_walk_requests.jsonl,
+# written by `walk_experiment --push 0,0.4 --plan-requests`), a grid of N x N footholds within
+# +-0.15 m of each planned one, each checked by the planner (verdict, certificate re-checked
+# independently) and by the strict OCP seeded without the witness. Prints `BENCH reach.verdict`.
+#   scripts/bench_verdict.sh [grid N = 7]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+cd "$REPO"
+"$BIN/verdict_grid" --bench-case --requests test/fixtures/pushed_walk_requests.jsonl \
+  --grid "${1:-7}" --half-width 0.15

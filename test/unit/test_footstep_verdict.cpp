@@ -1,0 +1,155 @@
+// The verdict of the per-step pipeline (FootstepTransitionPlanner) on footsteps of the demo's
+// pushed proposed walk (test/fixtures/pushed_walk_requests.jsonl: the requests of its steps 1, 2
+// and 5, written by `walk_experiment --push 0,0.4 --plan-requests`) and on bench/reach's case:
+// a "reachable" verdict comes with a certificate that this test re-checks step by step with
+// the model (eq. 1, the held sole, the limits, x(t_f) against x_f) and a converged strict OCP;
+// footholds out of reach are never reachable. An analyzer that always answered "reachable"
+// fails the far and bench cases, one that never did fails the walk's steps.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/json_reader.h"
+#include "reach_trajopt/step/footstep_plan_request_json.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/step/reference_cases.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
+
+struct Pipeline {
+  std::shared_ptr<const RobotModel> model;
+  ContactConfig contact;
+  FootstepPlannerConfig config;
+  std::unique_ptr<FootstepTransitionPlanner> planner;
+  Pipeline() {
+    const YamlSection file = YamlSection::loadFile(kRepo + "/config/biped.yaml");
+    contact = ContactConfig::fromYaml(file.section("contact"));
+    config = FootstepPlannerConfig::fromYaml(file);
+    model = RobotModel::fromUrdfFile(kRepo + "/urdf/biped.urdf");
+    planner = std::make_unique<FootstepTransitionPlanner>(model, contact, config);
+  }
+};
+
+const Pipeline& pipeline() {
+  static const Pipeline p;
+  return p;
+}
+
+std::vector<FootstepPlanRequest> walkRequests() {
+  const Pipeline& p = pipeline();
+  std::ifstream in(kRepo + "/test/fixtures/pushed_walk_requests.jsonl");
+  std::vector<FootstepPlanRequest> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    const nlohmann::json j = JsonReader::parse(line, "fixture");
+    out.push_back(readFootstepPlanRequest(JsonReader(j, "fixture"), p.model->nq(), p.config.reach));
+  }
+  return out;
+}
+
+/// Largest |M qdd + b - S^T u - J^T lambda| [N, Nm] along the bridged witness, its held sole's
+/// largest displacement [m] and where it ends against x_f.
+struct WitnessRecheck {
+  double dynamics = 0.0, sole = 0.0, end_q = 0.0, end_qd = 0.0;
+};
+
+WitnessRecheck recheck(const FootstepTransition& step) {
+  const RobotModel& m = *pipeline().model;
+  const WitnessPath& w = step.check.reach.witness;
+  const FrameId sole = m.frameId(pipeline().contact.soleFrame(step.stance));
+  Workspace ws(m);
+  Eigen::MatrixXd M(m.nq(), m.nq()), J(6, m.nq());
+  Eigen::VectorXd b(m.nq());
+  WitnessRecheck r;
+  const double dt = step.request.reach ? step.request.reach->dt : pipeline().config.reach.dt;
+  for (int k = 0; k < w.q.cols(); ++k) {
+    m.update(ws, w.q.col(k), w.qd.col(k));
+    r.sole = std::max(r.sole,
+                      (m.framePose(ws, sole).translation() - step.stance_contact.position).norm());
+    if (k + 1 == w.q.cols()) break;
+    m.massMatrix(ws, M);
+    m.bias(ws, b);
+    m.frameJacobian(ws, sole, J);
+    Eigen::VectorXd res =
+        M * (w.qd.col(k + 1) - w.qd.col(k)) / dt + b - J.transpose() * w.lambda.col(k).head<6>();
+    res.tail(m.nu()) -= w.u.col(k);
+    r.dynamics = std::max(r.dynamics, res.cwiseAbs().maxCoeff());
+  }
+  r.end_q = (w.q.col(w.q.cols() - 1) - step.check.kinematics.q_f).cwiseAbs().maxCoeff();
+  r.end_qd = (w.qd.col(w.qd.cols() - 1) - step.check.qdf).cwiseAbs().maxCoeff();
+  return r;
+}
+
+FootstepTransition planStrict(FootstepPlanRequest r) {
+  r.ocp_policy = OcpPolicy::kStrict;
+  return pipeline().planner->plan(r);
+}
+
+}  // namespace
+
+TEST(FootstepVerdict, WalkStepCertifiedByTheBridge) {
+  const std::vector<FootstepPlanRequest> requests = walkRequests();
+  ASSERT_EQ(requests.size(), 3u);
+  const FootstepTransition step = planStrict(requests[2]);  // the walk's step 5
+  std::cout << step.reason << "\n";
+  EXPECT_EQ(step.verdict, "reachable");
+  EXPECT_EQ(step.certificate, "bridge");
+  const WitnessPath& w = step.check.reach.witness;
+  ASSERT_TRUE(w.certified);
+  EXPECT_EQ(w.junction, -1);
+  EXPECT_NEAR(w.time.back(), step.horizon, 1e-12);
+  const ReachConfig& reach = *step.request.reach;
+  const WitnessRecheck r = recheck(step);
+  std::cout << "witness: eq. (1) " << r.dynamics << " N, held sole " << r.sole
+            << " m, x(t_f) - x_f " << r.end_q << " / " << r.end_qd << "\n";
+  EXPECT_LE(r.dynamics, 1e-6);
+  EXPECT_LE(r.sole, reach.contact_tolerance);
+  EXPECT_LE(r.end_q, reach.terminal_position_tolerance);
+  EXPECT_LE(r.end_qd, reach.terminal_velocity_tolerance);
+  // A certified witness is a feasible point of the strict OCP: it converges from it.
+  EXPECT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
+}
+
+TEST(FootstepVerdict, WalkStepReachableWithAStrictTrajectory) {
+  const FootstepTransition step = planStrict(walkRequests()[1]);  // the walk's step 2
+  std::cout << step.reason << "\n";
+  EXPECT_EQ(step.verdict, "reachable");
+  EXPECT_FALSE(step.certificate.empty());
+  EXPECT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
+  EXPECT_LE(step.trajectory.violation.max(), pipeline().config.ocp.tolerance);
+}
+
+TEST(FootstepVerdict, FootholdsOutOfReachAreNeverReachable) {
+  const std::vector<FootstepPlanRequest> requests = walkRequests();
+  // The walk's step 1: TVR's narrow step through the stance sole.
+  const FootstepTransition narrow = planStrict(requests[0]);
+  EXPECT_EQ(narrow.verdict, "kinematically_infeasible");
+  EXPECT_FALSE(narrow.reachable);
+  // Step 5's foothold 0.6 m farther forward.
+  FootstepPlanRequest far = requests[2];
+  far.target.x() += 0.6;
+  const FootstepTransition f = planStrict(far);
+  EXPECT_FALSE(f.reachable) << f.reason;
+  EXPECT_NE(f.verdict, "reachable");
+}
+
+TEST(FootstepVerdict, BenchCaseSoleCannotStopInTime) {
+  // bench/reach's case: the right sole 3 cm short of its target and 2 cm up at 0.75 m/s,
+  // 80 ms before touchdown with x_f at rest. Neither the bridge nor the strict OCP finds a
+  // path (the OCP converged on none of an 11 x 11 grid around it): not shown reachable.
+  const Pipeline& p = pipeline();
+  const FootstepPlanRequest r = benchSwingCase(p.model, p.config, p.contact);
+  const FootstepTransition step = planStrict(r);
+  std::cout << step.reason << "\n";
+  ASSERT_TRUE(step.kinematically_feasible);
+  EXPECT_EQ(step.verdict, "unreachable");
+  EXPECT_TRUE(step.certificate.empty());
+  EXPECT_NE(step.trajectory.status, OcpStatus::kConverged);
+}
