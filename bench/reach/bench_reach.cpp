@@ -16,7 +16,7 @@
 
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
-#include "reach_trajopt/reach/swing_state.h"
+#include "reach_trajopt/step/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -43,24 +43,19 @@ int main(int argc, char** argv) {
   ReachConfig base;  // the defaults = config/biped.yaml `reach:`
   base.initial_samples = samples;
   const KinematicFeasibilityConfig kfc;
-  // Left stance at (0, 0.1); the right sole 3 cm short of its target (0.25, -0.12) and 2 cm up,
-  // moving to stop there at t_f = 0.08 s.
+  // step/reference_cases.h: left stance at (0, 0.1); the right sole 3 cm short of its target
+  // (0.25, -0.12) and 2 cm up, moving to stop there at t_f = 0.08 s.
+  FootstepPlannerConfig planner_config;
+  planner_config.reach = base;
+  planner_config.kinematics = kfc;
+  const FootstepPlanRequest bench_case = benchSwingCase(model, planner_config, contact);
   FootstepRequest req;
-  req.stance = Side::kLeft;
-  req.stance_foothold.position << 0.0, 0.1, 0.0;
-  req.target.position << 0.25, -0.12, 0.0;
-  const Eigen::Vector3d p0 = req.target.position + Eigen::Vector3d(-0.03, 0.0, 0.02);
-  Eigen::VectorXd guess = Eigen::VectorXd::Zero(model->nq());
-  guess.head<3>() << 0.5 * p0.x(), 0.5 * (0.1 + p0.y()), 1.1;
-  for (const std::string s : {"l_", "r_"}) {
-    guess[model->jointIndex(s + "hip_pitch")] = -0.4;
-    guess[model->jointIndex(s + "knee")] = 0.8;
-    guess[model->jointIndex(s + "ankle_pitch")] = -0.4;
-  }
-  const RobotState x0 = swingState(model, kfc, contact, Side::kLeft, req.stance_foothold, p0, 0.0,
-                                   2.0 * (req.target.position - p0) / base.horizon, guess);
-  req.q0 = x0.q;
-  req.qd0 = x0.qd;
+  req.stance = bench_case.stance;
+  req.stance_foothold.position = bench_case.stance_pose.translation();
+  req.target.position = bench_case.target;
+  req.q0 = bench_case.q;
+  req.qd0 = bench_case.qd;
+  req.qdf = Eigen::VectorXd::Zero(model->nq());  // x_f at rest
   const auto analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, base);
   const FootstepReachability check(analyzer,
                                    std::make_shared<KinematicFeasibility>(model, kfc, contact));

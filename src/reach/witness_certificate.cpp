@@ -57,14 +57,22 @@ std::vector<JunctionCandidate> sliceCandidates(const ReachContext& ctx,
   Eigen::MatrixXd D = -2.0 * F.transpose() * B;
   D.colwise() += F.colwise().squaredNorm().transpose();
   D.rowwise() += B.colwise().squaredNorm();
-  std::vector<JunctionCandidate> all;
-  all.reserve(static_cast<size_t>(D.size()));
+  // The `count` best pairs, kept in a max-heap on `before` (no list of all N M pairs).
+  std::vector<JunctionCandidate> best;
+  best.reserve(static_cast<size_t>(count) + 1);
   for (int l = 0; l < D.cols(); ++l)
-    for (int i = 0; i < D.rows(); ++i) all.push_back({window_index, i, l, std::max(0.0, D(i, l))});
-  const size_t keep = std::min(all.size(), static_cast<size_t>(count));
-  std::partial_sort(all.begin(), all.begin() + static_cast<long>(keep), all.end(), before);
-  all.resize(keep);
-  return all;
+    for (int i = 0; i < D.rows(); ++i) {
+      const JunctionCandidate c{window_index, i, l, std::max(0.0, D(i, l))};
+      if (static_cast<int>(best.size()) == count && !before(c, best.front())) continue;
+      best.push_back(c);
+      std::push_heap(best.begin(), best.end(), before);
+      if (static_cast<int>(best.size()) > count) {
+        std::pop_heap(best.begin(), best.end(), before);
+        best.pop_back();
+      }
+    }
+  std::sort(best.begin(), best.end(), before);
+  return best;
 }
 
 /// x_0 -> a through the forward set, then the bridge from a along the backward chain from b
