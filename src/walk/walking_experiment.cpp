@@ -100,7 +100,8 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
                   "the sole that swings first (right: SS-L comes first)")
           .add("fall_pelvis_height", &C::fall_pelvis_height, "m",
                "pelvis origin below this height = fall, > 0")
-          .add("seed", &C::seed, "", "seed of every random draw of the run")
+          .add("seed", &C::seed, "",
+               "seed of every random draw of the run (replaces reach.seed in the walk)")
           .add("max_sim_time", &C::max_sim_time, "s", "hard stop, > 0");
   return f;
 }
@@ -159,6 +160,7 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
     const FootstepPlannerConfig& c = proposed ? *proposed : defaults;
     ReachConfig reach = c.reach;
     reach.horizon = walk.check_horizon;
+    reach.seed = walk.seed;  // the run's seed reaches the sampler (its only random draws)
     reach.validate();
     FootstepPlannerConfig planner = c;
     planner.reach = reach;

@@ -53,7 +53,9 @@ struct WalkConfig {
   Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
   Side first_swing = Side::kRight;  ///< SS-L comes first: the right sole swings first
   double fall_pelvis_height = 0.6;  ///< pelvis origin below this height = fall [m]
-  unsigned seed = 1;                ///< seed of every random draw of the run
+  /// Seed of every random draw of the run: the proposed mode's reachability sampler
+  /// (replaces reach.seed; the simulation and the controller draw nothing).
+  unsigned seed = 1;
   double max_sim_time = 60.0;       ///< hard stop [s]
 
   /// \throws ConfigError naming the first bad field.
