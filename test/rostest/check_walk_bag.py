@@ -100,6 +100,9 @@ class WalkBagTest(unittest.TestCase):
         cls.bag_path = rospy.get_param("~bag")
         cls.expected_steps = int(rospy.get_param("~steps", 4))
         cls.mode = rospy.get_param("~mode", "baseline")
+        # "fall" / "walk": the walk must fall / walk every step (the pushed comparison of the
+        # paper's Sec. IV); "any": only the plumbing is checked when it falls.
+        cls.expect = rospy.get_param("~expect", "any")
         cls.topics = TOPICS + (CHECK_TOPICS if cls.mode == "proposed" else [])
         recorder = rospy.get_param("~recorder", "/walk_recorder")
         # 1. The walk's end (walk_result is latched), in wall time: sim time runs in bursts.
@@ -150,6 +153,10 @@ class WalkBagTest(unittest.TestCase):
         self.assertTrue(all(b > a for a, b in zip(clock, clock[1:])), "/clock not increasing")
 
     def test_steps_walked(self):
+        if self.expect == "fall":
+            self.assertTrue(self.fell, "expected a fall: " + self.walk_result)
+        elif self.expect == "walk":
+            self.assertFalse(self.fell, "expected no fall: " + self.walk_result)
         if self.fell:
             rospy.logwarn("the walk fell (%s): checking the plumbing only", self.walk_result)
             self.assertTrue(any(r.fell for r in self.msgs["/step_report"]),
