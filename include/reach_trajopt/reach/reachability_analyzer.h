@@ -23,7 +23,7 @@
 ///     one set inside the other's convex hull, or a pair closer than min(K, overlap_gap_max);
 ///     Prop. 2: d_H <= min(delta, K)) is reported (sets_meet, window) but decides nothing by
 ///     itself: in the walk the sets "overlapped" on steps no path joined.
-
+///
 /// Choosing the time line (see ReachConfig): for the biped's single support -> double support
 /// check, x_0 is a mid-swing state (swing sole in the air, moving toward the target; see
 /// swing_state.h) and x_f the touchdown state (KinematicFeasibility's q_f, qd_f = 0). The sets
@@ -32,8 +32,10 @@
 /// t = 0.04 s). Defaults: horizon 0.08 s, window [0.03, 0.05] s. With the biped's torque limits
 /// the forward set of the swing sole spreads by about +-8 cm in 30 ms, while the backward set
 /// of (17)-(19) stays within a few mm of x_f (most backward draws violate the cone), so the
-/// check answers "can the sole get from where it is to the target in t_f - t_0", and a target
-/// 0.25 m beyond the sole's course is unreachable while a 3 cm correction is reachable.
+/// output sets answer "can the sole get from where it is to the target in t_f - t_0". The
+/// certificate asks more: the whole state must arrive on x_f, and on bench/reach's case (the
+/// sole 3 cm short at 0.75 m/s, 80 ms before touchdown, x_f at rest) no path is found, nor
+/// does the strict OCP find one; the walk checks 0.2 s before touchdown (WalkConfig).
 ///
 /// Choices beyond the paper (all in ReachConfig): the forward step is semi-implicit (the exact
 /// inverse of the backward step (20)), contact drift stabilization, antithetic bang-bang draws,

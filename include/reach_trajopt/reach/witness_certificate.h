@@ -11,9 +11,11 @@
 ///     of the cubic Hermite that closes the gap), over every sample of both slices (not only
 ///     the swing sole's output, which matches long before the state does);
 ///  2. for the best `certificate_candidates` pairs in that order: x_0 -> a traced through the
-///     forward set, then the bridge a -> x(t_f) of junction_bridge.h;
+///     forward set, then the bridge a -> x(t_f) of junction_bridge.h along the backward chain
+///     b -> x_f, and if that one is not certified, along the cubic from a to x_f
+///     (hermiteChain);
 ///  3. certified when the path's largest violation is within certificate_tolerance (contact
-///     within contact_tolerance / contact_velocity_tolerance) and x(t_f) within
+///     within contact_tolerance / certificate_contact_velocity_tolerance) and x(t_f) within
 ///     terminal_position_tolerance / terminal_velocity_tolerance of x_f. The first certified
 ///     path is the witness; without one, the attempt that ended closest to x_f, uncertified.
 ///

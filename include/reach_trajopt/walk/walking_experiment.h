@@ -56,7 +56,7 @@ struct WalkConfig {
   /// Seed of every random draw of the run: the proposed mode's reachability sampler
   /// (replaces reach.seed; the simulation and the controller draw nothing).
   unsigned seed = 1;
-  double max_sim_time = 60.0;       ///< hard stop [s]
+  double max_sim_time = 60.0;  ///< hard stop [s]
 
   /// \throws ConfigError naming the first bad field.
   void validate() const;
