@@ -13,10 +13,15 @@ namespace {
 /// Right-hand side of a one-sided position row without that bound (the QP takes finite data).
 constexpr double kNoBound = -1e20;
 
-int inequalityRows(const ReachContext& c) {
+/// The ground row exists in bridge steps only (sampling rejects children below the ground).
+bool hasGroundRow(const ReachContext& c, const ForwardStepCost& cost) {
+  return cost.bridge && c.swing_frame >= 0;
+}
+
+int inequalityRows(const ReachContext& c, const ForwardStepCost& cost) {
   return 2 * c.nu + ContactWrenchCone::kRows * c.nc +
          2 * static_cast<int>(c.finite_velocity.size()) +
-         2 * static_cast<int>(c.finite_position.size()) + (c.swing_frame >= 0 ? 1 : 0);
+         2 * static_cast<int>(c.finite_position.size()) + (hasGroundRow(c, cost) ? 1 : 0);
 }
 }  // namespace
 
@@ -38,11 +43,11 @@ ForwardStep::ForwardStep(const ReachContext& context, const ForwardStepCost& cos
       n_(context.n),
       nu_(context.nu),
       m_(context.m()),
-      rows_(inequalityRows(context)),
+      rows_(inequalityRows(context, cost)),
       lu_(context.n + context.m()),
       terms_(context.n),
       factor_(context.nu),
-      qp_(context.nu, 0, inequalityRows(context)),
+      qp_(context.nu, 0, inequalityRows(context, cost)),
       empty_eq_(0, context.nu),
       empty_beq_(0) {
   const int k = n_ + m_;
@@ -136,7 +141,7 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
     A_in_.row(r++) = -P_.row(i);
     A_in_.row(r++) = P_.row(i);
   }
-  if (ctx_.swing_frame >= 0) {
+  if (hasGroundRow(ctx_, cost_)) {
     // The ground row of a bridge step: the swing sole above the ground one step ahead, to
     // first order (hence within half the certificate's tolerance):
     // z + dt (zdot + dt (J_z qdd + Jdot_z qd)) >= ground.
@@ -209,8 +214,7 @@ bool ForwardStep::solveChild(const Eigen::Ref<const Eigen::VectorXd>& u,
     b_in_[r++] = std::isfinite(ctx_.q_max[i]) ? (qn - ctx_.q_max[i]) / (dt * dt) + s_[i] : kNoBound;
     b_in_[r++] = std::isfinite(ctx_.q_min[i]) ? (ctx_.q_min[i] - qn) / (dt * dt) - s_[i] : kNoBound;
   }
-  if (ctx_.swing_frame >= 0)  // samples are rejected below the ground instead, after the QP
-    b_in_[r++] = cost_.bridge ? ground_rhs_ - swing_jz_.dot(s_.head(n_)) : kNoBound;
+  if (hasGroundRow(ctx_, cost_)) b_in_[r++] = ground_rhs_ - swing_jz_.dot(s_.head(n_));
   ++qp_count_;
   const qp::QpResult& res =
       qp_.solve(factor_, g_, empty_eq_, empty_beq_, A_in_, b_in_, warm_.empty() ? nullptr : &warm_);
