@@ -9,7 +9,7 @@
 ///   step_report (StepReport)         one per touchdown (and one for a step ending in a fall)
 ///   markers (visualization_msgs/MarkerArray)  footholds planned/executed, CoM and swing paths
 ///   walk_result (std_msgs/String, latched)    the summary line, published when the run ends
-/// In proposed mode, once per checked step (stamped with the sim time of the check, x_0, in
+/// With a policy that checks footholds, once per checked step (stamped with the sim time of the check, x_0, in
 /// "world"; the topics of reachability_node and transition_ocp_node):
 ///   reachability_result (ReachabilityResult)  the check: sets per slice, d_H, witness; or
 ///                                              "unreachable" for a kinematically infeasible
@@ -19,9 +19,9 @@
 ///                                              failed) the swing then tracks
 ///   transition_markers (visualization_msgs/MarkerArray)  its swing sole path and landing
 /// Parameters (private): ~config (YAML with sections contact, planner, walk, wbc, and for the
-/// proposed mode kinematic_feasibility, reach, ocp; default config/biped.yaml of the package),
-/// ~sim_config (YAML with a sim section, optional), ~mode
-/// (baseline|proposed), ~steps, ~seed, ~forward_speed [m/s], ~push_vx, ~push_vy [m/s],
+/// policies with a check kinematic_feasibility, reach, ocp, nearest_foothold; default config/biped.yaml of the package),
+/// ~sim_config (YAML with a sim section, optional), ~policy
+/// (a walking policy: baseline|unbounded|kinematic|proposed[,part=value...]), ~steps, ~seed, ~forward_speed [m/s], ~push_vx, ~push_vy [m/s],
 /// ~publish_period [s of sim time, 0.01], ~clock_period [s, 0.001], ~marker_period [s, 0.1],
 /// ~wait_for_subscribers (N: wait until every topic has N subscribers, e.g. a recorder; 0),
 /// ~wait_for_com_subscribers (N: wait until com_state has N subscribers, e.g. + the planner),
@@ -84,10 +84,10 @@ int main(int argc, char** argv) {
       const YamlSection sim_file = YamlSection::loadFile(sim_config_path);
       sim = SimConfig::fromYaml(sim_file.section("sim"));
     }
-    // The proposed mode's check and OCP.
+    // The check and the OCP of policies with a check.
     const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
-    std::string mode;
-    if (pnh.getParam("mode", mode)) walk.mode = WalkConfig::parseMode(mode);
+    std::string policy;
+    if (pnh.getParam("policy", policy)) walk.policy = WalkingPolicy::parse(policy);
     int int_value = 0;
     if (pnh.getParam("steps", int_value)) walk.steps = int_value;
     if (pnh.getParam("seed", int_value)) {
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
 
     const rb::TempUrdf urdf(urdf_xml);
     WalkingExperiment experiment(urdf.path(), walk, tvr, contact, wbc, sim, &proposed);
-    const bool proposed_mode = walk.mode == WalkConfig::Mode::kProposed;
+    const bool checks_footholds = walk.policy.checksFoothold();
     const RobotModel& model = experiment.model();
     Workspace ws(model);
     rb::LinkTransforms link_tf(model);
@@ -135,8 +135,8 @@ int main(int argc, char** argv) {
     std::vector<ros::Publisher*> pubs = {&clock_pub,   &joint_pub,     &com_pub,
                                          &contact_pub, &wrench_pub[0], &wrench_pub[1],
                                          &step_pub,    &marker_pub,    &result_pub};
-    ros::Publisher reach_pub, reach_marker_pub, traj_pub, traj_marker_pub;  // proposed only
-    if (proposed_mode) {
+    ros::Publisher reach_pub, reach_marker_pub, traj_pub, traj_marker_pub;  // with a check
+    if (checks_footholds) {
       reach_pub = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
       reach_marker_pub = nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 100);
       traj_pub = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
@@ -157,8 +157,8 @@ int main(int argc, char** argv) {
       if (!ready()) ROS_WARN("sim_node: starting before every subscriber connected");
       ros::WallDuration(0.5).sleep();  // let /tf's subscribers connect as well
     }
-    ROS_INFO("sim_node: %s walk of %d steps, seed %u, robot '%s'", WalkConfig::modeName(walk.mode),
-             walk.steps, walk.seed, model.name().c_str());
+    ROS_INFO("sim_node: %s walk (%s) of %d steps, seed %u, robot '%s'", walk.policy.name.c_str(),
+             walk.policy.definition().c_str(), walk.steps, walk.seed, model.name().c_str());
 
     std::vector<Eigen::Vector3d> planned, executed, com_path, swing_path;
     visualization_msgs::MarkerArray swing_paths;  // one LINE_STRIP per finished step
@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
 
     auto onStep = [&](const StepRecord& r) {
       ground_z = r.executed.z();
-      step_pub.publish(rb::toStepReportMsg(r, walk.mode, false, ground_z));
+      step_pub.publish(rb::toStepReportMsg(r, walk.policy, false, ground_z));
       planned.emplace_back(r.planned.x(), r.planned.y(), r.executed.z());
       executed.push_back(r.executed);
       swing_paths.markers.push_back(rb::pathMarker(swing_path, rb::kNsSwingPath, r.index, 0.005,
@@ -272,7 +272,7 @@ int main(int argc, char** argv) {
         r.index = result.steps + 1;
         if (!result.records.empty()) r.swing = opposite(result.records.back().swing);
       }
-      reach_trajopt::StepReport msg = rb::toStepReportMsg(r, walk.mode, true, ground_z);
+      reach_trajopt::StepReport msg = rb::toStepReportMsg(r, walk.policy, true, ground_z);
       msg.header.stamp = end_stamp;
       step_pub.publish(msg);
     }

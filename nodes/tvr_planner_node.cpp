@@ -6,7 +6,7 @@
 ///   subscribes: com_state (CenterOfMassState), contact_state (ContactState: sole poses)
 ///   publishes:  contact_plan (ContactPlan)
 /// Parameters (private): ~config (YAML with sections planner and walk; default
-/// config/biped.yaml of the package), ~mode (baseline: heuristic bounds on | proposed: off),
+/// config/biped.yaml of the package), ~policy (a walking policy, walk/walking_policy.h: its bounds part switches the heuristic bounds),
 /// ~forward_speed [m/s] (desired CoM speed along x, drives p_des of eq. 11).
 /// The LIPM height is the CoM height measured at the first message, as in the walking loop.
 
@@ -96,11 +96,11 @@ int main(int argc, char** argv) {
     const YamlSection file = YamlSection::loadFile(config_path);
     TvrConfig tvr = TvrConfig::fromYaml(file.section("planner"));
     WalkConfig walk = file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
-    std::string mode;
-    if (pnh.getParam("mode", mode)) walk.mode = WalkConfig::parseMode(mode);
+    std::string policy;
+    if (pnh.getParam("policy", policy)) walk.policy = WalkingPolicy::parse(policy);
     pnh.getParam("forward_speed", walk.forward_speed);
     walk.validate();
-    tvr.heuristic_bounds = walk.mode == WalkConfig::Mode::kBaseline;
+    tvr.heuristic_bounds = walk.policy.heuristic_bounds;
     TvrPlannerNode node(nh, tvr, walk);
     ros::spin();
   } catch (const std::exception& e) {

@@ -1,10 +1,13 @@
 /// walk_experiment: the walking experiment of the paper's Sec. IV, headless, no ROS master.
 ///
 ///   walk_experiment [--config config/biped.yaml] [--urdf urdf/biped.urdf]
-///                   [--mode baseline|proposed] [--steps N] [--seed S] [--push vx,vy]
+///                   [--policy P] [--steps N] [--seed S] [--push vx,vy]
 ///                   [--forward-speed v] [--records FILE.csv] [--plan-requests FILE.jsonl]
 ///
-/// Prints one line per step and ends with `WALK mode=<m> steps=<n> fell=<yes|no> ...`.
+/// --policy: a walking policy (walk/walking_policy.h), a preset baseline | unbounded | kinematic |
+/// proposed, optionally with parts: "kinematic,swing=interpolation"; --mode is the same option.
+/// Prints one line per step and ends with `WALK mode=<policy> steps=<n> fell=<yes|no> ...`
+/// and the policy's definition.
 /// Option values are parsed strictly (cli_args.h): "--steps 5x" is an error naming --steps.
 /// Exit status: 0 ran (fallen or not), 2 bad input.
 
@@ -14,9 +17,8 @@
 #include <string>
 
 #include "reach_trajopt/common/cli_args.h"
-#include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
-#include "reach_trajopt/walk/walking_experiment.h"
+#include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
 
@@ -38,7 +40,7 @@ int main(int argc, char** argv) {
         config_path = next();
       else if (a == "--urdf")
         urdf = next();
-      else if (a == "--mode")
+      else if (a == "--policy" || a == "--mode")
         mode = next();
       else if (a == "--steps")
         steps = next();
@@ -60,13 +62,9 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    const YamlSection file = YamlSection::loadFile(config_path);
-    WalkConfig walk = file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
-    const TvrConfig tvr = TvrConfig::fromYaml(file.section("planner"));
-    const ContactConfig contact = ContactConfig::fromYaml(file.section("contact"));
-    const WbcConfig wbc = file.has("wbc") ? WbcConfig::fromYaml(file.section("wbc")) : WbcConfig{};
-    const SimConfig sim = file.has("sim") ? SimConfig::fromYaml(file.section("sim")) : SimConfig{};
-    if (!mode.empty()) walk.mode = WalkConfig::parseMode(mode);
+    WalkSetup setup = WalkSetup::fromYamlFile(config_path);
+    WalkConfig& walk = setup.walk;
+    if (!mode.empty()) walk.policy = WalkingPolicy::parse(mode);
     if (!steps.empty())
       walk.steps = static_cast<int>(parseIntOption("--steps", steps, 0, kMaxWalkSteps));
     if (!seed.empty())
@@ -81,8 +79,7 @@ int main(int argc, char** argv) {
                           parseDoubleOption("--push", push.substr(comma + 1)));
     }
     walk.validate();
-    const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
-    WalkingExperiment experiment(urdf, walk, tvr, contact, wbc, sim, &proposed);
+    const std::unique_ptr<WalkingExperiment> experiment = setup.experiment(urdf);
     std::ofstream requests_out;
     if (!requests_path.empty()) {
       requests_out.open(requests_path);
@@ -96,7 +93,7 @@ int main(int argc, char** argv) {
       j["reach_horizon"] = step.horizon;  // the walk's check horizon
       requests_out << j.dump() << "\n";
     };
-    const WalkResult r = experiment.run(
+    const WalkResult r = experiment->run(
         {},
         [](const StepRecord& s) {
           std::printf(

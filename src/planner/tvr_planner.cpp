@@ -136,20 +136,25 @@ TvrStep TvrPlanner::plan(const TvrInput& in) const {
   }
   out.alpha = contact(out.com_velocity_used);
 
-  const Eigen::Rotation2Dd heading(in.stance_yaw);
-  out.offset = heading.inverse() * (out.alpha - in.stance);
-  if (config_.heuristic_bounds) {
-    const double sign = in.swing == Side::kLeft ? 1.0 : -1.0;
-    Eigen::Vector2d o = out.offset;
-    o.x() = std::clamp(o.x(), config_.foot_offset_x_min, config_.foot_offset_x_max);
-    o.y() = sign * std::clamp(sign * o.y(), config_.foot_offset_y_min, config_.foot_offset_y_max);
-    if (o != out.offset) {
-      out.offset_clipped = true;
-      out.offset = o;
-      out.alpha = in.stance + heading * o;
-    }
-  }
+  if (config_.heuristic_bounds)
+    out.alpha = boundedContact(out.alpha, in.stance, in.stance_yaw, in.swing, &out.offset_clipped);
+  out.offset = Eigen::Rotation2Dd(in.stance_yaw).inverse() * (out.alpha - in.stance);
   return out;
+}
+
+Eigen::Vector2d TvrPlanner::boundedContact(const Eigen::Vector2d& alpha,
+                                           const Eigen::Vector2d& stance, double stance_yaw,
+                                           Side swing, bool* clipped) const {
+  requireFinite("TvrPlanner::boundedContact contact", alpha);
+  requireFinite("TvrPlanner::boundedContact stance sole position", stance);
+  const Eigen::Rotation2Dd heading(stance_yaw);
+  const Eigen::Vector2d offset = heading.inverse() * (alpha - stance);
+  const double sign = swing == Side::kLeft ? 1.0 : -1.0;
+  Eigen::Vector2d o = offset;
+  o.x() = std::clamp(o.x(), config_.foot_offset_x_min, config_.foot_offset_x_max);
+  o.y() = sign * std::clamp(sign * o.y(), config_.foot_offset_y_min, config_.foot_offset_y_max);
+  if (clipped) *clipped = o != offset;
+  return o == offset ? alpha : Eigen::Vector2d(stance + heading * o);
 }
 
 Eigen::Matrix4d TvrPlanner::closedLoopMatrix(double T) const {

@@ -200,14 +200,16 @@ reach_trajopt::ContactState toContactStateMsg(const WalkTick& tick, const ros::T
   return m;
 }
 
-reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, WalkConfig::Mode mode, bool fell,
+reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, const WalkingPolicy& policy, bool fell,
                                           double ground_z) {
   reach_trajopt::StepReport m;
   m.header.frame_id = kWorldFrame;
   const double stamp = r.touched_down ? r.touchdown_time : r.plan_time;
   m.header.stamp = ros::Time(std::max(0.0, stamp));
   m.index = static_cast<uint32_t>(std::max(0, r.index));
-  m.mode = WalkConfig::modeName(mode);
+  m.mode = policy.name;
+  m.policy = policy.definition();
+  m.failed_check_action = r.failed_check_action;
   m.swing_side = sideName(r.swing);
   m.plan_time = r.plan_time;
   m.touchdown_time = r.touchdown_time;

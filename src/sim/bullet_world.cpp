@@ -21,9 +21,11 @@ namespace reach_trajopt {
 
 namespace {
 
-// Robot links collide with the ground only (no self-collision); the ground with the robot.
+// Robot links collide with the ground; with leg self-collision, each leg's links also with the
+// other leg's (never with their own leg or the rest of the robot); the ground with the robot.
 constexpr int kRobotGroup = btBroadphaseProxy::DefaultFilter;
 constexpr int kGroundGroup = btBroadphaseProxy::StaticFilter;
+constexpr int kLegGroup[2] = {1 << 6, 1 << 7};  // left, right (Bullet's user filter bits)
 
 btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
 Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
@@ -57,9 +59,11 @@ struct BulletWorld::Bullet {
   btAlignedObjectArray<btVector3> local_origin;
 
   /// The robot as one btMultiBody: a link per body of the tree, in Bullet's principal frames.
-  void addMultiBody(const SimBodyTree& tree, const SimConfig& config, bool floating);
-  /// One compound collider per body with shapes (boxes, spheres, cylinders of the URDF).
-  void addColliders(const SimBodyTree& tree, const SimConfig& config);
+  void addMultiBody(const SimBodyTree& tree, const SimConfig& config, bool floating,
+                    bool self_collision);
+  /// One compound collider per body with shapes (boxes, spheres, cylinders of the URDF);
+  /// `leg` per body: 0 left leg, 1 right leg, -1 neither (collides with the ground only).
+  void addColliders(const SimBodyTree& tree, const SimConfig& config, const std::vector<int>& leg);
   /// Bullet's joint limit constraints for the joints with finite limits.
   void addJointLimits(const SimBodyTree& tree);
 
@@ -128,7 +132,29 @@ BulletWorld::BulletWorld(const SimBodyTree& tree, const std::vector<std::string>
     throw ModelError(tree_.source + ": both sole frames are on body '" +
                      tree_.bodies[sole_body_[0]].name + "'");
   }
+  findLegs();
   reset(Eigen::VectorXd::Zero(nq_), Eigen::VectorXd::Zero(nq_));
+}
+
+void BulletWorld::findLegs() {
+  const int n = static_cast<int>(tree_.bodies.size());
+  body_leg_.assign(n, -1);
+  if (!config_.leg_self_collision) return;
+  // A leg: the child of the root on the path to a sole, and every body below it.
+  int top[2] = {-1, -1};
+  for (int s = 0; s < 2; ++s) {
+    for (int k = sole_body_[s]; k > 0; k = tree_.bodies[k].parent)
+      if (tree_.bodies[k].parent == 0) top[s] = k;
+  }
+  if (top[0] < 0 || top[1] < 0 || top[0] == top[1]) return;  // no two separate legs
+  for (int k = 1; k < n; ++k) {
+    for (int a = k; a > 0; a = tree_.bodies[a].parent) {
+      if (a == top[0] || a == top[1]) {
+        body_leg_[k] = a == top[0] ? 0 : 1;
+        break;
+      }
+    }
+  }
 }
 
 std::unique_ptr<BulletWorld> BulletWorld::fromUrdfFile(const std::string& urdf_path,
@@ -148,7 +174,7 @@ std::unique_ptr<BulletWorld> BulletWorld::fromUrdfFile(const std::string& urdf_p
 BulletWorld::~BulletWorld() = default;
 
 void BulletWorld::Bullet::addMultiBody(const SimBodyTree& tree, const SimConfig& config,
-                                       bool floating) {
+                                       bool floating, bool self_collision) {
   btMultiBodyDynamicsWorld& dynamics = *world;
   const int n_links = static_cast<int>(tree.bodies.size()) - 1;
   const SimBody& root = tree.bodies[0];
@@ -181,11 +207,12 @@ void BulletWorld::Bullet::addMultiBody(const SimBodyTree& tree, const SimConfig&
   mb.setAngularDamping(0.0);
   mb.setMaxCoordinateVelocity(config.max_coordinate_velocity);
   mb.setUseGyroTerm(true);
-  mb.setHasSelfCollision(false);
+  mb.setHasSelfCollision(self_collision);  // which pairs: the filter groups of addColliders
   dynamics.addMultiBody(&mb);
 }
 
-void BulletWorld::Bullet::addColliders(const SimBodyTree& tree, const SimConfig& config) {
+void BulletWorld::Bullet::addColliders(const SimBodyTree& tree, const SimConfig& config,
+                                       const std::vector<int>& leg) {
   btMultiBodyDynamicsWorld& dynamics = *world;
   btMultiBody& mb = *multibody;
   colliders.resize(tree.bodies.size());
@@ -220,7 +247,12 @@ void BulletWorld::Bullet::addColliders(const SimBodyTree& tree, const SimConfig&
     collider->setSpinningFriction(0.0);
     collider->setActivationState(DISABLE_DEACTIVATION);
     shapes.push_back(std::move(compound));
-    dynamics.addCollisionObject(collider.get(), kRobotGroup, kGroundGroup);
+    if (leg[k] >= 0) {
+      dynamics.addCollisionObject(collider.get(), kRobotGroup | kLegGroup[leg[k]],
+                                  kGroundGroup | kLegGroup[1 - leg[k]]);
+    } else {
+      dynamics.addCollisionObject(collider.get(), kRobotGroup, kGroundGroup);
+    }
     if (k == 0) {
       mb.setBaseCollider(collider.get());
     } else {
@@ -257,8 +289,11 @@ void BulletWorld::build() {
       bt->dispatcher.get(), bt->broadphase.get(), bt->solver.get(), bt->collision_config.get());
   bt->world->setGravity(toBt(config_.gravity));
   bt->world->getSolverInfo().m_numIterations = config_.solver_iterations;
-  bt->addMultiBody(tree_, config_, floating_);
-  bt->addColliders(tree_, config_);
+  const bool self_collision =
+      std::find(body_leg_.begin(), body_leg_.end(), 0) != body_leg_.end() &&
+      std::find(body_leg_.begin(), body_leg_.end(), 1) != body_leg_.end();
+  bt->addMultiBody(tree_, config_, floating_, self_collision);
+  bt->addColliders(tree_, config_, body_leg_);
   if (config_.joint_limits) bt->addJointLimits(tree_);
   bt->ground_shape = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0);
   bt->ground = std::make_unique<btCollisionObject>();
@@ -305,6 +340,7 @@ void BulletWorld::reset(const Eigen::Ref<const Eigen::VectorXd>& q,
     s.wrench.setZero();
   }
   non_foot_contacts_.clear();
+  leg_contacts_.clear();
   for (int s = 0; s < 2; ++s) {
     soles_[s].sole_pose = framePose(soles_[s].frame);
   }
@@ -394,6 +430,7 @@ void BulletWorld::measureContacts() {
     s.wrench.setZero();
   }
   non_foot_contacts_.clear();
+  leg_contacts_.clear();
   for (int s = 0; s < 2; ++s) soles_[s].sole_pose = framePose(soles_[s].frame);
 
   const double inv_dt = 1.0 / config_.time_step;
@@ -406,6 +443,10 @@ void BulletWorld::measureContacts() {
     const bool robot_is_0 = col0 != nullptr && col0->m_multiBody == bt_->multibody.get();
     const btMultiBodyLinkCollider* robot = robot_is_0 ? col0 : col1;
     if (robot == nullptr || robot->m_multiBody != bt_->multibody.get()) continue;
+    if (robot_is_0 && col1 != nullptr && col1->m_multiBody == bt_->multibody.get()) {
+      recordLegContact(manifold, col0->m_link + 1, col1->m_link + 1);
+      continue;
+    }
     const int k = robot->m_link + 1;
     const int sole = k == sole_body_[0] ? 0 : (k == sole_body_[1] ? 1 : -1);
     const btTransform body_pose = bt_->bodyPose(k);
@@ -441,6 +482,22 @@ void BulletWorld::measureContacts() {
         }
       }
     }
+  }
+}
+
+void BulletWorld::recordLegContact(const btPersistentManifold& manifold, int body0, int body1) {
+  for (int i = 0; i < manifold.getNumContacts(); ++i) {
+    const btManifoldPoint& pt = manifold.getContactPoint(i);
+    if (!(pt.m_appliedImpulse > 0.0 || pt.getDistance() <= 0.0)) continue;
+    const auto link = [&](int k, int child) -> const std::string& {
+      const SimBody& body = tree_.bodies[k];
+      return child >= 0 && child < static_cast<int>(body.shapes.size()) ? body.shapes[child].link
+                                                                          : body.name;
+    };
+    const std::string a = link(body0, pt.m_index0), b = link(body1, pt.m_index1);
+    const std::string pair = a < b ? a + "/" + b : b + "/" + a;
+    if (std::find(leg_contacts_.begin(), leg_contacts_.end(), pair) == leg_contacts_.end())
+      leg_contacts_.push_back(pair);
   }
 }
 

@@ -50,6 +50,9 @@ const ConfigFields<SimConfig>& SimConfig::fields() {
           .add("joint_limits", &C::joint_limits, "",
                "URDF position limits as unilateral constraints")
           .add("clamp_torques", &C::clamp_torques, "", "saturate torques at the URDF effort limits")
+          .add("leg_self_collision", &C::leg_self_collision, "",
+               "the two legs' collision shapes collide with each other (a walk ends as a fall "
+               "when they touch)")
           .add("solver_iterations", &C::solver_iterations, "",
                "Bullet constraint-solver iterations per step, >= 1: more, stiffer and more "
                "accurate contacts; slower steps")

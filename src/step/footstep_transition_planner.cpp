@@ -22,7 +22,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 const char* verdictOf(const FootstepResult& check, bool checked) {
   if (!check.kinematically_feasible) return "kinematically_infeasible";
-  if (!checked) return "not_checked";
+  if (!checked) return "kinematically_feasible";  // the kinematic check only
   return check.reachable ? "reachable" : "unreachable";
 }
 
@@ -192,6 +192,11 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     }
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kReject) {
     throw RequestError("kinematically infeasible foothold (" + check.kinematics.reason + ")");
+  } else if (r.on_infeasible == InfeasibleFootholdPolicy::kNoFallback) {
+    out.trajectory.status = OcpStatus::kFailed;
+    out.trajectory.reason = "no OCP for an infeasible foothold (no fallback requested)";
+    out.foothold = r.target;
+    return;
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kRelaxTowardTarget) {
     ocp.qf = check.kinematics.q_f;
     ocp.qdf = check.kinematics.qd_f;
@@ -213,6 +218,13 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     ocp.qdf = doubleSupportVelocity(m, ocp.qf, m.frameId(contact_.left_sole_frame),
                                     m.frameId(contact_.right_sole_frame), td.com_velocity);
     ocp.relaxation = RelaxationMode::kAuto;
+  }
+  if (!r.solve_ocp) {
+    out.trajectory.status = OcpStatus::kFailed;
+    out.trajectory.reason = "not solved (solve_ocp = false)";
+    out.foothold = nearest_feasible;
+    if (r.check_reachability && check.kinematically_feasible) certify(out);
+    return;
   }
   seedFromWitness(check.reach, ocp);
   const auto ocp_start = std::chrono::steady_clock::now();

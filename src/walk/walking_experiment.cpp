@@ -22,16 +22,6 @@ namespace reach_trajopt {
 
 // ---- WalkConfig -------------------------------------------------------------------------------
 
-WalkConfig::Mode WalkConfig::parseMode(const std::string& name) {
-  if (name == "baseline") return Mode::kBaseline;
-  if (name == "proposed") return Mode::kProposed;
-  throw RequestError("walk mode must be 'baseline' or 'proposed', got '" + name + "'");
-}
-
-const char* WalkConfig::modeName(Mode mode) {
-  return mode == Mode::kBaseline ? "baseline" : "proposed";
-}
-
 void WalkConfig::validate() const {
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0) || !std::isfinite(v))
@@ -61,6 +51,7 @@ void WalkConfig::validate() const {
   positive("max_sim_time", max_sim_time);
   if (!std::isfinite(forward_speed)) throw ConfigError("WalkConfig: forward_speed is not finite");
   requireFinite("WalkConfig: initial_com_velocity", initial_com_velocity);
+  policy.validate();
 }
 
 const ConfigFields<WalkConfig>& WalkConfig::fields() {
@@ -70,9 +61,21 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
                       "The walking experiment of Sec. IV. Step period T = "
                       "single_support_duration + double_support_duration (0.26 s < 2 t_s, as "
                       "the step map (12) needs).")
-          .choice("mode", &C::mode, {{"baseline", Mode::kBaseline}, {"proposed", Mode::kProposed}},
-                  "baseline: TVR with heuristic bounds; proposed: no bounds, every foothold "
-                  "checked (the mode sets TvrConfig::heuristic_bounds)")
+          .custom(
+              "policy", "string",
+              [](const YamlSection& s, const std::string& k, C& c) {
+                std::string spec;
+                s.read(k, spec);
+                try {
+                  c.policy = WalkingPolicy::parse(spec);
+                } catch (const ReachError& e) {
+                  throw ConfigError(s.where(k) + ": " + e.what());
+                }
+              },
+              [](const C& c) { return c.policy.name; }, "",
+              "<preset>[,part=value...]: baseline (Sec. IV-A), unbounded, kinematic, proposed "
+              "(Sec. IV-B); parts bounds, check, on_fail, swing (walk/walking_policy.h); it "
+              "sets TvrConfig::heuristic_bounds")
           .add("steps", &C::steps, "", "footsteps to walk (touchdowns), >= 0")
           .add("single_support_duration", &C::single_support_duration, "s", "nominal swing time")
           .add("double_support_duration", &C::double_support_duration, "s",
@@ -87,7 +90,7 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
           .add("late_touchdown", &C::late_touchdown, "s",
                "time past the nominal swing end before a fall is declared")
           .add("check_horizon", &C::check_horizon, "s",
-               "proposed mode: the check and the OCP start this long before the nominal "
+               "policies with a check: the check and the OCP start this long before the nominal "
                "touchdown (replaces reach.horizon), < single_support_duration")
           .add("replan_fraction", &C::replan_fraction, "",
                "eq. (11) re-evaluated from the measured CoM during this fraction of the swing, "
@@ -102,7 +105,9 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
                "pelvis origin below this height = fall, > 0")
           .add("seed", &C::seed, "",
                "seed of every random draw of the run (replaces reach.seed in the walk)")
-          .add("max_sim_time", &C::max_sim_time, "s", "hard stop, > 0");
+          .add("max_sim_time", &C::max_sim_time, "s", "hard stop, > 0")
+          .removed("mode", "walk.mode was replaced by walk.policy (a preset: baseline, "
+                           "unbounded, kinematic, proposed)");
   return f;
 }
 
@@ -111,11 +116,19 @@ WalkConfig WalkConfig::fromYaml(const YamlSection& s) { return fields().read(s);
 std::string WalkResult::summaryLine() const {
   std::ostringstream os;
   os.precision(4);
-  os << "WALK mode=" << WalkConfig::modeName(mode) << " steps=" << steps
+  os << "WALK mode=" << policy.name << " steps=" << steps
      << " fell=" << (fell ? "yes" : "no") << " sim_s=" << sim_time << " wall_s=" << wall_time
      << " max_touchdown_err_m=" << max_touchdown_error << " qp_failures=" << qp_failures
      << " end=" << end_reason;
-  if (mode == WalkConfig::Mode::kProposed) {
+  if (policy.checksFoothold()) {
+    int infeasible = 0, failed = 0;
+    for (const StepRecord& r : records) {
+      infeasible += r.verdict == "kinematically_infeasible";
+      failed += !r.failed_check_action.empty();
+    }
+    os << " kinematically_infeasible=" << infeasible << " failed_checks=" << failed;
+  }
+  if (policy.check == WalkingPolicy::FootholdCheck::kReachability) {
     // The verdicts: every "reachable" rests on a certified witness; its OCP was strict.
     int reachable = 0, bridge = 0, local_solve = 0, reachable_converged = 0, unreachable = 0;
     for (const StepRecord& r : records) {
@@ -130,13 +143,14 @@ std::string WalkResult::summaryLine() const {
        << " reachable_ocp_converged=" << reachable_converged
        << " not_shown_reachable=" << unreachable;
   }
+  os << " " << policy.definition();
   return os.str();
 }
 
 // ---- The loop ---------------------------------------------------------------------------------
 
 struct WalkingExperiment::Impl {
-  std::unique_ptr<FootstepTransitionPlanner> proposed;
+  std::unique_ptr<FootstepTransitionPlanner> footsteps;  ///< policies with a check
   WalkConfig walk;
   TvrConfig tvr_config;
   ContactConfig contact;
@@ -155,7 +169,7 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
   contact.validate();
   wbc.validate();
   sim.validate();
-  if (walk.mode == WalkConfig::Mode::kProposed) {
+  if (walk.policy.checksFoothold()) {
     const FootstepPlannerConfig defaults;
     const FootstepPlannerConfig& c = proposed ? *proposed : defaults;
     ReachConfig reach = c.reach;
@@ -164,7 +178,7 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
     reach.validate();
     FootstepPlannerConfig planner = c;
     planner.reach = reach;
-    impl_->proposed = std::make_unique<FootstepTransitionPlanner>(model_, contact, planner);
+    impl_->footsteps = std::make_unique<FootstepTransitionPlanner>(model_, contact, planner);
   }
   impl_->walk = walk;
   impl_->tvr_config = tvr;
@@ -206,6 +220,8 @@ struct WalkingExperiment::Loop {
   void beginSingleSupport(double t);
   void planStep(double t, double time_in_swing);
   void checkStep(double t, double time_in_swing);
+  FootstepPlanRequest footstepRequest(double time_in_swing) const;
+  void recordCheck(const FootstepTransition& step);
   void touchdown(double t);
   void references(double t);
   /// False when the robot fell.
@@ -283,7 +299,7 @@ WalkingExperiment::Loop::Loop(
   world_ = BulletWorld::fromUrdfFile(impl.urdf, m_, impl.sim_config);
   world_->reset(q0_, qd0);
   dt_ = world_->timeStep();
-  result_.mode = wc_.mode;
+  result_.policy = wc_.policy;
   ref_.posture = q0_;
 }
 
@@ -291,7 +307,7 @@ TvrConfig WalkingExperiment::Loop::plannerConfig(const TvrConfig& tvr, const Wal
                                                  double com_height) {
   TvrConfig c = tvr;
   c.com_height = com_height;  // the LIPM height is the robot's standing CoM height
-  c.heuristic_bounds = wc.mode == WalkConfig::Mode::kBaseline;
+  c.heuristic_bounds = wc.policy.heuristic_bounds;
   return c;
 }
 
@@ -346,7 +362,8 @@ bool WalkingExperiment::Loop::singleSupport(double t) {
     planStep(t, ts);
     swing_traj_->retarget(target3());
   }
-  if (impl_.proposed && !checked_ && ts >= wc_.single_support_duration - impl_.proposed->horizon())
+  if (impl_.footsteps && !checked_ &&
+      ts >= wc_.single_support_duration - impl_.footsteps->horizon())
     checkStep(t, ts);
   const SoleContact& sc = world_->soleContacts()[static_cast<int>(swing_)];
   if (ts > 0.5 * wc_.single_support_duration && sc.in_contact &&
@@ -401,45 +418,33 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
   current_.offset_clipped = step.offset_clipped;
 }
 
-// The proposed mode's footstep check; the simulation waits (in sim time) for it and the OCP.
+// The policy's footstep check; the simulation waits (in sim time) for it and the OCP.
 void WalkingExperiment::Loop::checkStep(double t, double ts) {
   checked_ = true;
-  const Side stance = opposite(swing_);
+  const WalkingPolicy& policy = wc_.policy;
   try {
-    FootstepPlanRequest request;
-    request.stance = stance;
-    request.stance_pose = m_.framePose(ws_, sole_[static_cast<int>(stance)]);
-    request.target = target3();
-    request.q = world_->q();
-    request.qd = world_->qd();
-    // The CoM velocity at touchdown: the LIPM about the stance sole from the measured CoM
-    // state, over the time left to the nominal touchdown.
-    request.touchdown_com =
-        planner_.lipm().propagate(LipmState{xy(com_), xy(vcom_)}, current_.stance,
-                                  std::max(0.0, wc_.single_support_duration - ts));
-    const FootstepTransition step = impl_.proposed->plan(request);
-    current_.verdict = step.verdict;
-    current_.hausdorff_distance = step.hausdorff_distance;
-    const WitnessPath& w = step.check.reach.witness;
-    current_.certificate = step.certificate;
-    if (w.valid) {
-      current_.witness_violation = w.violation.max();
-      current_.junction_position_gap = w.position_gap;
-      current_.junction_velocity_gap = w.velocity_gap;
-      current_.terminal_position_gap = w.terminal_position_gap;
-      current_.terminal_velocity_gap = w.terminal_velocity_gap;
+    const FootstepTransition step = impl_.footsteps->plan(footstepRequest(ts));
+    recordCheck(step);
+    const bool failed = !step.kinematically_feasible ||
+                        (policy.check == WalkingPolicy::FootholdCheck::kReachability &&
+                         !step.reachable);
+    Eigen::Vector2d foothold = xy(step.foothold);
+    bool track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
+    if (failed) {
+      current_.failed_check_action = WalkingPolicy::actionName(policy.on_failed_check);
+      if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds) {
+        // The TVR step clipped to the heuristic bounds, reached by interpolation.
+        foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
+        track_ocp = false;
+      }
     }
-    current_.check_time_s = step.check_time_s;
-    current_.ocp_time_s = step.ocp_time_s;
-    current_.ocp_status = ocpStatusName(step.trajectory.status);
-    current_.reason = step.reason;
-    current_.planned = xy(step.foothold);
+    current_.planned = foothold;
     if (on_check_) on_check_(current_, step);
-    if (step.usable()) {
+    if (track_ocp) {
       tracked_ = step.trajectory;
       tracked_start_ = t;
     } else {
-      swing_traj_->retarget(Eigen::Vector3d(step.foothold.x(), step.foothold.y(), ground_z_));
+      swing_traj_->retarget(Eigen::Vector3d(foothold.x(), foothold.y(), ground_z_));
     }
   } catch (const ReachError& e) {
     // The measured state is outside what the check accepts (e.g. a joint beyond its velocity
@@ -447,6 +452,60 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
     current_.verdict = "check_error";
     current_.reason = e.what();
   }
+}
+
+// The check's request from the measured state, with the policy's parts.
+FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts) const {
+  const WalkingPolicy& policy = wc_.policy;
+  const Side stance = opposite(swing_);
+  FootstepPlanRequest request;
+  request.stance = stance;
+  request.stance_pose = m_.framePose(ws_, sole_[static_cast<int>(stance)]);
+  request.target = target3();
+  request.q = world_->q();
+  request.qd = world_->qd();
+  // The CoM velocity at touchdown: the LIPM about the stance sole from the measured CoM
+  // state, over the time left to the nominal touchdown.
+  request.touchdown_com =
+      planner_.lipm().propagate(LipmState{xy(com_), xy(vcom_)}, current_.stance,
+                                std::max(0.0, wc_.single_support_duration - ts));
+  request.check_reachability = policy.check == WalkingPolicy::FootholdCheck::kReachability;
+  request.solve_ocp = policy.solvesOcp();
+  switch (policy.on_failed_check) {
+    case WalkingPolicy::OnFailedCheck::kRelaxedOcp:
+      request.on_infeasible = InfeasibleFootholdPolicy::kRelaxTowardTarget;
+      request.ocp_policy = OcpPolicy::kByVerdict;  // strict (the local solve), then relaxed
+      break;
+    case WalkingPolicy::OnFailedCheck::kNearestFeasible:
+      // The ring search for an infeasible foothold; an unreachable one (or a strict OCP that
+      // failed) gets the relaxed OCP's closest reachable foothold.
+      request.on_infeasible = InfeasibleFootholdPolicy::kNearestFeasible;
+      request.ocp_policy = OcpPolicy::kByVerdict;
+      break;
+    case WalkingPolicy::OnFailedCheck::kClipToBounds:
+      request.on_infeasible = InfeasibleFootholdPolicy::kNoFallback;
+      request.ocp_policy = OcpPolicy::kStrict;
+      break;
+  }
+  return request;
+}
+
+void WalkingExperiment::Loop::recordCheck(const FootstepTransition& step) {
+  current_.verdict = step.verdict;
+  current_.hausdorff_distance = step.hausdorff_distance;
+  current_.certificate = step.certificate;
+  const WitnessPath& w = step.check.reach.witness;
+  if (w.valid) {
+    current_.witness_violation = w.violation.max();
+    current_.junction_position_gap = w.position_gap;
+    current_.junction_velocity_gap = w.velocity_gap;
+    current_.terminal_position_gap = w.terminal_position_gap;
+    current_.terminal_velocity_gap = w.terminal_velocity_gap;
+  }
+  current_.check_time_s = step.check_time_s;
+  current_.ocp_time_s = step.ocp_time_s;
+  current_.ocp_status = wc_.policy.solvesOcp() ? ocpStatusName(step.trajectory.status) : "none";
+  current_.reason = step.reason;
 }
 
 void WalkingExperiment::Loop::touchdown(double t) {
@@ -520,6 +579,11 @@ bool WalkingExperiment::Loop::controlAndStep(double t) {
   if (!world_->nonFootContacts().empty()) {
     result_.fell = true;
     result_.end_reason = "link '" + world_->nonFootContacts().front() + "' touched the ground";
+    return false;
+  }
+  if (!world_->legContacts().empty()) {  // a robot's legs would have hit each other
+    result_.fell = true;
+    result_.end_reason = "legs collided (" + world_->legContacts().front() + ")";
     return false;
   }
   return true;

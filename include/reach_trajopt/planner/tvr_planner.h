@@ -102,6 +102,12 @@ class TvrPlanner {
                            double t, double remaining, double x_start, double forward_speed,
                            double y_mid, TvrInput* input = nullptr) const;
 
+  /// A contact `alpha` [m] clipped to the foot offset bounds about the stance sole (centre [m],
+  /// heading [rad]; y offsets signed towards `swing`), whatever config.heuristic_bounds says:
+  /// the bounded step of Sec. IV-A. `clipped` (if not null): the bounds moved it.
+  Eigen::Vector2d boundedContact(const Eigen::Vector2d& alpha, const Eigen::Vector2d& stance,
+                                 double stance_yaw, Side swing, bool* clipped = nullptr) const;
+
   /// The feedback K (2 x 4) of a = K x_p + diag(kappa) p_des: [(I - diag(kappa)), coth I/omega].
   Eigen::Matrix<double, 2, 4> gain() const;
   /// Closed-loop matrix A(T) + B(T) K of eq. (12) for step duration T [s].

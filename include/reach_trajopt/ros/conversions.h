@@ -95,7 +95,7 @@ reach_trajopt::ContactState toContactStateMsg(const WalkTick& tick, const ros::T
 
 /// One footstep record. `fell`: the run ended with a fall at this step. `ground_z` is the height
 /// given to the horizontal planned points [m].
-reach_trajopt::StepReport toStepReportMsg(const StepRecord& record, WalkConfig::Mode mode,
+reach_trajopt::StepReport toStepReportMsg(const StepRecord& record, const WalkingPolicy& policy,
                                           bool fell, double ground_z = 0.0);
 
 /// A contact plan of one step: SS(stance) for `single_support` seconds then DS for

@@ -6,7 +6,8 @@
 ///
 /// Model: the URDF's bodies after merging fixed joints (SimBodyTree), revolute and prismatic
 /// joints with their inertias, unilateral joint-limit constraints, collision boxes, spheres and
-/// cylinders from <collision> (meshes do not collide), no self-collision, no joint damping,
+/// cylinders from <collision> (meshes do not collide), the two legs colliding with each other
+/// (SimConfig::leg_self_collision; no other self-collision), no joint damping,
 /// friction `mu`. Bullet integrates semi-implicitly: qd+ = qd + dt qdd(q, qd, u) (plus
 /// constraint impulses), then positions from qd+. Bullet's base velocities are world-frame
 /// (linear velocity of the root body's centre of mass, angular velocity); the base frame is
@@ -32,6 +33,8 @@
 #include "reach_trajopt/sim/base_coordinates.h"
 #include "reach_trajopt/sim/sim_body_tree.h"
 #include "reach_trajopt/sim/sim_config.h"
+
+class btPersistentManifold;  // Bullet
 
 namespace reach_trajopt {
 
@@ -90,6 +93,11 @@ class BulletWorld {
   /// URDF links other than the soles' bodies that touched the ground during the last step
   /// (fall detection), in body order, no duplicates.
   const std::vector<std::string>& nonFootContacts() const { return non_foot_contacts_; }
+  /// Pairs of URDF links of the two legs that touched each other during the last step, as
+  /// "<link>/<link>" (sorted names), no duplicates; empty without leg self-collision.
+  const std::vector<std::string>& legContacts() const { return leg_contacts_; }
+  /// Per body of bodyTree(): 0 left leg, 1 right leg, -1 neither (no leg self-collision).
+  const std::vector<int>& bodyLegs() const { return body_leg_; }
 
   /// Gravity [m/s^2], world frame; takes effect at the next step.
   void setGravity(const Eigen::Vector3d& gravity);
@@ -110,6 +118,8 @@ class BulletWorld {
                   const Eigen::Ref<const Eigen::VectorXd>& qd);
   void readState();
   void measureContacts();
+  void findLegs();
+  void recordLegContact(const btPersistentManifold& manifold, int body0, int body1);
 
   SimBodyTree tree_;
   SimConfig config_;
@@ -127,6 +137,8 @@ class BulletWorld {
   Eigen::VectorXd q_, qd_;
   std::vector<SoleContact> soles_;
   std::vector<std::string> non_foot_contacts_;
+  std::vector<std::string> leg_contacts_;
+  std::vector<int> body_leg_;  ///< per body: 0 left leg, 1 right leg, -1 neither
   std::unique_ptr<Bullet> bt_;
 };
 

@@ -22,6 +22,9 @@ struct SimConfig {
   bool contacts = true;       ///< false: no ground (free fall, for checks against the model)
   bool joint_limits = true;   ///< unilateral joint-limit constraints from the URDF limits
   bool clamp_torques = true;  ///< saturate u at the URDF effort limits, as actuators do
+  /// The two legs collide with each other (the links below the root on the path to each sole,
+  /// and their subtrees); a leg-leg contact is reported by BulletWorld::legContacts().
+  bool leg_self_collision = true;
   /// Sole-centre frames where wrenches are reported. Not YAML keys: the robot's sole frames
   /// are ContactConfig's (section `contact:`), which WalkingExperiment copies here.
   std::string left_sole_frame = "l_sole";

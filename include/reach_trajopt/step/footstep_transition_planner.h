@@ -51,6 +51,7 @@ enum class InfeasibleFootholdPolicy {
                        ///< relaxed)
   kRelaxTowardTarget,  ///< the relaxed OCP toward the target, the IK's best posture as x_f
   kReject,             ///< a ReachError naming the IK's reason
+  kNoFallback,         ///< no OCP; the foothold stays the target (the caller decides)
 };
 
 /// Which OCP a kinematically feasible foothold gets.
@@ -78,6 +79,9 @@ struct FootstepPlanRequest {
   /// (the check rejects it when it violates the contact).
   bool make_contact_consistent = true;
   bool check_reachability = true;  ///< step 3 (false: kinematic check and OCP only)
+  /// Step 4 (false: the checks only; for an infeasible foothold the nearest feasible one is
+  /// still searched with kNearestFeasible). Without it nothing certifies by a local solve.
+  bool solve_ocp = true;
   /// Reachability settings for this request (e.g. another horizon); none: the planner's.
   std::optional<ReachConfig> reach;
   /// t_f - t_0 of the OCP [s]; 0: the reachability horizon.
@@ -97,7 +101,7 @@ struct FootstepTransition {
   /// its sets, converged through its 1 ms re-check), or "" (not shown reachable).
   std::string certificate;
   std::string verdict;               ///< "reachable", "unreachable" (not shown reachable),
-                                     ///< "not_checked",
+                                     ///< "kinematically_feasible" (no reachability check),
                                      ///< "kinematically_infeasible"
   std::string reason;                ///< the check's and the OCP's explanations
   double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed

@@ -4,12 +4,12 @@
 /// -> ... At the start of every single support the TVR planner (eq. 11) proposes the next
 /// contact from the simulated CoM state (predicted to touchdown with the LIPM, eq. 9-10); the
 /// swing sole is taken there and the whole-body controller tracks the LIPM CoM reference about
-/// the stance sole. Baseline mode: heuristic bounds on, interpolated swing trajectory.
-/// Proposed mode: bounds off; `WalkConfig::check_horizon` before the nominal touchdown the
-/// foothold is checked from the measured state and the OCP's trajectory (relaxed to the closest
-/// reachable foothold when unreachable) is tracked to touchdown with its feed-forward.
-/// A run ends after the requested number of steps, or at a fall (pelvis below a height, or a
-/// link other than the feet touching the ground), with a per-step record.
+/// the stance sole. What happens to the proposed foothold is the run's WalkingPolicy
+/// (walking_policy.h): heuristic bounds, a check `WalkConfig::check_horizon` before the nominal
+/// touchdown from the measured state, what a failed check does, and whether the swing is
+/// interpolated or the OCP's trajectory tracked to touchdown with its feed-forward.
+/// A run ends after the requested number of steps, or at a fall (pelvis below a height, a link
+/// other than the feet touching the ground, or the legs colliding), with a per-step record.
 
 #include <Eigen/Core>
 #include <functional>
@@ -24,6 +24,7 @@
 #include "reach_trajopt/sim/sim_config.h"
 #include "reach_trajopt/sim/whole_body_controller.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/walk/walking_policy.h"
 
 namespace reach_trajopt {
 
@@ -33,8 +34,9 @@ class ConfigFields;
 
 /// Parameters of a walking run. Durations [s], lengths [m], speeds [m/s].
 struct WalkConfig {
-  enum class Mode { kBaseline, kProposed };
-  Mode mode = Mode::kBaseline;
+  /// What happens to each TVR footstep (a preset name in the YAML, optionally with parts:
+  /// "kinematic,swing=interpolation"); its check uses check_horizon.
+  WalkingPolicy policy = WalkingPolicy::preset("baseline");
   int steps = 20;                         ///< footsteps to walk (touchdowns)
   double single_support_duration = 0.22;  ///< nominal swing time
   double double_support_duration = 0.04;  ///< weight transfer between steps
@@ -45,7 +47,7 @@ struct WalkConfig {
   double touchdown_depth = 0.01;  ///< nominal swing end below the ground (touchdown by contact)
   double touchdown_force = 30.0;  ///< sole normal force that counts as touchdown [N]
   double late_touchdown = 0.15;   ///< time past the nominal swing end before a fall is declared
-  double check_horizon = 0.2;     ///< proposed mode: the check and the OCP start this long
+  double check_horizon = 0.2;     ///< policies with a check: the check and the OCP start this long
                                   ///< before the nominal touchdown (their t_f - t_0; it
                                   ///< replaces ReachConfig::horizon) [s]
   double knee_bend = 0.6;         ///< standing posture [rad]
@@ -53,8 +55,8 @@ struct WalkConfig {
   Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
   Side first_swing = Side::kRight;  ///< SS-L comes first: the right sole swings first
   double fall_pelvis_height = 0.6;  ///< pelvis origin below this height = fall [m]
-  /// Seed of every random draw of the run: the proposed mode's reachability sampler
-  /// (replaces reach.seed; the simulation and the controller draw nothing).
+  /// Seed of every random draw of the run: the reachability check's sampler (replaces
+  /// reach.seed; the simulation, the controller and the other policies draw nothing).
   unsigned seed = 1;
   double max_sim_time = 60.0;  ///< hard stop [s]
 
@@ -64,8 +66,6 @@ struct WalkConfig {
   static const ConfigFields<WalkConfig>& fields();
   /// Reads fields() from a YAML section, then validates.
   static WalkConfig fromYaml(const YamlSection& section);
-  static Mode parseMode(const std::string& name);  ///< "baseline" | "proposed"
-  static const char* modeName(Mode mode);
 };
 
 /// One footstep of a run.
@@ -83,12 +83,15 @@ struct StepRecord {
   double touchdown_error = 0.0;                           ///< |executed_xy - planned| [m]
   bool offset_clipped = false;                            ///< heuristic bounds moved the TVR step
   bool touched_down = false;
-  std::string verdict = "not_checked";  ///< reachability verdict (proposed mode)
+  std::string verdict = "not_checked";  ///< the check's verdict (policies with a check)
+  /// The check failed and the policy's on_fail part chose the foothold ("clip_to_bounds",
+  /// "nearest_feasible", "relaxed_ocp"); "" otherwise.
+  std::string failed_check_action;
   double hausdorff_distance = -1.0;     ///< [m], -1 when not computed
   /// What certifies a "reachable" verdict: "bridge" or "local_solve"
   /// (FootstepTransition::certificate), "" otherwise.
   std::string certificate;
-  /// The check's bridged witness (proposed mode, kinematically feasible footholds): its
+  /// The check's bridged witness (reachability check, kinematically feasible footholds): its
   /// largest violation along the path (reach/witness_path.h), the full-state gap of its
   /// junction pair before bridging and where it ended against x_f (|q|_inf [m, rad],
   /// |qd|_inf [m/s, rad/s]); -1 when there is no witness.
@@ -97,7 +100,7 @@ struct StepRecord {
   double terminal_position_gap = -1.0, terminal_velocity_gap = -1.0;
   double check_time_s = 0.0;        ///< reachability check wall time
   double ocp_time_s = 0.0;          ///< OCP wall time
-  std::string ocp_status = "none";  ///< "converged", "relaxed", "failed" (proposed mode)
+  std::string ocp_status = "none";  ///< "converged", "relaxed", "failed"; "none": not solved
   std::string reason;               ///< the check's and the OCP's explanations
 };
 
@@ -116,7 +119,7 @@ struct WalkTick {
 
 /// Outcome of a run.
 struct WalkResult {
-  WalkConfig::Mode mode = WalkConfig::Mode::kBaseline;
+  WalkingPolicy policy;
   int steps = 0;  ///< completed footsteps (touchdowns)
   bool fell = false;
   std::string end_reason;            ///< "completed", or why it fell / stopped
@@ -125,7 +128,8 @@ struct WalkResult {
   int qp_failures = 0;               ///< controller ticks whose QP was not optimal
   double max_touchdown_error = 0.0;  ///< [m]
   std::vector<StepRecord> records;
-  /// One line: WALK mode=<m> steps=<n> fell=<yes|no> ... (the format of `make demo`).
+  /// One line: WALK mode=<policy name> steps=<n> fell=<yes|no> ... ending with the policy's
+  /// definition (the format of `make demo`).
   std::string summaryLine() const;
 };
 
@@ -133,8 +137,8 @@ struct WalkResult {
 class WalkingExperiment {
  public:
   /// \throws ReachError on invalid configs or a URDF the simulator cannot load.
-  /// `proposed` configures the reachability check and the OCP; used in the proposed mode
-  /// (defaults when null).
+  /// `proposed` configures the checks, the nearest foothold search and the OCP; used by
+  /// policies with a check (defaults when null).
   /// The simulator reports the wrenches of `contact`'s sole frames (`sim`'s are replaced).
   WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk, const TvrConfig& tvr,
                     const ContactConfig& contact, const WbcConfig& wbc, const SimConfig& sim,
@@ -142,8 +146,8 @@ class WalkingExperiment {
   ~WalkingExperiment();
 
   /// Runs one walk from the standing pose. `on_tick` (optional) is called after every
-  /// control tick, `on_step` after every touchdown, `on_check` (proposed mode) after every
-  /// reachability check + OCP with the step so far and the planner's full output.
+  /// control tick, `on_step` after every touchdown, `on_check` (policies with a check) after
+  /// every check + OCP with the step so far and the planner's full output.
   WalkResult run(
       const std::function<void(const WalkTick&)>& on_tick = {},
       const std::function<void(const StepRecord&)>& on_step = {},

@@ -1,0 +1,71 @@
+#pragma once
+/// \file push_envelope.h
+/// The push-recovery envelope of a walking policy: walks of `steps` footsteps from a push (an
+/// initial CoM velocity, feet still) in `directions` directions (the first along +x, the
+/// forward direction, counter-clockwise; +y is the left) x `magnitudes` [m/s] x `seeds`, one
+/// walk per cell, and which survived (no fall). The envelope radius of a direction is the
+/// largest magnitude m such that every magnitude <= m of the grid survived with every seed.
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/walk/walk_setup.h"
+
+namespace reach_trajopt {
+
+/// The grid of pushes.
+struct PushGrid {
+  int directions = 8;                                 ///< evenly spaced, the first along +x
+  std::vector<double> magnitudes = {0.2, 0.4, 0.6};  ///< [m/s], increasing, > 0
+  std::vector<unsigned> seeds = {1, 2};              ///< WalkConfig::seed of each walk
+  int steps = 20;                                     ///< footsteps per walk
+  /// \throws RequestError naming the bad field.
+  void validate() const;
+  double angle(int direction) const;  ///< [rad] from +x
+  Eigen::Vector2d push(int direction, int magnitude) const;  ///< [m/s]
+};
+
+/// One walk of the sweep.
+struct PushWalk {
+  int direction = 0, magnitude = 0, seed = 0;  ///< grid indices
+  Eigen::Vector2d push = Eigen::Vector2d::Zero();  ///< [m/s]
+  bool fell = false;
+  int steps = 0;           ///< touchdowns
+  std::string end_reason;  ///< WalkResult::end_reason
+  double wall_s = 0.0;
+  bool repeated = false;   ///< a policy without random draws: the first seed's walk, reused
+};
+
+/// The envelope of one policy.
+struct PushEnvelope {
+  WalkingPolicy policy;
+  PushGrid grid;
+  std::vector<PushWalk> walks;  ///< direction-major, then magnitude, then seed
+  int pushes() const { return static_cast<int>(walks.size()); }
+  int survived() const;
+  /// The envelope radius of a direction [m/s] (0 when its smallest push fell).
+  double radius(int direction) const;
+  /// Largest radius over the lateral directions (+y, -y) and along +x [m/s]; -1 when the grid
+  /// has no such direction (directions not a multiple of 4).
+  double maxLateral() const;
+  double maxForward() const;
+  /// `BENCH walk.envelope preset=<p> pushes=N survived=K max_lateral_mps=.. max_forward_mps=..
+  /// radii_mps=r0/r1/... wall_s=..` plus the policy's definition.
+  std::string benchLine() const;
+};
+
+/// Runs the grid for one policy on `jobs` threads (each walk on one, its check single-threaded:
+/// seeded sampling is thread-count independent). A policy without the reachability check draws
+/// nothing, so each push runs once and its walk counts for every seed (marked `repeated`).
+/// `on_walk` (optional) is called after each walk, from the worker thread, serialized.
+PushEnvelope sweepPushes(const WalkSetup& setup, const std::string& urdf_path,
+                         const WalkingPolicy& policy, const PushGrid& grid, int jobs,
+                         const std::function<void(const PushWalk&)>& on_walk = {});
+
+/// An SVG figure: one polar panel per envelope (rings = magnitudes, spokes = directions), each
+/// push a dot (green: survived every seed, amber: some, red: none) and the envelope's polygon.
+std::string envelopeSvg(const std::vector<PushEnvelope>& envelopes);
+
+}  // namespace reach_trajopt

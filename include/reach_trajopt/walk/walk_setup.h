@@ -1,0 +1,33 @@
+#pragma once
+/// \file walk_setup.h
+/// Every configuration of a walking run, read from one robot config file (config/biped.yaml):
+/// its sections contact and planner (required), walk, wbc, sim (optional: defaults) and those
+/// of the footstep pipeline (kinematic_feasibility, reach, ocp, nearest_foothold; optional).
+/// The tools and nodes that walk read it here, once.
+
+#include <memory>
+#include <string>
+
+#include "reach_trajopt/walk/walking_experiment.h"
+
+namespace reach_trajopt {
+
+class YamlSection;
+
+/// @brief The configs of one walking run and the experiment they build.
+struct WalkSetup {
+  WalkConfig walk;
+  TvrConfig tvr;
+  ContactConfig contact;
+  WbcConfig wbc;
+  SimConfig sim;
+  FootstepPlannerConfig footsteps;  ///< the check, the nearest foothold search and the OCP
+
+  /// \throws ConfigError naming the file, section and key of a bad or missing value.
+  static WalkSetup fromYaml(const YamlSection& root);
+  static WalkSetup fromYamlFile(const std::string& path);
+  /// The experiment on the robot of `urdf_path` (validates every config).
+  std::unique_ptr<WalkingExperiment> experiment(const std::string& urdf_path) const;
+};
+
+}  // namespace reach_trajopt

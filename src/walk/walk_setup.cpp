@@ -1,0 +1,29 @@
+/// \file walk_setup.cpp
+/// A walking run's configs from one config file (see the header).
+
+#include "reach_trajopt/walk/walk_setup.h"
+
+#include "reach_trajopt/common/config_yaml.h"
+
+namespace reach_trajopt {
+
+WalkSetup WalkSetup::fromYaml(const YamlSection& root) {
+  WalkSetup s;
+  if (root.has("walk")) s.walk = WalkConfig::fromYaml(root.section("walk"));
+  s.tvr = TvrConfig::fromYaml(root.section("planner"));
+  s.contact = ContactConfig::fromYaml(root.section("contact"));
+  if (root.has("wbc")) s.wbc = WbcConfig::fromYaml(root.section("wbc"));
+  if (root.has("sim")) s.sim = SimConfig::fromYaml(root.section("sim"));
+  s.footsteps = FootstepPlannerConfig::fromYaml(root);
+  return s;
+}
+
+WalkSetup WalkSetup::fromYamlFile(const std::string& path) {
+  return fromYaml(YamlSection::loadFile(path));
+}
+
+std::unique_ptr<WalkingExperiment> WalkSetup::experiment(const std::string& urdf_path) const {
+  return std::make_unique<WalkingExperiment>(urdf_path, walk, tvr, contact, wbc, sim, &footsteps);
+}
+
+}  // namespace reach_trajopt

@@ -1,0 +1,151 @@
+/// \file walking_policy.cpp
+/// The walking policies and their presets (see the header).
+
+#include "reach_trajopt/walk/walking_policy.h"
+
+#include <sstream>
+#include <utility>
+
+#include "reach_trajopt/common/error.h"
+
+namespace reach_trajopt {
+namespace {
+
+using Check = WalkingPolicy::FootholdCheck;
+using OnFail = WalkingPolicy::OnFailedCheck;
+using Swing = WalkingPolicy::SwingSource;
+
+template <typename E>
+using Names = std::vector<std::pair<const char*, E>>;
+
+const Names<bool>& boundNames() {
+  static const Names<bool> n = {{"on", true}, {"off", false}};
+  return n;
+}
+const Names<Check>& checkNames() {
+  static const Names<Check> n = {
+      {"none", Check::kNone}, {"kinematic", Check::kKinematic}, {"reachability", Check::kReachability}};
+  return n;
+}
+const Names<OnFail>& onFailNames() {
+  static const Names<OnFail> n = {{"clip_to_bounds", OnFail::kClipToBounds},
+                                  {"nearest_feasible", OnFail::kNearestFeasible},
+                                  {"relaxed_ocp", OnFail::kRelaxedOcp}};
+  return n;
+}
+const Names<Swing>& swingNames() {
+  static const Names<Swing> n = {{"interpolation", Swing::kInterpolation}, {"ocp", Swing::kOcp}};
+  return n;
+}
+
+template <typename E>
+const char* nameOf(const Names<E>& names, E value) {
+  for (const auto& n : names)
+    if (n.second == value) return n.first;
+  return "?";
+}
+
+template <typename E>
+E valueOf(const Names<E>& names, const std::string& part, const std::string& value) {
+  std::string expected;
+  for (const auto& n : names) {
+    if (value == n.first) return n.second;
+    expected += std::string(expected.empty() ? "" : "|") + n.first;
+  }
+  throw RequestError("walking policy: " + part + "=" + value + ": expected " + part + "=" +
+                     expected);
+}
+
+WalkingPolicy make(const char* name, bool bounds, Check check, OnFail on_fail, Swing swing) {
+  WalkingPolicy p;
+  p.name = name;
+  p.heuristic_bounds = bounds;
+  p.check = check;
+  p.on_failed_check = on_fail;
+  p.swing = swing;
+  return p;
+}
+
+const std::vector<WalkingPolicy>& presets() {
+  static const std::vector<WalkingPolicy> p = {
+      make("baseline", true, Check::kNone, OnFail::kClipToBounds, Swing::kInterpolation),
+      make("unbounded", false, Check::kNone, OnFail::kClipToBounds, Swing::kInterpolation),
+      make("kinematic", false, Check::kKinematic, OnFail::kNearestFeasible, Swing::kOcp),
+      make("proposed", false, Check::kReachability, OnFail::kNearestFeasible, Swing::kOcp),
+  };
+  return p;
+}
+
+}  // namespace
+
+const std::vector<std::string>& WalkingPolicy::presetNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const WalkingPolicy& p : presets()) n.push_back(p.name);
+    return n;
+  }();
+  return names;
+}
+
+WalkingPolicy WalkingPolicy::preset(const std::string& name) {
+  std::string known;
+  for (const WalkingPolicy& p : presets()) {
+    if (p.name == name) return p;
+    known += std::string(known.empty() ? "" : ", ") + p.name;
+  }
+  throw RequestError("walking policy: unknown preset '" + name + "' (presets: " + known + ")");
+}
+
+WalkingPolicy WalkingPolicy::parse(const std::string& spec) {
+  std::vector<std::string> tokens;
+  std::stringstream ss(spec);
+  for (std::string t; std::getline(ss, t, ',');) tokens.push_back(t);
+  if (tokens.empty() || tokens.front().empty())
+    throw RequestError("walking policy: empty; expected <preset>[,part=value...]");
+  WalkingPolicy p = preset(tokens.front());
+  for (std::size_t i = 1; i < tokens.size(); ++i) {
+    const std::string& t = tokens[i];
+    const auto eq = t.find('=');
+    if (eq == std::string::npos)
+      throw RequestError("walking policy: '" + t + "': expected part=value after the preset");
+    const std::string part = t.substr(0, eq), value = t.substr(eq + 1);
+    if (part == "bounds")
+      p.heuristic_bounds = valueOf(boundNames(), part, value);
+    else if (part == "check")
+      p.check = valueOf(checkNames(), part, value);
+    else if (part == "on_fail")
+      p.on_failed_check = valueOf(onFailNames(), part, value);
+    else if (part == "swing")
+      p.swing = valueOf(swingNames(), part, value);
+    else
+      throw RequestError("walking policy: unknown part '" + part +
+                         "' (parts: bounds, check, on_fail, swing)");
+  }
+  // A changed part makes it another policy, unless it equals a preset.
+  p.name = "custom";
+  for (const WalkingPolicy& known : presets())
+    if (known == p) p.name = known.name;
+  p.validate();
+  return p;
+}
+
+const char* WalkingPolicy::actionName(OnFailedCheck action) {
+  return nameOf(onFailNames(), action);
+}
+
+std::string WalkingPolicy::definition() const {
+  std::ostringstream os;
+  os << "bounds=" << nameOf(boundNames(), heuristic_bounds) << " check=" << nameOf(checkNames(), check)
+     << " on_fail=" << (checksFoothold() ? nameOf(onFailNames(), on_failed_check) : "-")
+     << " swing=" << nameOf(swingNames(), swing);
+  return os.str();
+}
+
+void WalkingPolicy::validate() const {
+  if (swing == Swing::kOcp && check == Check::kNone)
+    throw ConfigError(
+        "walking policy: swing=ocp needs check=kinematic or check=reachability (the OCP's "
+        "x_f is the check's IK posture)");
+}
+
+}  // namespace reach_trajopt
