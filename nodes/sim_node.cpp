@@ -49,7 +49,7 @@
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
 #include "reach_trajopt/ros/service_requests.h"
-#include "reach_trajopt/walk/walking_experiment.h"
+#include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
@@ -74,18 +74,12 @@ int main(int argc, char** argv) {
     const std::string config_path = rb::configPath(pnh);
     const std::string sim_config_path = param<std::string>(pnh, "sim_config", "");
 
-    const YamlSection file = YamlSection::loadFile(config_path);
-    WalkConfig walk = file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
-    const TvrConfig tvr = TvrConfig::fromYaml(file.section("planner"));
-    const ContactConfig contact = ContactConfig::fromYaml(file.section("contact"));
-    const WbcConfig wbc = file.has("wbc") ? WbcConfig::fromYaml(file.section("wbc")) : WbcConfig{};
-    SimConfig sim = file.has("sim") ? SimConfig::fromYaml(file.section("sim")) : SimConfig{};
-    if (!sim_config_path.empty()) {
-      const YamlSection sim_file = YamlSection::loadFile(sim_config_path);
-      sim = SimConfig::fromYaml(sim_file.section("sim"));
-    }
-    // The check and the OCP of policies with a check.
-    const FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
+    WalkSetup setup = WalkSetup::fromYamlFile(config_path);
+    if (!sim_config_path.empty())
+      setup.sim = SimConfig::fromYaml(YamlSection::loadFile(sim_config_path).section("sim"));
+    WalkConfig& walk = setup.walk;
+    const ContactConfig& contact = setup.contact;
+    const FootstepPlannerConfig& proposed = setup.footsteps;  // policies with a check
     std::string policy;
     if (pnh.getParam("policy", policy)) walk.policy = WalkingPolicy::parse(policy);
     int int_value = 0;
@@ -113,7 +107,8 @@ int main(int argc, char** argv) {
       throw ConfigError("~publish_period, ~clock_period and ~marker_period must be > 0");
 
     const rb::TempUrdf urdf(urdf_xml);
-    WalkingExperiment experiment(urdf.path(), walk, tvr, contact, wbc, sim, &proposed);
+    const std::unique_ptr<WalkingExperiment> experiment_ptr = setup.experiment(urdf.path());
+    WalkingExperiment& experiment = *experiment_ptr;
     const bool checks_footholds = walk.policy.checksFoothold();
     const RobotModel& model = experiment.model();
     Workspace ws(model);
@@ -241,7 +236,7 @@ int main(int argc, char** argv) {
     // on_tick: its sim time is the last tick's plus one time step. The foothold lies on the
     // ground at the stance sole's height.
     auto onCheck = [&](const StepRecord& r, const FootstepTransition& step) {
-      const ros::Time stamp(last_tick_time + sim.time_step);
+      const ros::Time stamp(last_tick_time + setup.sim.time_step);
       const Eigen::Vector3d foothold =
           rb::checkedFoothold(r, sole_z[static_cast<int>(opposite(r.swing))]);
       const rb::ProposedStepMsgs msgs = rb::toProposedStepMsgs(

@@ -9,15 +9,15 @@ end, stops the recorder so the bag is closed, then checks the bag with two indep
     increasing touchdown times, header stamps equal to the touchdown times, touchdown_error equal
     to |executed - planned|, the executed foothold equal to the swing sole position given by the
     recorded TF at touchdown, and the count equal to the one of walk_result;
-  - proposed mode: one reachability_result, one reachability_markers array and one
+  - a policy with a check (proposed): one reachability_result, one reachability_markers array and one
     transition_trajectory and transition_markers per checked step, in step order, consistent
     with the step reports
     (verdict, swing sole, checked foothold = the TVR foothold, d_H, stamp = the sim time of the
     check: the first control tick reachability horizon before the nominal touchdown), all in
-    "world", trajectory knot times increasing up to the horizon; baseline mode: none of these
+    "world", trajectory knot times increasing up to the horizon; baseline: none of these
     topics and no step checked.
 Private parameters: ~bag (path), ~steps (expected steps), ~recorder (node name of rosbag record),
-~mode (baseline | proposed, the walk's mode).
+~policy (the walk's policy preset: baseline | unbounded | kinematic | proposed).
 """
 import json
 import math
@@ -40,7 +40,7 @@ PKG = "reach_trajopt"
 TOPICS = ["/clock", "/tf", "/joint_states", "/com_state", "/contact_state",
           "/contact_wrench/l_sole", "/contact_wrench/r_sole", "/step_report", "/markers",
           "/walk_result", "/contact_plan"]
-# Published by sim_node once per checked step, in proposed mode only.
+# Published by sim_node once per checked step, with a policy that checks footholds only.
 CHECK_TOPICS = ["/reachability_result", "/reachability_markers", "/transition_trajectory",
                 "/transition_markers"]
 # StepReport verdicts of a step whose check ran (a "check_error" step has no check messages).
@@ -99,11 +99,12 @@ class WalkBagTest(unittest.TestCase):
         rospy.init_node("check_walk_bag", anonymous=True)
         cls.bag_path = rospy.get_param("~bag")
         cls.expected_steps = int(rospy.get_param("~steps", 4))
-        cls.mode = rospy.get_param("~mode", "baseline")
+        cls.mode = rospy.get_param("~policy", "baseline")
+        cls.checked = cls.mode in ("kinematic", "proposed")  # policies with a foothold check
         # "fall" / "walk": the walk must fall / walk every step (the pushed comparison of the
         # paper's Sec. IV); "any": only the plumbing is checked when it falls.
         cls.expect = rospy.get_param("~expect", "any")
-        cls.topics = TOPICS + (CHECK_TOPICS if cls.mode == "proposed" else [])
+        cls.topics = TOPICS + (CHECK_TOPICS if cls.checked else [])
         recorder = rospy.get_param("~recorder", "/walk_recorder")
         # 1. The walk's end (walk_result is latched), in wall time: sim time runs in bursts.
         result = []
@@ -254,7 +255,7 @@ class WalkBagTest(unittest.TestCase):
             self.assertGreater(fz, 100.0)
 
     def test_checks_match_step_reports(self):
-        if self.mode != "proposed":  # baseline: nothing checked, nothing published about it
+        if not self.checked:  # no check: nothing checked, nothing published about it
             for t in CHECK_TOPICS:
                 self.assertNotIn(t, self.bag_topics, "%s in a %s walk" % (t, self.mode))
             for r in self.msgs["/step_report"]:

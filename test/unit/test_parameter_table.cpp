@@ -154,14 +154,14 @@ TEST(ParameterTable, UnknownAndBadKeysNameTheFileAndKey) {
   const std::string unknown = configError([] {
     WalkConfig::fromYaml(YamlSection::loadString("walk: {stpes: 3}", "w.yaml").section("walk"));
   });
-  EXPECT_NE(unknown.find("w.yaml: walk.stpes: unknown key (known: mode steps"), std::string::npos)
+  EXPECT_NE(unknown.find("w.yaml: walk.stpes: unknown key (known: policy steps"), std::string::npos)
       << unknown;
-  const std::string mode = configError([] {
-    WalkConfig::fromYaml(YamlSection::loadString("walk: {mode: fast}", "w.yaml").section("walk"));
+  const std::string policy = configError([] {
+    WalkConfig::fromYaml(YamlSection::loadString("walk: {policy: fast}", "w.yaml").section("walk"));
   });
-  EXPECT_NE(mode.find("w.yaml: walk.mode: expected 'baseline' or 'proposed', got 'fast'"),
+  EXPECT_NE(policy.find("w.yaml: walk.policy: walking policy: unknown preset 'fast'"),
             std::string::npos)
-      << mode;
+      << policy;
   const std::string side = configError([] {
     WalkConfig::fromYaml(
         YamlSection::loadString("walk: {first_swing: up}", "w.yaml").section("walk"));
@@ -176,9 +176,9 @@ TEST(ParameterTable, UnknownAndBadKeysNameTheFileAndKey) {
       << size;
   // Values read by name and through the table.
   const WalkConfig w = WalkConfig::fromYaml(
-      YamlSection::loadString("walk: {mode: proposed, first_swing: left, seed: 7}", "w.yaml")
+      YamlSection::loadString("walk: {policy: proposed, first_swing: left, seed: 7}", "w.yaml")
           .section("walk"));
-  EXPECT_EQ(w.mode, WalkConfig::Mode::kProposed);
+  EXPECT_EQ(w.policy.name, "proposed");
   EXPECT_EQ(w.first_swing, Side::kLeft);
   EXPECT_EQ(w.seed, 7u);
 }

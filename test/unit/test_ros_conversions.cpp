@@ -217,11 +217,12 @@ TEST(RosConversions, StepReportAndContactPlan) {
   r.offset_clipped = true;
   r.com_at_plan.p = Eigen::Vector2d(0.2, 0.0);
   r.com_at_plan.pd = Eigen::Vector2d(0.4, 0.1);
-  const auto m = rb::toStepReportMsg(r, WalkConfig::Mode::kBaseline, false, 0.001);
+  const auto m = rb::toStepReportMsg(r, WalkingPolicy::preset("baseline"), false, 0.001);
   EXPECT_EQ(m.header.stamp, ros::Time(1.47));
   EXPECT_EQ(m.header.frame_id, "world");
   EXPECT_EQ(m.index, 3u);
   EXPECT_EQ(m.mode, "baseline");
+  EXPECT_EQ(m.policy, "bounds=on check=none on_fail=- swing=interpolation");
   EXPECT_EQ(m.swing_side, "left");
   EXPECT_EQ(m.planned.x, 0.42);
   EXPECT_EQ(m.planned.z, 0.001);

@@ -1,5 +1,5 @@
 // The walking loop on the Bullet simulation: baseline walking in place and forward for 20 steps
-// without a fall and with touchdowns on the planned footholds; the proposed mode's check + OCP
+// without a fall and with touchdowns on the planned footholds; the proposed policy's check + OCP
 // per step; the paper's comparison under a lateral push; swing trajectory endpoints and
 // derivatives; configuration errors.
 
@@ -7,7 +7,7 @@
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/walk/swing_trajectory.h"
-#include "reach_trajopt/walk/walking_experiment.h"
+#include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
 
@@ -58,7 +58,7 @@ TEST(WalkingExperiment, ConfigErrors) {
   walk = WalkConfig{};
   walk.initial_com_velocity.x() = NAN;
   EXPECT_THROW(walk.validate(), ReachError);
-  EXPECT_THROW(WalkConfig::parseMode("fast"), ReachError);
+  EXPECT_THROW(WalkingPolicy::parse("fast"), ReachError);
   walk = WalkConfig{};
   walk.check_horizon = walk.single_support_duration;  // the check must start within the swing
   EXPECT_THROW(walk.validate(), ReachError);
@@ -86,25 +86,20 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
   EXPECT_GT(std::max(last.executed.x(), r.records[r.records.size() - 2].executed.x()), 0.3);
 }
 
-// A run on the shipped configuration (config/biped.yaml) in `mode`, with the check drawing
+// A run on the shipped configuration (config/biped.yaml) with a walking `policy`, with the check drawing
 // `samples` initial samples (the paper's 1e4 in the shipped file), from a push (initial CoM
 // velocity [m/s]) or at a commanded forward speed [m/s].
-WalkResult runShipped(WalkConfig::Mode mode, int steps, const Eigen::Vector2d& push, int samples,
+WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2d& push, int samples,
                       double forward_speed = 0.0, unsigned seed = 1) {
-  const YamlSection file =
-      YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
-  WalkConfig walk = WalkConfig::fromYaml(file.section("walk"));
-  walk.mode = mode;
-  walk.steps = steps;
-  walk.initial_com_velocity = push;
-  walk.forward_speed = forward_speed;
-  walk.seed = seed;
-  FootstepPlannerConfig proposed = FootstepPlannerConfig::fromYaml(file);
-  proposed.reach.initial_samples = samples;
-  WalkingExperiment experiment(kUrdf, walk, TvrConfig::fromYaml(file.section("planner")),
-                               ContactConfig::fromYaml(file.section("contact")),
-                               WbcConfig::fromYaml(file.section("wbc")), SimConfig{}, &proposed);
-  return experiment.run();
+  WalkSetup setup =
+      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  setup.walk.policy = WalkingPolicy::parse(policy);
+  setup.walk.steps = steps;
+  setup.walk.initial_com_velocity = push;
+  setup.walk.forward_speed = forward_speed;
+  setup.walk.seed = seed;
+  setup.footsteps.reach.initial_samples = samples;
+  return setup.experiment(kUrdf)->run();
 }
 
 // Every step of a proposed run was checked and, but for at most `failures_allowed` steps,
@@ -135,7 +130,7 @@ TEST(WalkingExperiment, ProposedWalksInPlaceTwentySteps) {
   // (kinematics, then reachability) 0.2 s before touchdown, the OCP's trajectory (strict or
   // relaxed) is tracked, and the sole lands where that trajectory ends.
   const WalkResult r =
-      runShipped(WalkConfig::Mode::kProposed, 20, Eigen::Vector2d::Zero(), 2000, 0.0);
+      runShipped("proposed", 20, Eigen::Vector2d::Zero(), 2000, 0.0);
   EXPECT_FALSE(r.fell) << r.summaryLine();
   ASSERT_EQ(r.steps, 20) << r.summaryLine();
   expectCheckedAndTracked(r, 2);
@@ -143,7 +138,7 @@ TEST(WalkingExperiment, ProposedWalksInPlaceTwentySteps) {
 
 TEST(WalkingExperiment, ProposedWalksForwardTwentySteps) {
   const WalkResult r =
-      runShipped(WalkConfig::Mode::kProposed, 20, Eigen::Vector2d::Zero(), 2000, 0.4);
+      runShipped("proposed", 20, Eigen::Vector2d::Zero(), 2000, 0.4);
   EXPECT_FALSE(r.fell) << r.summaryLine();
   ASSERT_EQ(r.steps, 20) << r.summaryLine();
   expectCheckedAndTracked(r, 2);
@@ -156,10 +151,10 @@ TEST(WalkingExperiment, LateralPushBaselineFallsProposedKeepsWalking) {
   // recovery steps and it falls within 10 steps; the proposed mode (no bounds, each step
   // checked and reached by the OCP) walks 20 steps.
   const Eigen::Vector2d push(0.0, 0.4);
-  const WalkResult baseline = runShipped(WalkConfig::Mode::kBaseline, 20, push, 2000);
+  const WalkResult baseline = runShipped("baseline", 20, push, 2000);
   EXPECT_TRUE(baseline.fell) << baseline.summaryLine();
   EXPECT_LE(baseline.steps, 10) << baseline.summaryLine();
-  const WalkResult proposed = runShipped(WalkConfig::Mode::kProposed, 20, push, 2000);
+  const WalkResult proposed = runShipped("proposed", 20, push, 2000);
   EXPECT_FALSE(proposed.fell) << proposed.summaryLine();
   EXPECT_EQ(proposed.steps, 20) << proposed.summaryLine();
   int tracked = 0;
@@ -171,9 +166,9 @@ TEST(WalkingExperiment, TheSeedReachesTheSamplerAndRepeats) {
   // WalkConfig::seed is the seed of the run's only random draws (the reachability sampler):
   // the same seed repeats bit for bit, another one gives other sets, witnesses and swings.
   const Eigen::Vector2d push(0.0, 0.4);
-  const WalkResult a = runShipped(WalkConfig::Mode::kProposed, 3, push, 300, 0.0, 1);
-  const WalkResult b = runShipped(WalkConfig::Mode::kProposed, 3, push, 300, 0.0, 1);
-  const WalkResult c = runShipped(WalkConfig::Mode::kProposed, 3, push, 300, 0.0, 2);
+  const WalkResult a = runShipped("proposed", 3, push, 300, 0.0, 1);
+  const WalkResult b = runShipped("proposed", 3, push, 300, 0.0, 1);
+  const WalkResult c = runShipped("proposed", 3, push, 300, 0.0, 2);
   ASSERT_EQ(a.records.size(), 3u);
   ASSERT_EQ(b.records.size(), 3u);
   bool differs = c.records.size() != a.records.size();
@@ -185,4 +180,80 @@ TEST(WalkingExperiment, TheSeedReachesTheSamplerAndRepeats) {
                 a.records[k].hausdorff_distance != c.records[k].hausdorff_distance;
   }
   EXPECT_TRUE(differs) << "seeds 1 and 2 gave the same walk";
+}
+
+// Each preset on a short walk in place (walk/walking_policy.h): it walks, and its records show
+// its parts: the bounds clip only with bounds=on, no check leaves "not_checked", the kinematic
+// check gives kinematic verdicts and an OCP per step, the reachability check certified ones.
+TEST(WalkingPolicy, EachPresetWalksAndItsRecordsShowItsParts) {
+  for (const std::string& name : WalkingPolicy::presetNames()) {
+    const WalkingPolicy policy = WalkingPolicy::preset(name);
+    const WalkResult r = runShipped(name, 4, Eigen::Vector2d::Zero(), 300);
+    EXPECT_FALSE(r.fell) << r.summaryLine();
+    ASSERT_EQ(r.steps, 4) << r.summaryLine();
+    EXPECT_EQ(r.policy.name, name);
+    EXPECT_NE(r.summaryLine().find("WALK mode=" + name + " steps=4 fell=no"), std::string::npos)
+        << r.summaryLine();
+    EXPECT_NE(r.summaryLine().find(policy.definition()), std::string::npos) << r.summaryLine();
+    for (const StepRecord& s : r.records) {
+      if (!policy.heuristic_bounds) EXPECT_FALSE(s.offset_clipped) << name << " " << s.index;
+      if (!policy.checksFoothold() && !policy.heuristic_bounds)
+        EXPECT_EQ(s.planned, s.planned_tvr) << name << " " << s.index;  // TVR as planned
+      switch (policy.check) {
+        case WalkingPolicy::FootholdCheck::kNone:
+          EXPECT_EQ(s.verdict, "not_checked") << name;
+          EXPECT_EQ(s.ocp_status, "none") << name;
+          break;
+        case WalkingPolicy::FootholdCheck::kKinematic:
+          EXPECT_TRUE(s.verdict == "kinematically_feasible" ||
+                      s.verdict == "kinematically_infeasible")
+              << name << ": " << s.verdict;
+          EXPECT_NE(s.ocp_status, "none") << name;
+          EXPECT_TRUE(s.certificate.empty());
+          break;
+        case WalkingPolicy::FootholdCheck::kReachability:
+          EXPECT_TRUE(s.verdict == "reachable" || s.verdict == "unreachable" ||
+                      s.verdict == "kinematically_infeasible")
+              << name << ": " << s.verdict;
+          EXPECT_EQ(s.verdict == "reachable", !s.certificate.empty()) << name;
+          break;
+      }
+      EXPECT_EQ(s.failed_check_action.empty(),
+                s.verdict != "kinematically_infeasible" && s.verdict != "unreachable")
+          << name << " " << s.index;
+    }
+  }
+}
+
+TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
+  // TVR without bounds under a lateral push proposes steps through the stance sole; with the
+  // kinematic check and on_fail=clip_to_bounds those are moved into the heuristic bounds of
+  // config/biped.yaml (|x| <= 0.42 m, 0.25 <= |y| <= 0.65 m towards the swing side from the
+  // stance sole), the others are left as TVR planned them.
+  const WalkResult r =
+      runShipped("unbounded,check=kinematic,on_fail=clip_to_bounds", 4, Eigen::Vector2d(0, 0.4), 300);
+  EXPECT_EQ(r.policy.name, "custom");
+  int clipped = 0;
+  for (const StepRecord& s : r.records) {
+    if (s.failed_check_action.empty()) {
+      EXPECT_EQ(s.planned, s.planned_tvr) << s.index;
+      continue;
+    }
+    ++clipped;
+    EXPECT_EQ(s.failed_check_action, "clip_to_bounds");
+    const Eigen::Vector2d o = s.planned - s.stance;
+    const double toward_swing = s.swing == Side::kLeft ? o.y() : -o.y();
+    EXPECT_LE(std::abs(o.x()), 0.42 + 1e-9) << s.index;
+    EXPECT_GE(toward_swing, 0.25 - 1e-9) << s.index;
+    EXPECT_LE(toward_swing, 0.65 + 1e-9) << s.index;
+  }
+  EXPECT_GT(clipped, 0) << r.summaryLine();
+}
+
+TEST(WalkingPolicy, CrossedLegsEndTheWalkAsAFall) {
+  // TVR alone under a 0.4 m/s lateral push puts the first swing sole into the stance foot: the
+  // legs' collision shapes touch and the run ends as a fall, naming the links.
+  const WalkResult r = runShipped("unbounded", 6, Eigen::Vector2d(0, 0.4), 300);
+  EXPECT_TRUE(r.fell) << r.summaryLine();
+  EXPECT_EQ(r.end_reason.rfind("legs collided (", 0), 0u) << r.end_reason;
 }
