@@ -106,8 +106,9 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
           .add("seed", &C::seed, "",
                "seed of every random draw of the run (replaces reach.seed in the walk)")
           .add("max_sim_time", &C::max_sim_time, "s", "hard stop, > 0")
-          .removed("mode", "walk.mode was replaced by walk.policy (a preset: baseline, "
-                           "unbounded, kinematic, proposed)");
+          .removed("mode",
+                   "walk.mode was replaced by walk.policy (a preset: baseline, "
+                   "unbounded, kinematic, proposed)");
   return f;
 }
 
@@ -116,8 +117,8 @@ WalkConfig WalkConfig::fromYaml(const YamlSection& s) { return fields().read(s);
 std::string WalkResult::summaryLine() const {
   std::ostringstream os;
   os.precision(4);
-  os << "WALK mode=" << policy.name << " steps=" << steps
-     << " fell=" << (fell ? "yes" : "no") << " sim_s=" << sim_time << " wall_s=" << wall_time
+  os << "WALK mode=" << policy.name << " steps=" << steps << " fell=" << (fell ? "yes" : "no")
+     << " sim_s=" << sim_time << " wall_s=" << wall_time
      << " max_touchdown_err_m=" << max_touchdown_error << " qp_failures=" << qp_failures
      << " end=" << end_reason;
   if (policy.checksFoothold()) {
@@ -226,6 +227,8 @@ struct WalkingExperiment::Loop {
   void references(double t);
   /// False when the robot fell.
   bool controlAndStep(double t);
+  /// Ends the run as a fall; the step in progress (single support) joins the records.
+  void fall(const std::string& reason);
   Eigen::Vector3d target3() const {
     return Eigen::Vector3d(current_.planned.x(), current_.planned.y(), ground_z_);
   }
@@ -370,9 +373,7 @@ bool WalkingExperiment::Loop::singleSupport(double t) {
       sc.wrench[2] > wc_.touchdown_force) {
     touchdown(t);
   } else if (ts > wc_.single_support_duration + wc_.late_touchdown) {
-    result_.fell = true;
-    result_.end_reason = "no touchdown of the swing sole";
-    result_.records.push_back(current_);
+    fall("no touchdown of the swing sole");
     return false;
   }
   return true;
@@ -425,9 +426,9 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
   try {
     const FootstepTransition step = impl_.footsteps->plan(footstepRequest(ts));
     recordCheck(step);
-    const bool failed = !step.kinematically_feasible ||
-                        (policy.check == WalkingPolicy::FootholdCheck::kReachability &&
-                         !step.reachable);
+    const bool failed =
+        !step.kinematically_feasible ||
+        (policy.check == WalkingPolicy::FootholdCheck::kReachability && !step.reachable);
     Eigen::Vector2d foothold = xy(step.foothold);
     bool track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
     if (failed) {
@@ -572,21 +573,24 @@ bool WalkingExperiment::Loop::controlAndStep(double t) {
   // Fall detection, on the state measured at the start of the tick.
   const double pelvis_z = m_.framePose(ws_, pelvis_).translation().z();
   if (pelvis_z < wc_.fall_pelvis_height) {
-    result_.fell = true;
-    result_.end_reason = "pelvis below " + std::to_string(wc_.fall_pelvis_height) + " m";
+    fall("pelvis below " + std::to_string(wc_.fall_pelvis_height) + " m");
     return false;
   }
   if (!world_->nonFootContacts().empty()) {
-    result_.fell = true;
-    result_.end_reason = "link '" + world_->nonFootContacts().front() + "' touched the ground";
+    fall("link '" + world_->nonFootContacts().front() + "' touched the ground");
     return false;
   }
   if (!world_->legContacts().empty()) {  // a robot's legs would have hit each other
-    result_.fell = true;
-    result_.end_reason = "legs collided (" + world_->legContacts().front() + ")";
+    fall("legs collided (" + world_->legContacts().front() + ")");
     return false;
   }
   return true;
+}
+
+void WalkingExperiment::Loop::fall(const std::string& reason) {
+  result_.fell = true;
+  result_.end_reason = reason;
+  if (phase_ == Phase::kSingle) result_.records.push_back(current_);  // the step it fell in
 }
 
 WalkResult WalkingExperiment::run(
