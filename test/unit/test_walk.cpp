@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/walk/push_envelope.h"
 #include "reach_trajopt/walk/swing_trajectory.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
@@ -254,4 +255,37 @@ TEST(WalkingPolicy, CrossedLegsEndTheWalkAsAFall) {
   const WalkResult r = runShipped("unbounded", 6, Eigen::Vector2d(0, 0.4), 300);
   EXPECT_TRUE(r.fell) << r.summaryLine();
   EXPECT_EQ(r.end_reason.rfind("legs collided (", 0), 0u) << r.end_reason;
+}
+
+TEST(PushEnvelope, SweepEqualsSingleWalksOnAnyNumberOfJobs) {
+  // The sweep's walks, on one or two threads, are the walks walk_experiment runs one by one:
+  // same falls, same step counts. The baseline draws nothing, so its second seed repeats the
+  // first (marked `repeated`).
+  const WalkSetup setup =
+      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  PushGrid grid;
+  grid.directions = 4;
+  grid.magnitudes = {0.2, 0.6};
+  grid.seeds = {1, 2};
+  grid.steps = 4;
+  const WalkingPolicy baseline = WalkingPolicy::preset("baseline");
+  const PushEnvelope one = sweepPushes(setup, kUrdf, baseline, grid, 1);
+  const PushEnvelope two = sweepPushes(setup, kUrdf, baseline, grid, 2);
+  ASSERT_EQ(one.pushes(), 16);
+  ASSERT_EQ(two.pushes(), 16);
+  int fell = 0;
+  for (int i = 0; i < one.pushes(); ++i) {
+    const PushWalk& a = one.walks[i];
+    EXPECT_EQ(a.fell, two.walks[i].fell) << i;
+    EXPECT_EQ(a.steps, two.walks[i].steps) << i;
+    EXPECT_EQ(a.repeated, a.seed == 1) << i;
+    if (a.seed == 0) {
+      const WalkResult r = runShipped("baseline", 4, a.push, 300);
+      EXPECT_EQ(a.fell, r.fell) << a.push.transpose();
+      EXPECT_EQ(a.steps, r.steps) << a.push.transpose();
+      fell += r.fell;
+    }
+  }
+  EXPECT_GT(fell, 0) << "0.6 m/s pushes topple the baseline";
+  EXPECT_EQ(one.survived(), 16 - 2 * fell);
 }
