@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <tuple>
 
 #include "reach_trajopt/reach/forward_step.h"
@@ -195,16 +196,32 @@ WitnessPath certifyWitness(const ReachContext& ctx, const std::vector<SampleSlic
                            const std::vector<SliceComparison>& window, bool semi_implicit) {
   const std::vector<JunctionCandidate> candidates =
       junctionCandidates(ctx, forward, backward, window, ctx.config.certificate_candidates);
-  ForwardStep step(ctx, junctionBridgeCost());
+  // The attempts in their serial order: each candidate along its backward chain, then direct.
+  // They run `threads` at a time, then are judged in that order, so the witness (the first
+  // certified attempt) and the closest attempt are those of a serial run for any thread count;
+  // only the attempts after the witness in its batch are wasted work.
+  const int attempts = 2 * static_cast<int>(candidates.size());
+  const int threads = std::max(
+      1, std::min(ctx.config.threads > 0 ? ctx.config.threads : omp_get_max_threads(), attempts));
+  std::vector<std::unique_ptr<ForwardStep>> steps;
+  for (int t = 0; t < threads; ++t)
+    steps.push_back(std::make_unique<ForwardStep>(ctx, junctionBridgeCost()));
+  std::vector<WitnessPath> batch(threads);
   WitnessPath best;
   int tried = 0;
-  for (const JunctionCandidate& cand : candidates) {
-    ++tried;
-    for (bool direct : {false, true}) {
-      WitnessPath w = bridgedPath(ctx, step, forward, backward, window[cand.window_index], cand,
-                                  semi_implicit, direct);
+  for (int a0 = 0; a0 < attempts; a0 += threads) {
+    const int a1 = std::min(a0 + threads, attempts);
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (a1 - a0 > 1)
+    for (int a = a0; a < a1; ++a) {
+      const JunctionCandidate& cand = candidates[a / 2];
+      batch[a - a0] = bridgedPath(ctx, *steps[omp_get_thread_num()], forward, backward,
+                                  window[cand.window_index], cand, semi_implicit, a % 2 == 1);
+    }
+    for (int a = a0; a < a1; ++a) {
+      tried = a / 2 + 1;
+      WitnessPath& w = batch[a - a0];
       w.candidates_tried = tried;
-      if (w.certified) return w;
+      if (w.certified) return std::move(w);
       // Keep the attempt that ended closest to x_f (a completed bridge before a stopped one).
       if (!best.valid || w.terminal_position_gap < best.terminal_position_gap ||
           (std::isinf(best.terminal_position_gap) && w.time.size() > best.time.size()))
