@@ -4,9 +4,11 @@
 # written by `walk_experiment --push 0,0.4 --plan-requests`), a grid of N x N footholds within
 # +-0.15 m of each planned one, each checked by the planner (verdict, certificate re-checked
 # independently) and by the strict OCP seeded without the witness. Prints `BENCH reach.verdict`.
+# Every foothold is also checked with config/reach_reference.yaml's sampling (the slow
+# settings before the fast check): `BENCH reach.verdict_fast ref=reference agreement=..`.
 #   scripts/bench_verdict.sh [grid N = 7]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 cd "$REPO"
 "$BIN/verdict_grid" --bench-case --requests test/fixtures/pushed_walk_requests.jsonl \
-  --grid "${1:-7}" --half-width 0.15
+  --grid "${1:-7}" --half-width 0.15 --reference-config config/reach_reference.yaml
