@@ -9,7 +9,8 @@
 ///
 ///   verdict_grid [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                [--requests FILE.jsonl] [--bench-case] [--grid N] [--half-width M]
-///                [--max-states K] [--details] [--reference-config FILE]
+///                [--max-states K] [--details] [--reach-config FILE]
+///                [--reference-config FILE]
 ///
 /// --requests: footstep requests, one JSON per line (walk_experiment --plan-requests; format
 /// in step/footstep_plan_request_json.h); --bench-case adds bench/reach's SS-L -> DS case
@@ -25,6 +26,7 @@
 /// without the witness converged; false_unreachable (FU): "not shown reachable" kinematically
 /// feasible footholds where it converged; bridge_certified: reachable verdicts certified by
 /// the bridge alone; reachable_strict_converged: reachable verdicts whose strict OCP converged.
+/// --reach-config: the `reach:` section of FILE replaces --config's (e.g. config/reach_fast.yaml).
 /// --reference-config: also checks every foothold with the `reach:` section of FILE (a slow
 /// reference configuration, e.g. config/reach_reference.yaml: the settings before the fast
 /// check) and compares the two verdicts (reachable / unreachable / kinematically infeasible):
@@ -206,7 +208,7 @@ Recheck recheckCertificate(const RobotModel& model, const ContactConfig& contact
 int main(int argc, char** argv) {
   try {
     std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", requests_path;
-    std::string grid_s, half_s, max_s, reference_path;
+    std::string grid_s, half_s, max_s, reference_path, reach_path;
     bool bench_case = false, details = false;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -232,6 +234,8 @@ int main(int argc, char** argv) {
         details = true;
       else if (a == "--reference-config")
         reference_path = next();
+      else if (a == "--reach-config")
+        reach_path = next();
       else
         throw ReachError("unknown option '" + a + "'");
     }
@@ -244,7 +248,13 @@ int main(int argc, char** argv) {
     const YamlSection file = YamlSection::loadFile(config_path);
     const ContactConfig contact =
         file.has("contact") ? ContactConfig::fromYaml(file.section("contact")) : ContactConfig();
-    const FootstepPlannerConfig cfg = FootstepPlannerConfig::fromYaml(file);
+    FootstepPlannerConfig cfg = FootstepPlannerConfig::fromYaml(file);
+    if (!reach_path.empty()) {
+      const YamlSection reach_file = YamlSection::loadFile(reach_path);
+      if (!reach_file.has("reach"))
+        throw ReachError("--reach-config '" + reach_path + "' has no reach: section");
+      cfg.reach = ReachConfig::fromYaml(reach_file.section("reach"), cfg.reach);
+    }
     const auto model = RobotModel::fromUrdfFile(urdf);
     const FootstepTransitionPlanner planner(model, contact, cfg);
     std::optional<ReachConfig> reference;

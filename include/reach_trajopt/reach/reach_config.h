@@ -39,7 +39,7 @@ struct ReachLimits {
   /// Estimated memory of one check (estimatedMemoryBytes) allowed [bytes].
   static constexpr double kMaxMemoryBytes = 1024.0 * 1024 * 1024;
   /// Estimated QPs of one check (estimatedQps) allowed: about 10-30 s on one core; the
-  /// shipped configuration needs 4.2e4 (bench case), 8.8e4 in the walk (0.2 s horizon).
+  /// shipped configuration needs 3.3e5.
   static constexpr double kMaxQps = 2.0e6;
 };
 
@@ -51,19 +51,16 @@ struct ReachConfig {
   double window_start = 0.03;  ///< t_2 - t_0 [s]: the backward set reaches back to here
   double window_end = 0.05;    ///< t_1 - t_0 [s]: the forward set reaches up to here
   // ---- sampling ------------------------------------------------------------------------
-  /// Samples drawn at the first step of each direction (paper 1e4; config/reach_reference.yaml).
-  /// 2000 with the smaller per-slice budget below: the fast check of bench/README.md, whose
-  /// verdicts agree with the reference's (reach.verdict_fast).
-  int initial_samples = 2000;
+  int initial_samples = 10000;  ///< samples drawn at the first step of each direction (paper 1e4)
   int children_per_parent = 8;  ///< samples drawn from each boundary sample at later steps
-  int max_boundary = 40;        ///< cap on the boundary samples propagated per slice (21)
+  int max_boundary = 96;        ///< cap on the boundary samples propagated per slice (21)
   int angular_bins = 16;        ///< bins around the centroid per plane (keeps concave parts)
   /// Interior samples propagated besides the boundary ones (evenly spread over the slice):
   /// without them the later slices are thin shells around their sets.
-  int interior_samples = 8;
+  int interior_samples = 32;
   /// Draws per kept sample at the later backward steps: (19) rejects most draws of (17), so
   /// the backward direction draws more than the forward one (whose QP repairs its draws).
-  int backward_children_per_parent = 8;
+  int backward_children_per_parent = 24;
   /// Boundary selection (21) uses y + tau * ydot for each tau here [s]: with tau = 0 only the
   /// positions count; tau > 0 also keeps the samples whose velocity points outward, which are
   /// the ones the next steps' extremes come from.
