@@ -4,9 +4,16 @@
 # written by `walk_experiment --push 0,0.4 --plan-requests`), a grid of N x N footholds within
 # +-0.15 m of each planned one, each checked by the planner (verdict, certificate re-checked
 # independently) and by the strict OCP seeded without the witness. Prints `BENCH reach.verdict`.
+# Then the same grid with config/reach_fast.yaml's smaller sample budget, every foothold also
+# checked with config/reach_reference.yaml's: `BENCH reach.verdict_fast ref=reference
+# agreement=..` (and that budget's own reach.verdict line, as reach.verdict_budget_fast).
 #   scripts/bench_verdict.sh [grid N = 7]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 cd "$REPO"
 "$BIN/verdict_grid" --bench-case --requests test/fixtures/pushed_walk_requests.jsonl \
   --grid "${1:-7}" --half-width 0.15
+"$BIN/verdict_grid" --bench-case --requests test/fixtures/pushed_walk_requests.jsonl \
+  --grid "${1:-7}" --half-width 0.15 --reach-config config/reach_fast.yaml \
+  --reference-config config/reach_reference.yaml |
+  sed 's/^BENCH reach.verdict /BENCH reach.verdict_budget_fast /'

@@ -10,3 +10,6 @@ if [ -f "$WS/devel/setup.bash" ]; then
   set +u; source "$WS/devel/setup.bash"; set -u
 fi
 BIN="$WS/devel/lib/reach_trajopt"
+# OpenMP threads sleep when idle instead of spinning (the reachability check's threads share
+# the machine with other work: bench/README.md, reach.walk_check); a value set outside wins.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"

@@ -3,9 +3,12 @@
 /// samples at the first step of each direction, dt = 1 ms. Prints wall times of the forward,
 /// backward, boundary and Hausdorff stages and of the whole check, QPs per second, the 1 -> 2
 /// thread speed-up, forward-only (the paper's earlier method: forward over the whole horizon)
-/// versus bidirectional, and the peak resident memory. Median of `repeats` runs.
+/// versus bidirectional, and the peak resident memory. Median of `repeats` runs. Then the same
+/// case with the walk's check horizon (0.2 s, walk.check_horizon: the sole 3 cm short 0.2 s
+/// before touchdown) at 1 and 2 threads, for the stage times of the walk's checks
+/// (mode=walk_horizon; the walk itself is scripts/bench_walk_check.sh).
 ///
-///   bench_reach [repeats=3] [initial_samples=10000]
+///   bench_reach [repeats=3] [initial_samples=0: the configuration's] [config.yaml]
 
 #include <sys/resource.h>
 
@@ -14,6 +17,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/step/reference_cases.h"
@@ -28,6 +32,15 @@ double peakRssMiB() {
   return u.ru_maxrss / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+/// User + system CPU time of the process so far [s]: the work of a check, less sensitive to
+/// other load on the machine than its wall time.
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + 1e-6 * u.ru_utime.tv_usec + u.ru_stime.tv_sec +
+         1e-6 * u.ru_stime.tv_usec;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -37,11 +50,15 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
-  const int samples = argc > 2 ? std::max(1, std::atoi(argv[2])) : 10000;
+  // The reach: section of a YAML file (e.g. config/reach_reference.yaml) on top of the
+  // defaults (= config/biped.yaml's); initial_samples 0 keeps the configuration's.
+  ReachConfig base;
+  if (argc > 3) base = ReachConfig::fromYaml(YamlSection::loadFile(argv[3]).section("reach"), base);
+  base.threads = 0;
+  if (argc > 2 && std::atoi(argv[2]) > 0) base.initial_samples = std::atoi(argv[2]);
+  const int samples = base.initial_samples;
   const auto model = RobotModel::fromUrdfFile(std::string(REACH_REPO) + "/urdf/biped.urdf");
   const ContactConfig contact;
-  ReachConfig base;  // the defaults = config/biped.yaml `reach:`
-  base.initial_samples = samples;
   const KinematicFeasibilityConfig kfc;
   // step/reference_cases.h: left stance at (0, 0.1); the right sole 3 cm short of its target
   // (0.25, -0.12) and 2 cm up, moving to stop there at t_f = 0.08 s.
@@ -74,30 +91,71 @@ int main(int argc, char** argv) {
     ReachConfig cfg = base;
     cfg.threads = c.threads;
     if (!c.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
-    std::vector<double> tot, fw, bw, bd, hd;
+    std::vector<double> tot, fw, bw, bd, hd, wt, cpu;
     FootstepResult r;
     for (int k = 0; k < repeats; ++k) {
+      const double c0 = cpuSeconds();
       r = check.check(req, cfg);
+      cpu.push_back(cpuSeconds() - c0);
       const ReachTimings& t = r.reach.timings;
       tot.push_back(t.total);
       fw.push_back(t.forward);
       bw.push_back(t.backward);
       bd.push_back(t.boundary);
       hd.push_back(t.hausdorff);
+      wt.push_back(t.witness);
     }
     const ReachCounts& n = r.reach.counts;
     const long qps = n.forward_qps + n.backward_qps;
     const double total = median(tot);
     if (c.bidirectional && c.threads == 1) total_1 = total;
     std::printf(
-        "BENCH reach.check mode=%s ours_s=%.4f forward_s=%.4f backward_s=%.4f boundary_s=%.4f "
-        "hausdorff_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld reachable=%d "
-        "peak_rss_mib=%.1f\n",
-        c.name, total, median(fw), median(bw), median(bd), median(hd), samples, c.threads, qps,
-        qps / (median(fw) + median(bw)), n.forward_samples + n.backward_samples,
-        r.reachable ? 1 : 0, peakRssMiB());
+        "BENCH reach.check mode=%s ours_s=%.4f cpu_s=%.4f forward_s=%.4f backward_s=%.4f "
+        "boundary_s=%.4f "
+        "hausdorff_s=%.4f witness_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld "
+        "reachable=%d peak_rss_mib=%.1f\n",
+        c.name, total, median(cpu), median(fw), median(bw), median(bd), median(hd), median(wt),
+        samples, c.threads, qps, qps / (median(fw) + median(bw)),
+        n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, peakRssMiB());
     if (c.bidirectional && c.threads == 2 && total_1 > 0.0)
       std::printf("BENCH reach.speedup threads=2 ratio=%.2f\n", total_1 / total);
+  }
+  // The walk's horizon: x_0 0.2 s before touchdown, the same window.
+  FootstepPlannerConfig walk_config = planner_config;
+  walk_config.reach.horizon = 0.2;
+  const FootstepPlanRequest walk_case = benchSwingCase(model, walk_config, contact);
+  req.q0 = walk_case.q;
+  req.qd0 = walk_case.qd;
+  double walk_1 = 0.0;
+  for (int threads : {1, 2}) {
+    ReachConfig cfg = walk_config.reach;
+    cfg.threads = threads;
+    std::vector<double> tot, fw, bw, bd, hd, wt, cpu;
+    FootstepResult r;
+    for (int k = 0; k < repeats; ++k) {
+      const double c0 = cpuSeconds();
+      r = check.check(req, cfg);
+      cpu.push_back(cpuSeconds() - c0);
+      const ReachTimings& t = r.reach.timings;
+      tot.push_back(t.total);
+      fw.push_back(t.forward);
+      bw.push_back(t.backward);
+      bd.push_back(t.boundary);
+      hd.push_back(t.hausdorff);
+      wt.push_back(t.witness);
+    }
+    const ReachCounts& n = r.reach.counts;
+    if (threads == 1) walk_1 = median(tot);
+    std::printf(
+        "BENCH reach.check mode=walk_horizon horizon_s=%.3f ours_s=%.4f cpu_s=%.4f forward_s=%.4f "
+        "backward_s=%.4f boundary_s=%.4f hausdorff_s=%.4f witness_s=%.4f threads=%d qps=%ld "
+        "kept=%ld reachable=%d peak_rss_mib=%.1f\n",
+        cfg.horizon, median(tot), median(cpu), median(fw), median(bw), median(bd), median(hd),
+        median(wt), threads, n.forward_qps + n.backward_qps, n.forward_samples + n.backward_samples,
+        r.reachable ? 1 : 0, peakRssMiB());
+    if (threads == 2)
+      std::printf("BENCH reach.speedup mode=walk_horizon threads=2 ratio=%.2f\n",
+                  walk_1 / median(tot));
   }
   return 0;
 }

@@ -9,7 +9,8 @@
 ///
 ///   verdict_grid [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                [--requests FILE.jsonl] [--bench-case] [--grid N] [--half-width M]
-///                [--max-states K] [--details]
+///                [--max-states K] [--details] [--reach-config FILE]
+///                [--reference-config FILE]
 ///
 /// --requests: footstep requests, one JSON per line (walk_experiment --plan-requests; format
 /// in step/footstep_plan_request_json.h); --bench-case adds bench/reach's SS-L -> DS case
@@ -25,6 +26,16 @@
 /// without the witness converged; false_unreachable (FU): "not shown reachable" kinematically
 /// feasible footholds where it converged; bridge_certified: reachable verdicts certified by
 /// the bridge alone; reachable_strict_converged: reachable verdicts whose strict OCP converged.
+/// --reach-config: the `reach:` section of FILE replaces --config's (e.g. config/reach_fast.yaml).
+/// --reference-config: also checks every foothold with the `reach:` section of FILE (a slow
+/// reference configuration, e.g. config/reach_reference.yaml: the settings before the fast
+/// check) and compares the two verdicts (reachable / unreachable / kinematically infeasible):
+///   BENCH reach.verdict_fast ref=reference cases=.. agreement=.. disagreements=..
+///     feasible_agreement=.. (over the kinematically feasible footholds)
+///     fast_reachable=.. ref_reachable=.. fast_only_reachable=.. ref_only_reachable=..
+///     false_reachable=.. fast_check_mean_s=.. ref_check_mean_s=.. speedup=..
+/// false_reachable there counts the fast configuration's reachable verdicts whose certificate
+/// fails the re-check (the same as in reach.verdict).
 /// Exit status: 0 ran, 2 bad input.
 
 #include <algorithm>
@@ -32,6 +43,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -196,7 +208,7 @@ Recheck recheckCertificate(const RobotModel& model, const ContactConfig& contact
 int main(int argc, char** argv) {
   try {
     std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", requests_path;
-    std::string grid_s, half_s, max_s;
+    std::string grid_s, half_s, max_s, reference_path, reach_path;
     bool bench_case = false, details = false;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -220,6 +232,10 @@ int main(int argc, char** argv) {
         max_s = next();
       else if (a == "--details")
         details = true;
+      else if (a == "--reference-config")
+        reference_path = next();
+      else if (a == "--reach-config")
+        reach_path = next();
       else
         throw ReachError("unknown option '" + a + "'");
     }
@@ -232,9 +248,22 @@ int main(int argc, char** argv) {
     const YamlSection file = YamlSection::loadFile(config_path);
     const ContactConfig contact =
         file.has("contact") ? ContactConfig::fromYaml(file.section("contact")) : ContactConfig();
-    const FootstepPlannerConfig cfg = FootstepPlannerConfig::fromYaml(file);
+    FootstepPlannerConfig cfg = FootstepPlannerConfig::fromYaml(file);
+    if (!reach_path.empty()) {
+      const YamlSection reach_file = YamlSection::loadFile(reach_path);
+      if (!reach_file.has("reach"))
+        throw ReachError("--reach-config '" + reach_path + "' has no reach: section");
+      cfg.reach = ReachConfig::fromYaml(reach_file.section("reach"), cfg.reach);
+    }
     const auto model = RobotModel::fromUrdfFile(urdf);
     const FootstepTransitionPlanner planner(model, contact, cfg);
+    std::optional<ReachConfig> reference;
+    if (!reference_path.empty()) {
+      const YamlSection ref_file = YamlSection::loadFile(reference_path);
+      if (!ref_file.has("reach"))
+        throw ReachError("--reference-config '" + reference_path + "' has no reach: section");
+      reference = ReachConfig::fromYaml(ref_file.section("reach"), cfg.reach);
+    }
 
     std::vector<FootstepPlanRequest> states;
     if (bench_case) states.push_back(benchSwingCase(model, cfg, contact));
@@ -255,7 +284,8 @@ int main(int argc, char** argv) {
 
     int cases = 0, infeasible = 0, reachable = 0, certified = 0, bridge = 0, converged = 0, fr = 0,
         fu = 0, seeded = 0;
-    double check_time = 0.0;
+    double check_time = 0.0, ref_check_time = 0.0;
+    int agree = 0, agree_feasible = 0, ref_reachable = 0, fast_only = 0, ref_only = 0;
     for (size_t s = 0; s < states.size(); ++s) {
       for (int ix = 0; ix < grid; ++ix) {
         for (int iy = 0; iy < grid; ++iy) {
@@ -269,6 +299,24 @@ int main(int argc, char** argv) {
           probe.ocp_policy = OcpPolicy::kStrict;
           const FootstepTransition checked = planner.plan(probe);
           check_time += checked.check_time_s;
+          if (reference) {
+            // The same foothold with the reference sampling (the request's horizon kept).
+            FootstepPlanRequest ref_probe = probe;
+            ReachConfig rc = *reference;
+            if (probe.reach) rc.horizon = probe.reach->horizon;
+            ref_probe.reach = rc;
+            const FootstepTransition ref = planner.plan(ref_probe);
+            ref_check_time += ref.check_time_s;
+            agree += ref.verdict == checked.verdict;
+            agree_feasible += ref.verdict == checked.verdict && checked.kinematically_feasible;
+            ref_reachable += ref.reachable;
+            fast_only += checked.reachable && !ref.reachable;
+            ref_only += ref.reachable && !checked.reachable;
+            if (details && ref.verdict != checked.verdict)
+              std::printf("DISAGREE state=%zu dx=%.3f dy=%.3f fast=%s(%s) reference=%s(%s)\n", s,
+                          dx, dy, checked.verdict.c_str(), checked.certificate.c_str(),
+                          ref.verdict.c_str(), ref.certificate.c_str());
+          }
           if (!checked.kinematically_feasible) {
             ++infeasible;
             if (details)
@@ -321,6 +369,16 @@ int main(int argc, char** argv) {
         "bridge_certified=%d reachable_strict_converged=%d check_mean_s=%.3f\n",
         cases, states.size(), infeasible, reachable, certified, converged, fr, fu, bridge, seeded,
         check_time / std::max(1, cases));
+    if (reference)
+      std::printf(
+          "BENCH reach.verdict_fast ref=reference cases=%d agreement=%.4f disagreements=%d "
+          "feasible_agreement=%.4f "
+          "fast_reachable=%d ref_reachable=%d fast_only_reachable=%d ref_only_reachable=%d "
+          "false_reachable=%d fast_check_mean_s=%.3f ref_check_mean_s=%.3f speedup=%.2f\n",
+          cases, static_cast<double>(agree) / std::max(1, cases), cases - agree,
+          static_cast<double>(agree_feasible) / std::max(1, cases - infeasible), reachable,
+          ref_reachable, fast_only, ref_only, fr, check_time / std::max(1, cases),
+          ref_check_time / std::max(1, cases), ref_check_time / std::max(1e-12, check_time));
   } catch (const std::exception& e) {
     std::cerr << "verdict_grid: " << e.what() << "\n";
     return 2;

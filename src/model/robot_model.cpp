@@ -162,7 +162,6 @@ void RobotModel::update(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& 
   checkState(q, qd);
   Workspace::Buffers& d = ws.buffers();
   d.q = q;
-  d.qd = qd;
   const auto& bodies = tree_->bodies;
   for (size_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
@@ -174,11 +173,34 @@ void RobotModel::update(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& 
       d.R[i] = b.placement.linear() * axisRotation(b.axis, q[i]);
       d.p[i] = b.placement.translation();
     }
-    const Eigen::Vector3d s_w = b.prismatic ? Eigen::Vector3d::Zero() : Eigen::Vector3d(b.axis);
-    const Eigen::Vector3d s_v = b.prismatic ? Eigen::Vector3d(b.axis) : Eigen::Vector3d::Zero();
     if (b.parent < 0) {
       d.R_world[i] = d.R[i];
       d.p_world[i] = d.p[i];
+    } else {
+      d.R_world[i] = d.R_world[b.parent] * d.R[i];
+      d.p_world[i] = d.p_world[b.parent] + d.R_world[b.parent] * d.p[i];
+    }
+  }
+  velocityPass(ws, qd);
+}
+
+void RobotModel::updateVelocity(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& qd) const {
+  Workspace::Buffers& d = ws.buffers();
+  if (!d.updated) throw ReachError("RobotModel::updateVelocity: call update() first");
+  requireSize("RobotModel: qd", qd.size(), nq());
+  requireFinite("RobotModel: qd", qd);
+  velocityPass(ws, qd);
+}
+
+void RobotModel::velocityPass(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& qd) const {
+  Workspace::Buffers& d = ws.buffers();
+  d.qd = qd;
+  const auto& bodies = tree_->bodies;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    const Eigen::Vector3d s_w = b.prismatic ? Eigen::Vector3d::Zero() : Eigen::Vector3d(b.axis);
+    const Eigen::Vector3d s_v = b.prismatic ? Eigen::Vector3d(b.axis) : Eigen::Vector3d::Zero();
+    if (b.parent < 0) {
       d.w[i] = s_w * qd[i];
       d.v[i] = s_v * qd[i];
       d.dw[i].setZero();
@@ -186,8 +208,6 @@ void RobotModel::update(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& 
     } else {
       const int pa = b.parent;
       const Eigen::Matrix3d& R = d.R[i];
-      d.R_world[i] = d.R_world[pa] * R;
-      d.p_world[i] = d.p_world[pa] + d.R_world[pa] * d.p[i];
       // v_i = X v_parent + S qd_i.
       const Eigen::Vector3d w_in = R.transpose() * d.w[pa];
       const Eigen::Vector3d v_in = R.transpose() * (d.v[pa] + d.w[pa].cross(d.p[i]));

@@ -24,6 +24,7 @@ BackwardStep::BackwardStep(const ReachContext& context)
       rows_(inequalityRows(context)),
       lu_m_(context.n),
       lu_c_(context.m()),
+      lu_b_(context.floating ? 6 : 0),
       terms_(context.n),
       factor_(context.m() > 0 ? context.m() : 1),
       qp_(context.m() > 0 ? context.m() : 1, context.floating ? 6 : 0, inequalityRows(context)) {
@@ -48,6 +49,9 @@ BackwardStep::BackwardStep(const ReachContext& context)
   b_in_.resize(rows_);
   g_.setZero(m_);
   tau_.resize(n_);
+  lambda_.resize(m_);
+  slack_.resize(rows_);
+  row_norm_.resize(rows_);
   d_max_.resize(n_);
   for (int i = 0; i < n_; ++i) {
     const bool base = ctx_.floating && i < 6;
@@ -103,6 +107,14 @@ bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
     const int off = n_ - nu_;
     A_in_.block(r, 0, nu_, m_) = Jc_.middleCols(off, nu_).transpose();         // u <= u_max
     A_in_.block(r + nu_, 0, nu_, m_) = -Jc_.middleCols(off, nu_).transpose();  // u >= -u_max
+    // One held sole: the six base rows fix lambda (J_b^T square); (19) is then a test.
+    unique_lambda_ = false;
+    if (m_eq_ > 0 && m_eq_ == m_) {
+      lu_b_.compute(A_eq_);
+      const auto pivots = lu_b_.matrixLU().diagonal().cwiseAbs();
+      unique_lambda_ = pivots.minCoeff() > 1e-12 * pivots.maxCoeff();
+      row_norm_ = A_in_.rowwise().norm();
+    }
   } else {
     N_.setIdentity();
     w_.setZero();
@@ -124,7 +136,7 @@ bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
   qd_prev = qd_j_ - v_;
   q_prev = q_prev_;
   if (!ctx_.withinLimits(q_prev, qd_prev)) return false;
-  model.update(ws_, q_prev_, qd_prev);
+  model.updateVelocity(ws_, qd_prev);  // q_{j-1} is the parent's: its poses are current
   if (!ctx_.swingClear(ws_)) return false;
   model.bias(ws_, b_);
   qdd_ = v_ / dt;
@@ -144,15 +156,32 @@ bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
       b_in_[r + nu_ + i] = -ctx_.u_max[i] - tau_[off + i];  // -J_a^T l >= -u_max - tau_a
     }
     ++qp_count_;
-    const qp::QpResult& res =
-        qp_.solve(factor_, g_, A_eq_, b_eq_, A_in_, b_in_, warm_.empty() ? nullptr : &warm_);
-    if (res.status != qp::QpStatus::kOptimal) return false;
-    warm_ = res.active_set;
-    lambda_out = res.x;
+    if (unique_lambda_) {
+      if (!uniqueLambdaFeasible()) return false;
+    } else {
+      const qp::QpResult& res =
+          qp_.solve(factor_, g_, A_eq_, b_eq_, A_in_, b_in_, warm_.empty() ? nullptr : &warm_);
+      if (res.status != qp::QpStatus::kOptimal) return false;
+      warm_ = res.active_set;
+      lambda_ = res.x;
+    }
+    lambda_out = lambda_;
     u_out = tau_.tail(nu_);
-    u_out.noalias() -= Jc_.middleCols(off, nu_).transpose() * res.x;
+    u_out.noalias() -= Jc_.middleCols(off, nu_).transpose() * lambda_;
   }
   ctx_.output(ws_, y, y_rate);
+  return true;
+}
+
+bool BackwardStep::uniqueLambdaFeasible() {
+  lambda_ = lu_b_.solve(b_eq_);
+  // The QP's own acceptance test of an inequality row (dual_active_set_qp.h).
+  const double tol = qp::QpSolverConfig().feasibility_tol;
+  const double norm = lambda_.norm();
+  slack_.noalias() = A_in_ * lambda_;
+  slack_ -= b_in_;
+  for (int j = 0; j < rows_; ++j)
+    if (slack_[j] < -tol * (1.0 + std::abs(b_in_[j]) + row_norm_[j] * norm)) return false;
   return true;
 }
 

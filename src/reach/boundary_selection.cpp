@@ -13,6 +13,9 @@ namespace reach_trajopt {
 
 namespace {
 
+/// Below this many samples the planes are done serially (a parallel region costs more).
+constexpr int kParallelBoundaryMin = 256;
+
 double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
 }
@@ -88,10 +91,10 @@ std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
     return all;
   }
   std::vector<std::vector<int>> lists;
-  Eigen::MatrixXd yh(ny, n);
-  for (double tau : rule.lookahead) {
-    yh = y + tau * y_rate;
-    if (ny == 1) {
+  if (ny == 1) {
+    Eigen::MatrixXd yh(ny, n);
+    for (double tau : rule.lookahead) {
+      yh = y + tau * y_rate;
       std::vector<int> order(n);
       std::iota(order.begin(), order.end(), 0);
       std::stable_sort(order.begin(), order.end(),
@@ -100,16 +103,28 @@ std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
       const int extra = std::max(rule.angular_bins, 0);
       for (int k = 1; k <= extra; ++k) picks.push_back(order[(k * (n - 1)) / (extra + 1)]);
       lists.push_back(picks);
-      continue;
     }
+  } else {
+    // One task per (tau, plane): its hull and its angular bins. The tasks are independent and
+    // their lists land at fixed places, so the merge below sees the serial order.
     const int planes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
     const int n_planes = ny == 2 ? 1 : 3;
-    Eigen::Matrix2Xd p(2, n);
-    for (int pl = 0; pl < n_planes; ++pl) {
-      p.row(0) = yh.row(planes[pl][0]);
-      p.row(1) = yh.row(planes[pl][1]);
-      lists.push_back(convexHull2d(p));
-      if (rule.angular_bins > 0) lists.push_back(angularBins(p, rule.angular_bins));
+    const int tasks = static_cast<int>(rule.lookahead.size()) * n_planes;
+    std::vector<std::vector<int>> hulls(tasks), bins(tasks);
+#pragma omp parallel for schedule(dynamic, 1) num_threads( \
+    std::max(1, rule.threads)) if (tasks > 1 && rule.threads > 1 && n >= kParallelBoundaryMin)
+    for (int t = 0; t < tasks; ++t) {
+      const double tau = rule.lookahead[t / n_planes];
+      const int pl = t % n_planes;
+      Eigen::Matrix2Xd p(2, n);
+      p.row(0) = y.row(planes[pl][0]) + tau * y_rate.row(planes[pl][0]);
+      p.row(1) = y.row(planes[pl][1]) + tau * y_rate.row(planes[pl][1]);
+      hulls[t] = convexHull2d(p);
+      if (rule.angular_bins > 0) bins[t] = angularBins(p, rule.angular_bins);
+    }
+    for (int t = 0; t < tasks; ++t) {
+      lists.push_back(std::move(hulls[t]));
+      if (rule.angular_bins > 0) lists.push_back(std::move(bins[t]));
     }
   }
   // Round-robin merge up to the cap.

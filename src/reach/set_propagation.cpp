@@ -135,6 +135,7 @@ void selectAndStore(const ReachContext& ctx, bool forward, const SampleSlice& pr
     for (double& tau : rule.lookahead) tau = -tau;
   rule.angular_bins = ctx.config.angular_bins;
   rule.max_boundary = ctx.config.max_boundary;
+  rule.threads = ctx.config.threads > 0 ? ctx.config.threads : omp_get_max_threads();
   s.boundary = selectBoundary(s.output, s.output_rate, rule);
   // Interior picks: evenly spread over the samples not on the boundary.
   std::vector<char> on(s.size(), 0);

@@ -3,6 +3,8 @@
 
 #include "reach_trajopt/reach/window_comparison.h"
 
+#include <omp.h>
+
 #include <algorithm>
 
 #include "reach_trajopt/reach/output_hull.h"
@@ -13,10 +15,13 @@ std::vector<SliceComparison> compareWindow(const ReachConfig& config,
                                            const std::vector<SampleSlice>& forward,
                                            const std::vector<SampleSlice>& backward, int i_2,
                                            int i_1, int i_t) {
-  std::vector<SliceComparison> window;
   const double dt = config.dt;
+  std::vector<SliceComparison> window(std::max(0, i_1 - i_2 + 1));
+  const int threads = config.threads > 0 ? config.threads : omp_get_max_threads();
+  // Slices are independent and written at fixed indices: the same result for any thread count.
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int i = i_2; i <= i_1; ++i) {
-    SliceComparison c;
+    SliceComparison& c = window[i - i_2];
     c.time = i * dt;
     c.forward_slice = i;
     c.backward_slice = i_t - i;
@@ -34,7 +39,6 @@ std::vector<SliceComparison> compareWindow(const ReachConfig& config,
     c.overlap = c.distance.closest <= c.overlap_tolerance || c.backward_inside_forward > 0 ||
                 c.forward_inside_backward > 0;
     c.within_delta = c.distance.hausdorff <= std::min(config.delta, K);
-    window.push_back(c);
   }
   return window;
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <tuple>
 
 #include "reach_trajopt/reach/forward_step.h"
@@ -30,6 +31,12 @@ Eigen::MatrixXd effortFeatures(const std::vector<SampleSlice>& slices,
     f.col(i).tail(n) = (4.0 / T) * s.qd.col(i);
   }
   return f;
+}
+
+/// The terminal part of withinCertificate: x(t_f) within the tolerances of x_f.
+bool withinTerminalTolerance(const ReachConfig& config, const WitnessPath& w) {
+  return w.terminal_position_gap <= config.terminal_position_tolerance &&
+         w.terminal_velocity_gap <= config.terminal_velocity_tolerance;
 }
 
 bool before(const JunctionCandidate& a, const JunctionCandidate& b) {
@@ -76,11 +83,14 @@ std::vector<JunctionCandidate> sliceCandidates(const ReachContext& ctx,
 }
 
 /// x_0 -> a through the forward set, then the bridge from a along the backward chain from b
-/// (direct: along the cubic from a to x_f); measured (not yet judged).
+/// (direct: along the cubic from a to x_f); `measured`: its steps were re-checked (only when
+/// x(t_f) lands on x_f, see below).
 WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
                         const std::vector<SampleSlice>& forward,
                         const std::vector<SampleSlice>& backward, const SliceComparison& c,
-                        const JunctionCandidate& cand, bool semi_implicit, bool direct) {
+                        const JunctionCandidate& cand, bool semi_implicit, bool direct,
+                        bool& measured) {
+  measured = false;
   const double dt = ctx.config.dt;
   const int n = ctx.n;
   std::vector<std::pair<int, int>> fchain =
@@ -155,9 +165,15 @@ WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
   } else {
     w.terminal_position_gap = w.terminal_velocity_gap = w.terminal_output_gap = HUGE_VAL;
   }
-  measurePath(ctx, w);
   w.valid = true;
-  w.certified = seg.completed() && withinCertificate(ctx.config, w);
+  // The re-check of every step (measurePath) can only matter when x(t_f) lands on x_f: an
+  // attempt that misses it is never certified, and only the closest one is measured, by
+  // certifyWitness, once it is known.
+  if (seg.completed() && withinTerminalTolerance(ctx.config, w)) {
+    measurePath(ctx, w);
+    measured = true;
+  }
+  w.certified = measured && withinCertificate(ctx.config, w);
   return w;
 }
 
@@ -195,22 +211,45 @@ WitnessPath certifyWitness(const ReachContext& ctx, const std::vector<SampleSlic
                            const std::vector<SliceComparison>& window, bool semi_implicit) {
   const std::vector<JunctionCandidate> candidates =
       junctionCandidates(ctx, forward, backward, window, ctx.config.certificate_candidates);
-  ForwardStep step(ctx, junctionBridgeCost());
+  // The attempts in their serial order: each candidate along its backward chain, then direct.
+  // They run `threads` at a time, then are judged in that order, so the witness (the first
+  // certified attempt) and the closest attempt are those of a serial run for any thread count;
+  // only the attempts after the witness in its batch are wasted work.
+  const int attempts = 2 * static_cast<int>(candidates.size());
+  const int threads = std::max(
+      1, std::min(ctx.config.threads > 0 ? ctx.config.threads : omp_get_max_threads(), attempts));
+  std::vector<std::unique_ptr<ForwardStep>> steps;
+  for (int t = 0; t < threads; ++t)
+    steps.push_back(std::make_unique<ForwardStep>(ctx, junctionBridgeCost()));
+  std::vector<WitnessPath> batch(threads);
+  std::vector<char> measured(threads, 0);
   WitnessPath best;
+  bool best_measured = false;
   int tried = 0;
-  for (const JunctionCandidate& cand : candidates) {
-    ++tried;
-    for (bool direct : {false, true}) {
-      WitnessPath w = bridgedPath(ctx, step, forward, backward, window[cand.window_index], cand,
-                                  semi_implicit, direct);
+  for (int a0 = 0; a0 < attempts; a0 += threads) {
+    const int a1 = std::min(a0 + threads, attempts);
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if (a1 - a0 > 1)
+    for (int a = a0; a < a1; ++a) {
+      const JunctionCandidate& cand = candidates[a / 2];
+      bool m = false;
+      batch[a - a0] = bridgedPath(ctx, *steps[omp_get_thread_num()], forward, backward,
+                                  window[cand.window_index], cand, semi_implicit, a % 2 == 1, m);
+      measured[a - a0] = m ? 1 : 0;
+    }
+    for (int a = a0; a < a1; ++a) {
+      tried = a / 2 + 1;
+      WitnessPath& w = batch[a - a0];
       w.candidates_tried = tried;
-      if (w.certified) return w;
+      if (w.certified) return std::move(w);
       // Keep the attempt that ended closest to x_f (a completed bridge before a stopped one).
       if (!best.valid || w.terminal_position_gap < best.terminal_position_gap ||
-          (std::isinf(best.terminal_position_gap) && w.time.size() > best.time.size()))
+          (std::isinf(best.terminal_position_gap) && w.time.size() > best.time.size())) {
         best = std::move(w);
+        best_measured = measured[a - a0] != 0;
+      }
     }
   }
+  if (best.valid && !best_measured) measurePath(ctx, best);  // its violations are reported
   best.candidates_tried = tried;
   return best;
 }

@@ -9,11 +9,13 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <vector>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/reach/boundary_selection.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
 
 using namespace reach_trajopt;
@@ -265,6 +267,27 @@ TEST(ReachDoubleIntegrator, OneAndTwoThreadsGiveIdenticalResults) {
   }
   EXPECT_EQ(a.reachable, b.reachable);
   EXPECT_EQ(a.reason, b.reason);
+}
+
+TEST(BoundarySelection, TheSameBoundaryForOneAndTwoThreads) {
+  // 3-D outputs (three planes) and three lookaheads: nine hull tasks, done in parallel with
+  // two threads; the merged boundary must be the serial one, and lie on the samples' hulls.
+  const int n = 2000;
+  const Eigen::MatrixXd y = Eigen::MatrixXd::Random(3, n);
+  const Eigen::MatrixXd yr = Eigen::MatrixXd::Random(3, n);
+  BoundaryRule rule;
+  rule.lookahead = {0.0, 0.005, 0.02};
+  rule.max_boundary = 60;
+  rule.threads = 1;
+  const std::vector<int> serial = selectBoundary(y, yr, rule);
+  rule.threads = 2;
+  const std::vector<int> parallel = selectBoundary(y, yr, rule);
+  EXPECT_EQ(serial, parallel);
+  EXPECT_EQ(static_cast<int>(serial.size()), rule.max_boundary);
+  // The lowest-x sample at tau = 0 starts the first list (the (x, y) hull), so it is taken.
+  int arg_min = 0;
+  y.row(0).minCoeff(&arg_min);
+  EXPECT_TRUE(std::find(serial.begin(), serial.end(), arg_min) != serial.end());
 }
 
 TEST(ReachDoubleIntegrator, BadInputThrows) {

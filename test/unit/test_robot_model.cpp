@@ -163,6 +163,36 @@ TEST(RobotModel, MassMatrixAndBiasMatchInverseDynamics) {
   }
 }
 
+TEST(RobotModel, VelocityOnlyUpdateGivesTheBitsOfAFullUpdate) {
+  // updateVelocity (the backward step's children share their parent's q) against update at
+  // the same (q, qd): the bias, a sole's velocity and Jdot qd must be identical, not close.
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  Workspace full(*model), fast(*model);
+  std::mt19937 rng(11);
+  const int n = model->nq();
+  const FrameId sole = model->frameId("l_sole");
+  EXPECT_THROW(model->updateVelocity(fast, Eigen::VectorXd::Zero(n)), ReachError);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd q = randomState(*model, rng, false);
+    model->update(fast, q, randomState(*model, rng, true));
+    for (int child = 0; child < 3; ++child) {
+      const Eigen::VectorXd qd = randomState(*model, rng, true);
+      model->update(full, q, qd);
+      model->updateVelocity(fast, qd);
+      Eigen::VectorXd b_full(n), b_fast(n);
+      model->bias(full, b_full);
+      model->bias(fast, b_fast);
+      EXPECT_TRUE(b_full == b_fast) << "trial " << trial;
+      EXPECT_TRUE(model->frameVelocity(full, sole) == model->frameVelocity(fast, sole));
+      EXPECT_TRUE(model->frameJdotQd(full, sole) == model->frameJdotQd(fast, sole));
+    }
+  }
+  Eigen::VectorXd bad = Eigen::VectorXd::Zero(n);
+  bad[0] = std::nan("");
+  EXPECT_THROW(model->updateVelocity(fast, bad), ReachError);
+  EXPECT_THROW(model->updateVelocity(fast, Eigen::VectorXd::Zero(n + 1)), ReachError);
+}
+
 TEST(RobotModel, JacobianAndJdotQdMatchFiniteDifferences) {
   const auto model = RobotModel::fromUrdfFile(kUrdf);
   Workspace ws(*model);

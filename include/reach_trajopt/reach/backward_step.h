@@ -14,7 +14,10 @@
 ///   u = M_a qdd + b_a - J_a^T lambda. A feasible child is kept with its (u, lambda).
 /// The step x_{j-1} -> x_j is then the semi-implicit Euler step of eq. (1).
 /// M, J, Jbar, N, the cone rows and the QP matrices depend on q_{j-1} only and are shared by
-/// all children of a parent (setParent()); a child costs one bias evaluation and a tiny QP.
+/// all children of a parent (setParent()); a child costs a velocity-only kinematics pass, one
+/// bias evaluation and a tiny QP. With one held sole the six base rows determine lambda
+/// (J_b^T is square): then (19) has one feasible point, lambda = J_b^-T (M_b qdd + b_b), and
+/// the "QP" is that solve (LU per parent) and the QP's own test of the inequality rows.
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -51,13 +54,18 @@ class BackwardStep {
   long qpCount() const { return qp_count_; }
 
  private:
+  /// (19) when lambda is unique: true when it passes the cone and torque rows.
+  bool uniqueLambdaFeasible();
+
   const ReachContext& ctx_;
   Workspace ws_;
   int n_, nu_, m_, m_eq_, rows_;
   Eigen::VectorXd q_prev_, qd_j_, b_, qdd_, v_, w_, d_max_, e_;
   Eigen::MatrixXd M_, Jc_, Jphi_, MinvJt_, Lambda_, Jbar_, N_, J_, A_eq_, A_in_;
   Eigen::VectorXd b_eq_, b_in_, g_, tau_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_m_, lu_c_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_m_, lu_c_, lu_b_;
+  Eigen::VectorXd lambda_, slack_, row_norm_;
+  bool unique_lambda_ = false;  ///< the base rows fix lambda at this parent
   ContactConstraintTerms terms_;
   ContactWrenchCone::Matrix cone_world_[2];
   qp::HessianFactor factor_;

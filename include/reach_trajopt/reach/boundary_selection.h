@@ -21,6 +21,8 @@ struct BoundaryRule {
   std::vector<double> lookahead = {0.0};  ///< tau values [s]
   int angular_bins = 16;                  ///< sectors per plane (0: hull only)
   int max_boundary = 96;                  ///< cap on the result
+  /// OpenMP threads over the (tau, plane) hulls; the result is the same for any count.
+  int threads = 1;
 };
 
 /// Indices (ascending) of the boundary samples of one slice.

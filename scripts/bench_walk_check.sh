@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# The reachability check inside the walk: the proposed walk of the demo (20 steps, lateral
+# push 0.4 m/s, config/biped.yaml) run with 2 and with 1 OpenMP threads (the seeded sampler
+# gives the same sets, verdicts and therefore the same walk for any thread count), the
+# check's wall time of every step that ran it (kinematically infeasible footholds stop before
+# it). Prints
+#   BENCH reach.walk_check threads=2 mean_s=.. max_s=.. checks=.. ... load_avg=..
+#   BENCH reach.walk_check threads=1 ...  and  BENCH reach.walk_check_speedup ratio=..
+#   scripts/bench_walk_check.sh [steps = 20] [config = config/biped.yaml]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+cd "$REPO"
+steps="${1:-20}"
+config="${2:-config/biped.yaml}"
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+for t in 2 1; do
+  OMP_NUM_THREADS=$t "$BIN/walk_experiment" --config "$config" --mode proposed --steps "$steps" \
+    --push 0,0.4 > "$out/walk_$t.log"
+done
+/usr/bin/python3 - "$out" <<'PY'
+import re, sys, os
+def stats(path):
+    times, verdicts = [], []
+    for line in open(path):
+        if not line.startswith("step "):
+            continue
+        v = re.search(r" verdict=(\S+) certificate=(\S+)", line)
+        t = re.search(r" check_s=([0-9.eE+-]+)", line)
+        verdicts.append(v.group(1) + "/" + v.group(2))
+        if v.group(1) != "kinematically_infeasible":
+            times.append(float(t.group(1)))
+    return times, verdicts
+load = os.getloadavg()[0]
+res = {}
+for t in (2, 1):
+    times, verdicts = stats(os.path.join(sys.argv[1], f"walk_{t}.log"))
+    if not times:
+        sys.exit("bench_walk_check: no step ran the check")
+    res[t] = (sum(times) / len(times), times, verdicts)
+    s = sorted(times)
+    print(f"BENCH reach.walk_check threads={t} mean_s={res[t][0]:.3f} max_s={s[-1]:.3f} "
+          f"median_s={s[len(s) // 2]:.3f} checks={len(times)} "
+          f"reachable={sum(v.startswith('reachable') for v in verdicts)} "
+          f"bridge={sum(v.endswith('/bridge') for v in verdicts)} load_avg={load:.2f}")
+same = res[1][2] == res[2][2]
+print(f"BENCH reach.walk_check_speedup threads=2 ratio={res[1][0] / res[2][0]:.2f} "
+      f"same_walk={'yes' if same else 'no'}")
+PY
