@@ -30,6 +30,12 @@
 /// required="true" ends with it; false: stay up, walk_result stays available, until shutdown),
 /// ~reachability_samples (true: reachability_result carries the output samples of every slice,
 /// at most 500 per set and slice; false: boundaries only; true).
+/// ~in_process (true: the checked footsteps are planned in this process; false: through
+/// transition_ocp_node's plan_footstep service, which plans them as the in-process loop does and
+/// publishes the four check topics above itself; the simulation waits, in sim time, for each
+/// answer; true), ~plan_service (the service's name, relative: remappable; plan_footstep).
+/// A call that fails (the node died or went away) is planned in process instead, with a
+/// warning, and its messages published here: the walk and the bag lose nothing.
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
@@ -43,8 +49,10 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
@@ -103,6 +111,8 @@ int main(int argc, char** argv) {
     const double linger = param(pnh, "linger", 1.0);
     const bool exit_when_done = param(pnh, "exit_when_done", true);
     const bool reachability_samples = param(pnh, "reachability_samples", true);
+    const bool in_process = param(pnh, "in_process", true);
+    const std::string plan_service = param<std::string>(pnh, "plan_service", "plan_footstep");
     if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
       throw ConfigError("~publish_period, ~clock_period and ~marker_period must be > 0");
 
@@ -139,6 +149,18 @@ int main(int argc, char** argv) {
       pubs.insert(pubs.end(), {&reach_pub, &reach_marker_pub, &traj_pub, &traj_marker_pub});
     }
     tf2_ros::TransformBroadcaster tf_broadcaster;
+
+    // The checked footsteps through transition_ocp_node (~in_process false).
+    const FootstepTransitionPlanner* local_planner = experiment.footstepPlanner();
+    const bool through_node = checks_footholds && !in_process;
+    ros::ServiceClient plan_client;
+    if (through_node) {
+      plan_client = nh.serviceClient<reach_trajopt::PlanFootstep>(plan_service, true);
+      if (!plan_client.waitForExistence(ros::Duration(wait_timeout)))
+        throw ConfigError("~in_process is false but the service '" + plan_client.getService() +
+                          "' (~plan_service) did not appear within ~wait_timeout = " +
+                          std::to_string(wait_timeout) + " s");
+    }
 
     if (wait_for_subscribers > 0 || wait_for_com_subscribers > 0) {
       const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_timeout);
@@ -233,9 +255,31 @@ int main(int argc, char** argv) {
     };
 
     // The walking loop checks a step at the start of a control tick, before that tick's
-    // on_tick: its sim time is the last tick's plus one time step. The foothold lies on the
-    // ground at the stance sole's height.
+    // on_tick: its sim time is the last tick's plus one time step.
+    bool planned_here = true;  // the last checked step was planned in this process
+    if (through_node)
+      experiment.setFootstepPlanner([&](const FootstepPlanRequest& request) {
+        reach_trajopt::PlanFootstep srv;
+        srv.request = rb::toPlanFootstepRequestMsg(request, local_planner->config().reach,
+                                                   ros::Time(last_tick_time + setup.sim.time_step));
+        srv.request.marker_id = static_cast<uint32_t>(executed.size() + 1);  // the step index
+        if (plan_client.call(srv)) {
+          // A rejected request is what the in-process planner throws for it.
+          if (!srv.response.success) throw RequestError(srv.response.message);
+          planned_here = false;
+          return rb::fromPlanFootstepResponseMsg(srv.response, request, model);
+        }
+        ROS_WARN("sim_node: the call of '%s' failed; step %zu planned in process",
+                 plan_client.getService().c_str(), executed.size() + 1);
+        plan_client = nh.serviceClient<reach_trajopt::PlanFootstep>(plan_service, true);
+        planned_here = true;
+        return local_planner->plan(request);
+      });
+
+    // The check's messages of a step planned here (transition_ocp_node publishes those it
+    // plans). The foothold lies on the ground at the stance sole's height.
     auto onCheck = [&](const StepRecord& r, const FootstepTransition& step) {
+      if (!planned_here) return;
       const ros::Time stamp(last_tick_time + setup.sim.time_step);
       const Eigen::Vector3d foothold =
           rb::checkedFoothold(r, sole_z[static_cast<int>(opposite(r.swing))]);

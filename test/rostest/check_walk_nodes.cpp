@@ -1,0 +1,140 @@
+// rostest checker of walk_nodes.test (a gtest executable run by rostest): the walk of walk.launch
+// with ~in_process false (every checked footstep planned by transition_ocp_node's plan_footstep)
+// gives the same WALK line and the same step records, byte for byte, as the same scenario run
+// in process here, and the check's messages come from transition_ocp_node, one per step.
+// The two differ only in wall times (wall_s of the WALK line, check_time and ocp_time).
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/CenterOfMassState.h"
+#include "reach_trajopt/ReachabilityResult.h"
+#include "reach_trajopt/StepReport.h"
+#include "reach_trajopt/TransitionTrajectory.h"
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/node_setup.h"
+#include "reach_trajopt/walk/walk_setup.h"
+
+using namespace reach_trajopt;
+namespace rb = reach_trajopt::ros_bridge;
+
+namespace {
+
+struct Received {
+  std::vector<reach_trajopt::StepReport> reports;
+  std::vector<std::string> check_publishers;  ///< publisher of each reachability_result
+  std::vector<std::string> trajectory_publishers;
+  std::string walk_line;
+};
+Received g_received;
+
+template <typename M>
+std::vector<uint8_t> bytes(const M& m) {
+  const uint32_t n = ros::serialization::serializationLength(m);
+  std::vector<uint8_t> b(n);
+  ros::serialization::OStream s(b.data(), n);
+  ros::serialization::serialize(s, m);
+  return b;
+}
+
+// The record without what depends on the machine (wall times) or the transport (seq).
+reach_trajopt::StepReport comparable(reach_trajopt::StepReport m) {
+  m.header.seq = 0;
+  m.check_time = 0.0;
+  m.ocp_time = 0.0;
+  return m;
+}
+
+std::string withoutWallTime(const std::string& line) {
+  return std::regex_replace(line, std::regex(" wall_s=[^ ]*"), "");
+}
+
+template <typename T>
+T param(const ros::NodeHandle& nh, const std::string& name, const T& fallback) {
+  T value;
+  return nh.getParam(name, value) ? value : fallback;
+}
+
+TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
+  ros::NodeHandle nh, pnh("~");
+  const double timeout = param(pnh, "timeout", 300.0);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (ros::ok() && g_received.walk_line.empty() && ros::WallTime::now() < deadline)
+    ros::WallDuration(0.05).sleep();
+  ASSERT_FALSE(g_received.walk_line.empty()) << "no walk_result within ~timeout";
+  ros::WallDuration(1.0).sleep();  // the last step report and check messages
+
+  // The same scenario in process, from the same parameters.
+  WalkSetup setup = WalkSetup::fromYamlFile(param<std::string>(pnh, "config", ""));
+  const std::string sim_config = param<std::string>(pnh, "sim_config", "");
+  if (!sim_config.empty())
+    setup.sim = SimConfig::fromYaml(YamlSection::loadFile(sim_config).section("sim"));
+  setup.walk.policy = WalkingPolicy::parse(param<std::string>(pnh, "policy", "proposed"));
+  setup.walk.steps = param(pnh, "steps", 3);
+  setup.walk.seed = static_cast<unsigned>(param(pnh, "seed", 1));
+  setup.walk.initial_com_velocity.y() = param(pnh, "push_vy", 0.0);
+  const rb::TempUrdf urdf(rb::robotDescription(nh));
+  const std::unique_ptr<WalkingExperiment> experiment = setup.experiment(urdf.path());
+  const WalkResult in_process = experiment->run();
+
+  EXPECT_EQ(withoutWallTime(g_received.walk_line), withoutWallTime(in_process.summaryLine()));
+  ASSERT_EQ(g_received.reports.size(), in_process.records.size());
+  ASSERT_GT(in_process.records.size(), 0u);
+  for (size_t i = 0; i < in_process.records.size(); ++i) {
+    const StepRecord& r = in_process.records[i];
+    const reach_trajopt::StepReport expected =
+        comparable(rb::toStepReportMsg(r, setup.walk.policy, false, r.executed.z()));
+    const reach_trajopt::StepReport got = comparable(g_received.reports[i]);
+    EXPECT_EQ(bytes(got), bytes(expected)) << "step " << r.index << "\nnodes:\n"
+                                           << got << "\nin process:\n"
+                                           << expected;
+  }
+  // Every check went through transition_ocp_node (none fell back to sim_node's planner).
+  size_t checked = 0;
+  for (const StepRecord& r : in_process.records) checked += r.verdict != "not_checked";
+  EXPECT_EQ(checked, in_process.records.size());
+  ASSERT_EQ(g_received.check_publishers.size(), checked);
+  ASSERT_EQ(g_received.trajectory_publishers.size(), checked);
+  for (size_t i = 0; i < checked; ++i) {
+    EXPECT_EQ(g_received.check_publishers[i], "/transition_ocp_node");
+    EXPECT_EQ(g_received.trajectory_publishers[i], "/transition_ocp_node");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "check_walk_nodes");
+  ros::NodeHandle nh;
+  const ros::Subscriber reports = nh.subscribe<reach_trajopt::StepReport>(
+      "step_report", 100,
+      [](const reach_trajopt::StepReport::ConstPtr& m) { g_received.reports.push_back(*m); });
+  const ros::Subscriber checks = nh.subscribe<reach_trajopt::ReachabilityResult>(
+      "reachability_result", 100,
+      [](const ros::MessageEvent<const reach_trajopt::ReachabilityResult>& e) {
+        g_received.check_publishers.push_back(e.getPublisherName());
+      });
+  const ros::Subscriber trajectories = nh.subscribe<reach_trajopt::TransitionTrajectory>(
+      "transition_trajectory", 100,
+      [](const ros::MessageEvent<const reach_trajopt::TransitionTrajectory>& e) {
+        g_received.trajectory_publishers.push_back(e.getPublisherName());
+      });
+  const ros::Subscriber result = nh.subscribe<std_msgs::String>(
+      "walk_result", 1, [](const std_msgs::String::ConstPtr& m) { g_received.walk_line = m->data; });
+  // Last: sim_node starts once com_state has this subscriber too (extra_com_subscribers).
+  const ros::Subscriber com = nh.subscribe<reach_trajopt::CenterOfMassState>(
+      "com_state", 10, [](const reach_trajopt::CenterOfMassState::ConstPtr&) {});
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const int rc = RUN_ALL_TESTS();
+  spinner.stop();
+  return rc;
+}
