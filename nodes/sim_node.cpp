@@ -9,8 +9,8 @@
 ///   step_report (StepReport)         one per touchdown (and one for a step ending in a fall)
 ///   markers (visualization_msgs/MarkerArray)  footholds planned/executed, CoM and swing paths
 ///   walk_result (std_msgs/String, latched)    the summary line, published when the run ends
-/// With a policy that checks footholds, once per checked step (stamped with the sim time of the check, x_0, in
-/// "world"; the topics of reachability_node and transition_ocp_node):
+/// With a policy that checks footholds, once per checked step (stamped with the sim time of the
+/// check, x_0, in "world"; the topics of reachability_node and transition_ocp_node):
 ///   reachability_result (ReachabilityResult)  the check: sets per slice, d_H, witness; or
 ///                                              "unreachable" for a kinematically infeasible
 ///                                              foothold, with the IK's reason
@@ -19,17 +19,17 @@
 ///                                              failed) the swing then tracks
 ///   transition_markers (visualization_msgs/MarkerArray)  its swing sole path and landing
 /// Parameters (private): ~config (YAML with sections contact, planner, walk, wbc, and for the
-/// policies with a check kinematic_feasibility, reach, ocp, nearest_foothold; default config/biped.yaml of the package),
-/// ~sim_config (YAML with a sim section, optional), ~policy
-/// (a walking policy: baseline|unbounded|kinematic|proposed[,part=value...]), ~steps, ~seed, ~forward_speed [m/s], ~push_vx, ~push_vy [m/s],
-/// ~publish_period [s of sim time, 0.01], ~clock_period [s, 0.001], ~marker_period [s, 0.1],
-/// ~wait_for_subscribers (N: wait until every topic has N subscribers, e.g. a recorder; 0),
-/// ~wait_for_com_subscribers (N: wait until com_state has N subscribers, e.g. + the planner),
-/// ~wait_timeout [s wall, 20], ~real_time_factor (0: as fast as possible), ~linger [s wall, 1],
-/// ~exit_when_done (true: exit ~linger seconds after the walk ends, so a launch with
-/// required="true" ends with it; false: stay up, walk_result stays available, until shutdown),
-/// ~reachability_samples (true: reachability_result carries the output samples of every slice,
-/// at most 500 per set and slice; false: boundaries only; true).
+/// policies with a check kinematic_feasibility, reach, ocp, nearest_foothold; default
+/// config/biped.yaml of the package), ~sim_config (YAML with a sim section, optional), ~policy (a
+/// walking policy: baseline|unbounded|kinematic|proposed[,part=value...]), ~steps, ~seed,
+/// ~forward_speed [m/s], ~push_vx, ~push_vy [m/s], ~publish_period [s of sim time, 0.01],
+/// ~clock_period [s, 0.001], ~marker_period [s, 0.1], ~wait_for_subscribers (N: wait until every
+/// topic has N subscribers, e.g. a recorder; 0), ~wait_for_com_subscribers (N: wait until com_state
+/// has N subscribers, e.g. + the planner), ~wait_timeout [s wall, 20], ~real_time_factor (0: as
+/// fast as possible), ~linger [s wall, 1], ~exit_when_done (true: exit ~linger seconds after the
+/// walk ends, so a launch with required="true" ends with it; false: stay up, walk_result stays
+/// available, until shutdown), ~reachability_samples (true: reachability_result carries the output
+/// samples of every slice, at most 500 per set and slice; false: boundaries only; true).
 /// ~in_process (true: the checked footsteps are planned in this process; false: through
 /// transition_ocp_node's plan_footstep service, which plans them as the in-process loop does and
 /// publishes the four check topics above itself; the simulation waits, in sim time, for each

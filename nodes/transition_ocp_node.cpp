@@ -128,10 +128,10 @@ class TransitionOcpNode {
           reach_pub_.publish(msgs.reachability);
           reach_marker_pub_.publish(msgs.markers);
           traj_pub_.publish(msgs.trajectory);
-          marker_pub_.publish(rb::transitionMarkers(
-              step.trajectory, *s_.model,
-              s_.model->frameId(rb::swingFrame(s_.contact, request.stance)),
-              static_cast<int>(req.marker_id), t0));
+          marker_pub_.publish(
+              rb::transitionMarkers(step.trajectory, *s_.model,
+                                    s_.model->frameId(rb::swingFrame(s_.contact, request.stance)),
+                                    static_cast<int>(req.marker_id), t0));
         },
         [&](const std::string& reason) {
           res = reach_trajopt::PlanFootstep::Response();

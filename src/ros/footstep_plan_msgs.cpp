@@ -18,8 +18,9 @@ namespace ros_bridge {
 
 namespace {
 
-const std::pair<OcpPolicy, const char*> kOcpPolicies[] = {
-    {OcpPolicy::kByVerdict, "by_verdict"}, {OcpPolicy::kStrict, "strict"}, {OcpPolicy::kAuto, "auto"}};
+const std::pair<OcpPolicy, const char*> kOcpPolicies[] = {{OcpPolicy::kByVerdict, "by_verdict"},
+                                                          {OcpPolicy::kStrict, "strict"},
+                                                          {OcpPolicy::kAuto, "auto"}};
 const std::pair<InfeasibleFootholdPolicy, const char*> kInfeasiblePolicies[] = {
     {InfeasibleFootholdPolicy::kNearestFeasible, "nearest_feasible"},
     {InfeasibleFootholdPolicy::kRelaxTowardTarget, "relax_toward_target"},
@@ -172,9 +173,9 @@ reach_trajopt::PlanFootstep::Response toPlanFootstepResponseMsg(const FootstepTr
   m.witness_valid = w.valid;
   if (w.valid) {
     const PathViolation& v = w.violation;
-    m.witness_violation = {v.dynamics,      v.cone,    v.torque,
-                           v.position_limit, v.velocity_limit, v.contact,
-                           v.contact_velocity, v.integration, v.ground};
+    m.witness_violation = {v.dynamics,         v.cone,           v.torque,
+                           v.position_limit,   v.velocity_limit, v.contact,
+                           v.contact_velocity, v.integration,    v.ground};
   }
   m.witness_position_gap = w.position_gap;
   m.witness_velocity_gap = w.velocity_gap;

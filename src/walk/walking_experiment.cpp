@@ -106,8 +106,9 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
           .add("seed", &C::seed, "",
                "seed of every random draw of the run (replaces reach.seed in the walk)")
           .add("max_sim_time", &C::max_sim_time, "s", "hard stop, > 0")
-          .removed("mode", "walk.mode was replaced by walk.policy (a preset: baseline, "
-                           "unbounded, kinematic, proposed)");
+          .removed("mode",
+                   "walk.mode was replaced by walk.policy (a preset: baseline, "
+                   "unbounded, kinematic, proposed)");
   return f;
 }
 
@@ -116,8 +117,8 @@ WalkConfig WalkConfig::fromYaml(const YamlSection& s) { return fields().read(s);
 std::string WalkResult::summaryLine() const {
   std::ostringstream os;
   os.precision(4);
-  os << "WALK mode=" << policy.name << " steps=" << steps
-     << " fell=" << (fell ? "yes" : "no") << " sim_s=" << sim_time << " wall_s=" << wall_time
+  os << "WALK mode=" << policy.name << " steps=" << steps << " fell=" << (fell ? "yes" : "no")
+     << " sim_s=" << sim_time << " wall_s=" << wall_time
      << " max_touchdown_err_m=" << max_touchdown_error << " qp_failures=" << qp_failures
      << " end=" << end_reason;
   if (policy.checksFoothold()) {
@@ -437,9 +438,9 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
     const FootstepTransition step =
         impl_.plan_footstep ? impl_.plan_footstep(request) : impl_.footsteps->plan(request);
     recordCheck(step);
-    const bool failed = !step.kinematically_feasible ||
-                        (policy.check == WalkingPolicy::FootholdCheck::kReachability &&
-                         !step.reachable);
+    const bool failed =
+        !step.kinematically_feasible ||
+        (policy.check == WalkingPolicy::FootholdCheck::kReachability && !step.reachable);
     Eigen::Vector2d foothold = xy(step.foothold);
     bool track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
     if (failed) {

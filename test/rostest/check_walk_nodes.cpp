@@ -128,7 +128,8 @@ int main(int argc, char** argv) {
         g_received.trajectory_publishers.push_back(e.getPublisherName());
       });
   const ros::Subscriber result = nh.subscribe<std_msgs::String>(
-      "walk_result", 1, [](const std_msgs::String::ConstPtr& m) { g_received.walk_line = m->data; });
+      "walk_result", 1,
+      [](const std_msgs::String::ConstPtr& m) { g_received.walk_line = m->data; });
   // Last: sim_node starts once com_state has this subscriber too (extra_com_subscribers).
   const ros::Subscriber com = nh.subscribe<reach_trajopt::CenterOfMassState>(
       "com_state", 10, [](const reach_trajopt::CenterOfMassState::ConstPtr&) {});

@@ -39,7 +39,8 @@ FootstepPlanRequest makeRequest(int nq) {
   FootstepPlanRequest r;
   r.stance = Side::kRight;
   r.stance_pose = Eigen::Isometry3d::Identity();
-  r.stance_pose.linear() = Eigen::AngleAxisd(0.1 / 3.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  r.stance_pose.linear() =
+      Eigen::AngleAxisd(0.1 / 3.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   r.stance_pose.translation() = awkward(3, 1);
   r.target = awkward(3, 2);
   r.target_yaw = 0.2 / 3.0;
@@ -158,7 +159,8 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   step.horizon = 0.2;
   WitnessPath& w = step.check.reach.witness;
   w.valid = true;
-  w.violation = PathViolation{1e-3 / 3, 2e-3 / 3, 3e-3 / 3, 0.0, 4e-3 / 3, 5e-3 / 3, 0.0, 6e-3 / 3, 7e-3 / 3};
+  w.violation =
+      PathViolation{1e-3 / 3, 2e-3 / 3, 3e-3 / 3, 0.0, 4e-3 / 3, 5e-3 / 3, 0.0, 6e-3 / 3, 7e-3 / 3};
   w.position_gap = 0.01 / 3;
   w.velocity_gap = 0.02 / 3;
   w.terminal_position_gap = 0.03 / 3;
@@ -168,10 +170,14 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   t.status = OcpStatus::kRelaxed;
   t.dt = 0.001;
   t.time = Eigen::VectorXd::LinSpaced(knots, 0.0, 0.006);
-  t.q = Eigen::Map<const Eigen::MatrixXd>(awkward(model->nq() * knots, 9).data(), model->nq(), knots);
-  t.qd = Eigen::Map<const Eigen::MatrixXd>(awkward(model->nq() * knots, 10).data(), model->nq(), knots);
-  t.qdd = Eigen::Map<const Eigen::MatrixXd>(awkward(model->nq() * knots, 11).data(), model->nq(), knots);
-  t.u = Eigen::Map<const Eigen::MatrixXd>(awkward(model->nu() * knots, 12).data(), model->nu(), knots);
+  t.q =
+      Eigen::Map<const Eigen::MatrixXd>(awkward(model->nq() * knots, 9).data(), model->nq(), knots);
+  t.qd = Eigen::Map<const Eigen::MatrixXd>(awkward(model->nq() * knots, 10).data(), model->nq(),
+                                           knots);
+  t.qdd = Eigen::Map<const Eigen::MatrixXd>(awkward(model->nq() * knots, 11).data(), model->nq(),
+                                            knots);
+  t.u = Eigen::Map<const Eigen::MatrixXd>(awkward(model->nu() * knots, 12).data(), model->nu(),
+                                          knots);
   t.lambda = Eigen::Map<const Eigen::MatrixXd>(awkward(12 * knots, 13).data(), 12, knots);
   t.eps = awkward(2, 14);
   t.landing_position = awkward(3, 15);

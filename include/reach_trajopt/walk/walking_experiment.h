@@ -87,7 +87,7 @@ struct StepRecord {
   /// The check failed and the policy's on_fail part chose the foothold ("clip_to_bounds",
   /// "nearest_feasible", "relaxed_ocp"); "" otherwise.
   std::string failed_check_action;
-  double hausdorff_distance = -1.0;     ///< [m], -1 when not computed
+  double hausdorff_distance = -1.0;  ///< [m], -1 when not computed
   /// What certifies a "reachable" verdict: "bridge" or "local_solve"
   /// (FootstepTransition::certificate), "" otherwise.
   std::string certificate;
