@@ -108,31 +108,28 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
   }
 }
 
+void onReport(const reach_trajopt::StepReport::ConstPtr& m) { g_received.reports.push_back(*m); }
+void onCheck(const ros::MessageEvent<const reach_trajopt::ReachabilityResult>& e) {
+  g_received.check_publishers.push_back(e.getPublisherName());
+}
+void onTrajectory(const ros::MessageEvent<const reach_trajopt::TransitionTrajectory>& e) {
+  g_received.trajectory_publishers.push_back(e.getPublisherName());
+}
+void onResult(const std_msgs::String::ConstPtr& m) { g_received.walk_line = m->data; }
+void onCom(const reach_trajopt::CenterOfMassState::ConstPtr&) {}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "check_walk_nodes");
   ros::NodeHandle nh;
-  const ros::Subscriber reports = nh.subscribe<reach_trajopt::StepReport>(
-      "step_report", 100,
-      [](const reach_trajopt::StepReport::ConstPtr& m) { g_received.reports.push_back(*m); });
-  const ros::Subscriber checks = nh.subscribe<reach_trajopt::ReachabilityResult>(
-      "reachability_result", 100,
-      [](const ros::MessageEvent<const reach_trajopt::ReachabilityResult>& e) {
-        g_received.check_publishers.push_back(e.getPublisherName());
-      });
-  const ros::Subscriber trajectories = nh.subscribe<reach_trajopt::TransitionTrajectory>(
-      "transition_trajectory", 100,
-      [](const ros::MessageEvent<const reach_trajopt::TransitionTrajectory>& e) {
-        g_received.trajectory_publishers.push_back(e.getPublisherName());
-      });
-  const ros::Subscriber result = nh.subscribe<std_msgs::String>(
-      "walk_result", 1,
-      [](const std_msgs::String::ConstPtr& m) { g_received.walk_line = m->data; });
+  const ros::Subscriber reports = nh.subscribe("step_report", 100, onReport);
+  const ros::Subscriber checks = nh.subscribe("reachability_result", 100, onCheck);
+  const ros::Subscriber trajectories = nh.subscribe("transition_trajectory", 100, onTrajectory);
+  const ros::Subscriber result = nh.subscribe("walk_result", 1, onResult);
   // Last: sim_node starts once com_state has this subscriber too (extra_com_subscribers).
-  const ros::Subscriber com = nh.subscribe<reach_trajopt::CenterOfMassState>(
-      "com_state", 10, [](const reach_trajopt::CenterOfMassState::ConstPtr&) {});
+  const ros::Subscriber com = nh.subscribe("com_state", 10, onCom);
   ros::AsyncSpinner spinner(1);
   spinner.start();
   const int rc = RUN_ALL_TESTS();

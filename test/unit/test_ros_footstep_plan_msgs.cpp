@@ -120,7 +120,8 @@ TEST(RosFootstepPlanMsgs, MalformedRequestsNameTheirField) {
   const int nq = model->nq();
   const ReachConfig reach;
   const auto good = rb::toPlanFootstepRequestMsg(makeRequest(nq), reach, ros::Time(0));
-  auto rejected = [&](const std::string& field, const std::function<void(decltype(good)&)>& edit) {
+  auto rejected = [&](const std::string& field,
+                      const std::function<void(reach_trajopt::PlanFootstep::Request&)>& edit) {
     auto m = good;
     edit(m);
     expectRejected([&] { rb::fromPlanFootstepRequestMsg(m, nq, reach); }, field);
