@@ -34,8 +34,9 @@
 /// transition_ocp_node's plan_footstep service, which plans them as the in-process loop does and
 /// publishes the four check topics above itself; the simulation waits, in sim time, for each
 /// answer; true), ~plan_service (the service's name, relative: remappable; plan_footstep).
-/// A call that fails (the node died or went away) is planned in process instead, with a
-/// warning, and its messages published here: the walk and the bag lose nothing.
+/// ~plan_retries (calls of a step repeated after a failed one, 0.1 s apart; 2). A step whose
+/// calls all fail (the node died or went away) is planned in process instead, with a warning,
+/// and its messages published here: the walk and the bag lose nothing.
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
@@ -113,6 +114,8 @@ int main(int argc, char** argv) {
     const bool reachability_samples = param(pnh, "reachability_samples", true);
     const bool in_process = param(pnh, "in_process", true);
     const std::string plan_service = param<std::string>(pnh, "plan_service", "plan_footstep");
+    const int plan_retries = param(pnh, "plan_retries", 2);
+    if (plan_retries < 0) throw ConfigError("~plan_retries must be >= 0");
     if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
       throw ConfigError("~publish_period, ~clock_period and ~marker_period must be > 0");
 
@@ -155,7 +158,9 @@ int main(int argc, char** argv) {
     const bool through_node = checks_footholds && !in_process;
     ros::ServiceClient plan_client;
     if (through_node) {
-      plan_client = nh.serviceClient<reach_trajopt::PlanFootstep>(plan_service, true);
+      // Not persistent: a connection per call (a millisecond beside a check of seconds) finds
+      // a restarted node.
+      plan_client = nh.serviceClient<reach_trajopt::PlanFootstep>(plan_service);
       if (!plan_client.waitForExistence(ros::Duration(wait_timeout)))
         throw ConfigError("~in_process is false but the service '" + plan_client.getService() +
                           "' (~plan_service) did not appear within ~wait_timeout = " +
@@ -263,15 +268,21 @@ int main(int argc, char** argv) {
         srv.request = rb::toPlanFootstepRequestMsg(request, local_planner->config().reach,
                                                    ros::Time(last_tick_time + setup.sim.time_step));
         srv.request.marker_id = static_cast<uint32_t>(executed.size() + 1);  // the step index
-        if (plan_client.call(srv)) {
-          // A rejected request is what the in-process planner throws for it.
-          if (!srv.response.success) throw RequestError(srv.response.message);
-          planned_here = false;
-          return rb::fromPlanFootstepResponseMsg(srv.response, request, model);
+        for (int attempt = 0; attempt <= plan_retries; ++attempt) {
+          if (attempt > 0) {
+            ROS_WARN("sim_node: the call of '%s' failed (attempt %d of %d)",
+                     plan_client.getService().c_str(), attempt, plan_retries + 1);
+            ros::WallDuration(0.1).sleep();
+          }
+          if (plan_client.call(srv)) {
+            // A rejected request is what the in-process planner throws for it.
+            if (!srv.response.success) throw RequestError(srv.response.message);
+            planned_here = false;
+            return rb::fromPlanFootstepResponseMsg(srv.response, request, model);
+          }
         }
-        ROS_WARN("sim_node: the call of '%s' failed; step %zu planned in process",
-                 plan_client.getService().c_str(), executed.size() + 1);
-        plan_client = nh.serviceClient<reach_trajopt::PlanFootstep>(plan_service, true);
+        ROS_WARN("sim_node: the call of '%s' failed %d times; step %zu planned in process",
+                 plan_client.getService().c_str(), plan_retries + 1, executed.size() + 1);
         planned_here = true;
         return local_planner->plan(request);
       });
