@@ -6,9 +6,10 @@
 ///   subscribes: com_state (CenterOfMassState), contact_state (ContactState: sole poses)
 ///   publishes:  contact_plan (ContactPlan)
 /// Parameters (private): ~config (YAML with sections planner and walk; default
-/// config/biped.yaml of the package), ~policy (a walking policy, walk/walking_policy.h: its bounds part switches the heuristic bounds),
-/// ~forward_speed [m/s] (desired CoM speed along x, drives p_des of eq. 11).
-/// The LIPM height is the CoM height measured at the first message, as in the walking loop.
+/// config/biped.yaml of the package), ~policy (a walking policy, walk/walking_policy.h: its bounds
+/// part switches the heuristic bounds), ~forward_speed [m/s] (desired CoM speed along x, drives
+/// p_des of eq. 11). The LIPM height is the CoM height measured at the first message, as in the
+/// walking loop.
 
 #include <ros/package.h>
 #include <ros/ros.h>

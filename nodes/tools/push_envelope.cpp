@@ -13,6 +13,8 @@
 /// per policy; --svg writes the polar figure, --csv every walk.
 /// Exit status: 0 ran, 2 bad input.
 
+#include "reach_trajopt/walk/push_envelope.h"
+
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -21,7 +23,6 @@
 #include <vector>
 
 #include "reach_trajopt/common/cli_args.h"
-#include "reach_trajopt/walk/push_envelope.h"
 
 using namespace reach_trajopt;
 
@@ -105,13 +106,12 @@ int main(int argc, char** argv) {
     }
     std::vector<PushEnvelope> envelopes;
     for (const WalkingPolicy& policy : list) {
-      const PushEnvelope env =
-          sweepPushes(setup, urdf, policy, grid, jobs, [&](const PushWalk& w) {
-            std::printf("walk %s push=(%.3f, %.3f) seed=%u steps=%d fell=%s wall_s=%.1f end=%s\n",
-                        policy.name.c_str(), w.push.x(), w.push.y(), grid.seeds[w.seed], w.steps,
-                        w.fell ? "yes" : "no", w.wall_s, w.end_reason.c_str());
-            std::fflush(stdout);
-          });
+      const PushEnvelope env = sweepPushes(setup, urdf, policy, grid, jobs, [&](const PushWalk& w) {
+        std::printf("walk %s push=(%.3f, %.3f) seed=%u steps=%d fell=%s wall_s=%.1f end=%s\n",
+                    policy.name.c_str(), w.push.x(), w.push.y(), grid.seeds[w.seed], w.steps,
+                    w.fell ? "yes" : "no", w.wall_s, w.end_reason.c_str());
+        std::fflush(stdout);
+      });
       std::printf("%s\n", env.benchLine().c_str());
       std::fflush(stdout);
       for (const PushWalk& w : env.walks)

@@ -200,8 +200,8 @@ reach_trajopt::ContactState toContactStateMsg(const WalkTick& tick, const ros::T
   return m;
 }
 
-reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, const WalkingPolicy& policy, bool fell,
-                                          double ground_z) {
+reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, const WalkingPolicy& policy,
+                                          bool fell, double ground_z) {
   reach_trajopt::StepReport m;
   m.header.frame_id = kWorldFrame;
   const double stamp = r.touched_down ? r.touchdown_time : r.plan_time;

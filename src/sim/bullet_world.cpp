@@ -289,9 +289,8 @@ void BulletWorld::build() {
       bt->dispatcher.get(), bt->broadphase.get(), bt->solver.get(), bt->collision_config.get());
   bt->world->setGravity(toBt(config_.gravity));
   bt->world->getSolverInfo().m_numIterations = config_.solver_iterations;
-  const bool self_collision =
-      std::find(body_leg_.begin(), body_leg_.end(), 0) != body_leg_.end() &&
-      std::find(body_leg_.begin(), body_leg_.end(), 1) != body_leg_.end();
+  const bool self_collision = std::find(body_leg_.begin(), body_leg_.end(), 0) != body_leg_.end() &&
+                              std::find(body_leg_.begin(), body_leg_.end(), 1) != body_leg_.end();
   bt->addMultiBody(tree_, config_, floating_, self_collision);
   bt->addColliders(tree_, config_, body_leg_);
   if (config_.joint_limits) bt->addJointLimits(tree_);
@@ -492,7 +491,7 @@ void BulletWorld::recordLegContact(const btPersistentManifold& manifold, int bod
     const auto link = [&](int k, int child) -> const std::string& {
       const SimBody& body = tree_.bodies[k];
       return child >= 0 && child < static_cast<int>(body.shapes.size()) ? body.shapes[child].link
-                                                                          : body.name;
+                                                                        : body.name;
     };
     const std::string a = link(body0, pt.m_index0), b = link(body1, pt.m_index1);
     const std::string pair = a < b ? a + "/" + b : b + "/" + a;

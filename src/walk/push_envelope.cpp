@@ -80,8 +80,8 @@ std::string PushEnvelope::benchLine() const {
   os << " directions=" << grid.directions << " magnitudes_mps=";
   for (std::size_t m = 0; m < grid.magnitudes.size(); ++m)
     os << (m ? "/" : "") << grid.magnitudes[m];
-  os << " seeds=" << grid.seeds.size() << " steps=" << grid.steps << " walks_wall_s=" << wall
-     << " " << policy.definition();
+  os << " seeds=" << grid.seeds.size() << " steps=" << grid.steps << " walks_wall_s=" << wall << " "
+     << policy.definition();
   return os.str();
 }
 
@@ -210,8 +210,7 @@ std::string envelopeSvg(const std::vector<PushEnvelope>& envelopes) {
         const char* color = ok == all ? "#2a9d3a" : (ok > 0 ? "#e0a800" : "#d62828");
         double x, y;
         at(e.grid.angle(d), e.grid.magnitudes[m], x, y);
-        os << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"5\" fill=\"" << color
-           << "\"/>\n";
+        os << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"5\" fill=\"" << color << "\"/>\n";
       }
     os << "<text x=\"" << cx << "\" y=\"" << cy - r_max - 16
        << "\" text-anchor=\"middle\" fill=\"#555\" font-size=\"10\">+x (forward)</text>\n"

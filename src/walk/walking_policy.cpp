@@ -23,8 +23,9 @@ const Names<bool>& boundNames() {
   return n;
 }
 const Names<Check>& checkNames() {
-  static const Names<Check> n = {
-      {"none", Check::kNone}, {"kinematic", Check::kKinematic}, {"reachability", Check::kReachability}};
+  static const Names<Check> n = {{"none", Check::kNone},
+                                 {"kinematic", Check::kKinematic},
+                                 {"reachability", Check::kReachability}};
   return n;
 }
 const Names<OnFail>& onFailNames() {
@@ -135,7 +136,8 @@ const char* WalkingPolicy::actionName(OnFailedCheck action) {
 
 std::string WalkingPolicy::definition() const {
   std::ostringstream os;
-  os << "bounds=" << nameOf(boundNames(), heuristic_bounds) << " check=" << nameOf(checkNames(), check)
+  os << "bounds=" << nameOf(boundNames(), heuristic_bounds)
+     << " check=" << nameOf(checkNames(), check)
      << " on_fail=" << (checksFoothold() ? nameOf(onFailNames(), on_failed_check) : "-")
      << " swing=" << nameOf(swingNames(), swing);
   return os.str();

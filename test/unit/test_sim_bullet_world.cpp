@@ -122,8 +122,8 @@ TEST(SimBulletWorld, FreeFallStepMatchesModelDynamics) {
   const Eigen::Vector3d g(0, 0, -9.81);
   const auto model = loadModel(g);
   SimConfig config = defaultConfig(g);
-  config.contacts = false;      // no ground
-  config.joint_limits = false;  // only eq. (1), no limit impulses
+  config.contacts = false;            // no ground
+  config.joint_limits = false;        // only eq. (1), no limit impulses
   config.leg_self_collision = false;  // random postures cross the legs
   auto world = BulletWorld::fromUrdfFile(kUrdf, *model, config);
   const double dt = world->timeStep();
@@ -409,7 +409,8 @@ double segmentDistance(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
   double best = 1e9;
   for (int i = 0; i <= 200; ++i)
     for (int j = 0; j <= 200; ++j)
-      best = std::min(best, ((a0 + (a1 - a0) * (i / 200.0)) - (b0 + (b1 - b0) * (j / 200.0))).norm());
+      best =
+          std::min(best, ((a0 + (a1 - a0) * (i / 200.0)) - (b0 + (b1 - b0) * (j / 200.0))).norm());
   return best;
 }
 

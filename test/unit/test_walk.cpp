@@ -86,11 +86,11 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
   EXPECT_GT(std::max(last.executed.x(), r.records[r.records.size() - 2].executed.x()), 0.3);
 }
 
-// A run on the shipped configuration (config/biped.yaml) with a walking `policy`, with the check drawing
-// `samples` initial samples (the paper's 1e4 in the shipped file), from a push (initial CoM
+// A run on the shipped configuration (config/biped.yaml) with a walking `policy`, with the check
+// drawing `samples` initial samples (the paper's 1e4 in the shipped file), from a push (initial CoM
 // velocity [m/s]) or at a commanded forward speed [m/s].
-WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2d& push, int samples,
-                      double forward_speed = 0.0, unsigned seed = 1) {
+WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2d& push,
+                      int samples, double forward_speed = 0.0, unsigned seed = 1) {
   WalkSetup setup =
       WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   setup.walk.policy = WalkingPolicy::parse(policy);
@@ -129,16 +129,14 @@ TEST(WalkingExperiment, ProposedWalksInPlaceTwentySteps) {
   // The proposed pipeline end to end on the shipped configuration: every step is checked
   // (kinematics, then reachability) 0.2 s before touchdown, the OCP's trajectory (strict or
   // relaxed) is tracked, and the sole lands where that trajectory ends.
-  const WalkResult r =
-      runShipped("proposed", 20, Eigen::Vector2d::Zero(), 2000, 0.0);
+  const WalkResult r = runShipped("proposed", 20, Eigen::Vector2d::Zero(), 2000, 0.0);
   EXPECT_FALSE(r.fell) << r.summaryLine();
   ASSERT_EQ(r.steps, 20) << r.summaryLine();
   expectCheckedAndTracked(r, 2);
 }
 
 TEST(WalkingExperiment, ProposedWalksForwardTwentySteps) {
-  const WalkResult r =
-      runShipped("proposed", 20, Eigen::Vector2d::Zero(), 2000, 0.4);
+  const WalkResult r = runShipped("proposed", 20, Eigen::Vector2d::Zero(), 2000, 0.4);
   EXPECT_FALSE(r.fell) << r.summaryLine();
   ASSERT_EQ(r.steps, 20) << r.summaryLine();
   expectCheckedAndTracked(r, 2);
@@ -230,8 +228,8 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
   // kinematic check and on_fail=clip_to_bounds those are moved into the heuristic bounds of
   // config/biped.yaml (|x| <= 0.42 m, 0.25 <= |y| <= 0.65 m towards the swing side from the
   // stance sole), the others are left as TVR planned them.
-  const WalkResult r =
-      runShipped("unbounded,check=kinematic,on_fail=clip_to_bounds", 4, Eigen::Vector2d(0, 0.4), 300);
+  const WalkResult r = runShipped("unbounded,check=kinematic,on_fail=clip_to_bounds", 4,
+                                  Eigen::Vector2d(0, 0.4), 300);
   EXPECT_EQ(r.policy.name, "custom");
   int clipped = 0;
   for (const StepRecord& s : r.records) {

@@ -84,7 +84,8 @@ TEST(WalkingPolicy, ErrorsNameTheToken) {
     EXPECT_NE(std::string(e.what()).find("w.yaml: walk.policy"), std::string::npos) << e.what();
   }
   try {
-    WalkConfig::fromYaml(YamlSection::loadString("walk: {mode: proposed}", "w.yaml").section("walk"));
+    WalkConfig::fromYaml(
+        YamlSection::loadString("walk: {mode: proposed}", "w.yaml").section("walk"));
     ADD_FAILURE() << "no error";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("walk.policy"), std::string::npos) << e.what();
@@ -137,7 +138,8 @@ TEST(PushEnvelope, RadiusIsTheLargestPushBelowTheFirstFall) {
   EXPECT_EQ(e.pushes(), 24);
   EXPECT_EQ(e.survived(), 24 - 1 - 2 - 6);
   const std::string line = e.benchLine();
-  EXPECT_EQ(line.rfind("BENCH walk.envelope preset=baseline pushes=24 survived=15 ", 0), 0u) << line;
+  EXPECT_EQ(line.rfind("BENCH walk.envelope preset=baseline pushes=24 survived=15 ", 0), 0u)
+      << line;
   const std::string svg = envelopeSvg({e});
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("15/24 survived"), std::string::npos);

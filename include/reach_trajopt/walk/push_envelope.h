@@ -17,25 +17,25 @@ namespace reach_trajopt {
 
 /// The grid of pushes.
 struct PushGrid {
-  int directions = 8;                                 ///< evenly spaced, the first along +x
+  int directions = 8;                                ///< evenly spaced, the first along +x
   std::vector<double> magnitudes = {0.2, 0.4, 0.6};  ///< [m/s], increasing, > 0
   std::vector<unsigned> seeds = {1, 2};              ///< WalkConfig::seed of each walk
-  int steps = 20;                                     ///< footsteps per walk
+  int steps = 20;                                    ///< footsteps per walk
   /// \throws RequestError naming the bad field.
   void validate() const;
-  double angle(int direction) const;  ///< [rad] from +x
+  double angle(int direction) const;                         ///< [rad] from +x
   Eigen::Vector2d push(int direction, int magnitude) const;  ///< [m/s]
 };
 
 /// One walk of the sweep.
 struct PushWalk {
-  int direction = 0, magnitude = 0, seed = 0;  ///< grid indices
+  int direction = 0, magnitude = 0, seed = 0;      ///< grid indices
   Eigen::Vector2d push = Eigen::Vector2d::Zero();  ///< [m/s]
   bool fell = false;
   int steps = 0;           ///< touchdowns
   std::string end_reason;  ///< WalkResult::end_reason
   double wall_s = 0.0;
-  bool repeated = false;   ///< a policy without random draws: the first seed's walk, reused
+  bool repeated = false;  ///< a policy without random draws: the first seed's walk, reused
 };
 
 /// The envelope of one policy.
