@@ -119,7 +119,8 @@ class TransitionOcpNode {
               rb::fromPlanFootstepRequestMsg(req, s_.model->nq(), s_.reach);
           const FootstepTransition step = s_.planner->plan(request);
           res = rb::toPlanFootstepResponseMsg(step, *s_.model, s_.contact, t0);
-          if (!req.check_reachability) return;
+          // The four check topics of every planned step, as sim_node publishes them when it
+          // plans in process (also for a kinematic-only check).
           StepRecord record;  // what the messages need of the walk's record: the swing side
           record.swing = opposite(request.stance);
           const rb::ProposedStepMsgs msgs =
