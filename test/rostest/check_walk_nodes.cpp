@@ -1,4 +1,4 @@
-// rostest checker of walk_nodes.test and walk_nodes_killed.test (a gtest executable run by
+// rostest checker of walk_nodes.test and killed_node_walk.test (a gtest executable run by
 // rostest): the walk of walk.launch with ~in_process false (every checked footstep planned by
 // transition_ocp_node's plan_footstep) gives the same WALK line and the same step records, byte
 // for byte, as the same scenario run in process here, and every checked step's messages
