@@ -29,8 +29,15 @@
 /// fast as possible), ~linger [s wall, 1], ~exit_when_done (true: exit ~linger seconds after the
 /// walk ends, so a launch with required="true" ends with it; false: stay up, walk_result stays
 /// available, until shutdown), ~reachability_samples (true: reachability_result carries the output
-/// samples of every slice, at most 500 per set and slice; false: boundaries only; true). The robot
-/// is read from the `robot_description` parameter (URDF text).
+/// samples of every slice, at most 500 per set and slice; false: boundaries only; true).
+/// ~in_process (true: the checked footsteps are planned in this process; false: through
+/// transition_ocp_node's plan_footstep service, which plans them as the in-process loop does and
+/// publishes the four check topics above itself; the simulation waits, in sim time, for each
+/// answer; true), ~plan_service (the service's name, relative: remappable; plan_footstep).
+/// ~plan_retries (calls of a step repeated after a failed one, 0.1 s apart; 2). A step whose
+/// calls all fail (the node died or went away) is planned in process instead, with a warning,
+/// and its messages published here: the walk and the bag lose nothing.
+/// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -43,8 +50,10 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
@@ -103,6 +112,10 @@ int main(int argc, char** argv) {
     const double linger = param(pnh, "linger", 1.0);
     const bool exit_when_done = param(pnh, "exit_when_done", true);
     const bool reachability_samples = param(pnh, "reachability_samples", true);
+    const bool in_process = param(pnh, "in_process", true);
+    const std::string plan_service = param<std::string>(pnh, "plan_service", "plan_footstep");
+    const int plan_retries = param(pnh, "plan_retries", 2);
+    if (plan_retries < 0) throw ConfigError("~plan_retries must be >= 0");
     if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
       throw ConfigError("~publish_period, ~clock_period and ~marker_period must be > 0");
 
@@ -139,6 +152,20 @@ int main(int argc, char** argv) {
       pubs.insert(pubs.end(), {&reach_pub, &reach_marker_pub, &traj_pub, &traj_marker_pub});
     }
     tf2_ros::TransformBroadcaster tf_broadcaster;
+
+    // The checked footsteps through transition_ocp_node (~in_process false).
+    const FootstepTransitionPlanner* local_planner = experiment.footstepPlanner();
+    const bool through_node = checks_footholds && !in_process;
+    ros::ServiceClient plan_client;
+    if (through_node) {
+      // Not persistent: a connection per call (a millisecond beside a check of seconds) finds
+      // a restarted node.
+      plan_client = nh.serviceClient<reach_trajopt::PlanFootstep>(plan_service);
+      if (!plan_client.waitForExistence(ros::Duration(wait_timeout)))
+        throw ConfigError("~in_process is false but the service '" + plan_client.getService() +
+                          "' (~plan_service) did not appear within ~wait_timeout = " +
+                          std::to_string(wait_timeout) + " s");
+    }
 
     if (wait_for_subscribers > 0 || wait_for_com_subscribers > 0) {
       const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_timeout);
@@ -233,9 +260,37 @@ int main(int argc, char** argv) {
     };
 
     // The walking loop checks a step at the start of a control tick, before that tick's
-    // on_tick: its sim time is the last tick's plus one time step. The foothold lies on the
-    // ground at the stance sole's height.
+    // on_tick: its sim time is the last tick's plus one time step.
+    bool planned_here = true;  // the last checked step was planned in this process
+    if (through_node)
+      experiment.setFootstepPlanner([&](const FootstepPlanRequest& request) {
+        reach_trajopt::PlanFootstep srv;
+        srv.request = rb::toPlanFootstepRequestMsg(request, local_planner->config().reach,
+                                                   ros::Time(last_tick_time + setup.sim.time_step));
+        srv.request.marker_id = static_cast<uint32_t>(executed.size() + 1);  // the step index
+        for (int attempt = 0; attempt <= plan_retries; ++attempt) {
+          if (attempt > 0) {
+            ROS_WARN("sim_node: the call of '%s' failed (attempt %d of %d)",
+                     plan_client.getService().c_str(), attempt, plan_retries + 1);
+            ros::WallDuration(0.1).sleep();
+          }
+          if (plan_client.call(srv)) {
+            // A rejected request is what the in-process planner throws for it.
+            if (!srv.response.success) throw RequestError(srv.response.message);
+            planned_here = false;
+            return rb::fromPlanFootstepResponseMsg(srv.response, request, model);
+          }
+        }
+        ROS_WARN("sim_node: the call of '%s' failed %d times; step %zu planned in process",
+                 plan_client.getService().c_str(), plan_retries + 1, executed.size() + 1);
+        planned_here = true;
+        return local_planner->plan(request);
+      });
+
+    // The check's messages of a step planned here (transition_ocp_node publishes those it
+    // plans). The foothold lies on the ground at the stance sole's height.
     auto onCheck = [&](const StepRecord& r, const FootstepTransition& step) {
+      if (!planned_here) return;
       const ros::Time stamp(last_tick_time + setup.sim.time_step);
       const Eigen::Vector3d foothold =
           rb::checkedFoothold(r, sole_z[static_cast<int>(opposite(r.swing))]);

@@ -2,6 +2,10 @@
 /// service, optionally seeded by the reachability witness, with the relaxation of an
 /// unreachable foothold (the robot steps to the closest reachable point).
 ///   service plan_transition (reach_trajopt/PlanTransition)
+///   service plan_footstep (reach_trajopt/PlanFootstep): one checked footstep of the walking
+///   loop through the whole per-step pipeline (step/footstep_transition_planner.h), as the
+///   in-process loop plans it (sim_node ~in_process:=false calls it); it also publishes
+///   reachability_markers (MarkerArray: the check's sets, witness and foothold)
 ///   publishes transition_trajectory (TransitionTrajectory), transition_markers (MarkerArray:
 ///   the swing sole's path and landing) and, when the check ran, reachability_result
 /// x_f is the kinematic feasibility solution (Sec. III-B) with the swing sole on the foothold.
@@ -9,7 +13,9 @@
 /// success = false and the reason; the node keeps serving.
 /// Parameters (private): ~config (YAML with sections contact, kinematic_feasibility, reach,
 /// optionally walk and ocp; default config/biped.yaml of the package), ~default_horizon [s]
-/// (t_f - t_0 when the request gives 0; default: the reach horizon), ~ground_tolerance [m].
+/// (t_f - t_0 when the request gives 0; default: the reach horizon), ~ground_tolerance [m],
+/// ~reachability_samples (plan_footstep's reachability_result carries the output samples of
+/// every slice, at most 500 per set and slice; false: boundaries only; true).
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
@@ -17,12 +23,15 @@
 #include <memory>
 #include <string>
 
+#include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
+#include "reach_trajopt/ros/proposed_step_msgs.h"
 #include "reach_trajopt/ros/service_requests.h"
 
 using namespace reach_trajopt;
@@ -35,10 +44,14 @@ class TransitionOcpNode {
   TransitionOcpNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
       : s_(rb::FootholdServiceSetup::load(nh, pnh)), default_horizon_(s_.reach.horizon) {
     pnh.getParam("default_horizon", default_horizon_);
-    traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 10);
-    reach_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 10);
-    marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("transition_markers", 10);
+    pnh.getParam("reachability_samples", reachability_samples_);
+    // Queues for a recorder of a walk (one message of each per step).
+    traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
+    reach_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
+    reach_marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 100);
+    marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("transition_markers", 100);
     server_ = nh.advertiseService("plan_transition", &TransitionOcpNode::plan, this);
+    footstep_server_ = nh.advertiseService("plan_footstep", &TransitionOcpNode::planFootstep, this);
   }
 
  private:
@@ -94,10 +107,49 @@ class TransitionOcpNode {
         });
   }
 
+  // One footstep of a walk: the loop's request, planned as in process; the messages of the
+  // check and the OCP published as sim_node publishes them in process.
+  bool planFootstep(reach_trajopt::PlanFootstep::Request& req,
+                    reach_trajopt::PlanFootstep::Response& res) {
+    const ros::Time t0 = req.header.stamp;
+    return rb::answerOrReject(
+        "plan_footstep",
+        [&] {
+          const FootstepPlanRequest request =
+              rb::fromPlanFootstepRequestMsg(req, s_.model->nq(), s_.reach);
+          const FootstepTransition step = s_.planner->plan(request);
+          res = rb::toPlanFootstepResponseMsg(step, *s_.model, s_.contact, t0);
+          // The four check topics of every planned step, as sim_node publishes them when it
+          // plans in process (also for a kinematic-only check).
+          StepRecord record;  // what the messages need of the walk's record: the swing side
+          record.swing = opposite(request.stance);
+          const rb::ProposedStepMsgs msgs =
+              rb::toProposedStepMsgs(*s_.model, s_.contact, record, step, request.target,
+                                     request.reach->delta, t0, reachability_samples_);
+          reach_pub_.publish(msgs.reachability);
+          reach_marker_pub_.publish(msgs.markers);
+          traj_pub_.publish(msgs.trajectory);
+          marker_pub_.publish(
+              rb::transitionMarkers(step.trajectory, *s_.model,
+                                    s_.model->frameId(rb::swingFrame(s_.contact, request.stance)),
+                                    static_cast<int>(req.marker_id), t0));
+        },
+        [&](const std::string& reason) {
+          res = reach_trajopt::PlanFootstep::Response();
+          res.success = false;
+          res.message = reason;
+          res.trajectory.header.stamp = t0;
+          res.trajectory.header.frame_id = rb::kWorldFrame;
+          res.trajectory.status = "error";
+          res.trajectory.message = reason;
+        });
+  }
+
   const rb::FootholdServiceSetup s_;
   double default_horizon_;
-  ros::Publisher traj_pub_, reach_pub_, marker_pub_;
-  ros::ServiceServer server_;
+  bool reachability_samples_ = true;
+  ros::Publisher traj_pub_, reach_pub_, reach_marker_pub_, marker_pub_;
+  ros::ServiceServer server_, footstep_server_;
 };
 
 }  // namespace

@@ -60,6 +60,18 @@ void appendRowMajor(const Eigen::MatrixXd& M, std::vector<double>& out) {
     for (Eigen::Index i = 0; i < M.rows(); ++i) out.push_back(M(i, k));
 }
 
+// Knot-major rows of a message (N x rows) into a rows x N matrix (one column per knot); an
+// empty field (a result that did not fill it) gives an empty matrix.
+Eigen::MatrixXd fromRowMajor(const std::vector<double>& v, Eigen::Index rows, Eigen::Index knots,
+                             const std::string& field) {
+  if (v.empty()) return Eigen::MatrixXd();
+  if (v.size() != static_cast<size_t>(rows * knots))
+    throw ReachError("transition trajectory: " + field + " has " + std::to_string(v.size()) +
+                     " numbers, expected " + std::to_string(knots) + " knots x " +
+                     std::to_string(rows));
+  return Eigen::Map<const Eigen::MatrixXd>(v.data(), rows, knots);
+}
+
 }  // namespace
 
 FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
@@ -267,8 +279,10 @@ reach_trajopt::TransitionTrajectory toTransitionTrajectoryMsg(
   }
   m.contact_frames = lambda_frames;
   m.time.assign(r.time.data(), r.time.data() + r.time.size());
+  m.dt = r.dt;
   appendRowMajor(r.q, m.q);
   appendRowMajor(r.qd, m.qd);
+  appendRowMajor(r.qdd, m.qdd);
   appendRowMajor(r.u, m.u);
   appendRowMajor(r.lambda, m.lambda);
   const ConstraintViolations& v = r.violation;
@@ -283,6 +297,42 @@ reach_trajopt::TransitionTrajectory toTransitionTrajectoryMsg(
   m.iterations = r.iterations;
   m.solve_time = r.solve_time;
   return m;
+}
+
+TransitionResult fromTransitionTrajectoryMsg(const reach_trajopt::TransitionTrajectory& m,
+                                             const RobotModel& model) {
+  TransitionResult r;
+  if (m.status == ocpStatusName(OcpStatus::kConverged))
+    r.status = OcpStatus::kConverged;
+  else if (m.status == ocpStatusName(OcpStatus::kRelaxed))
+    r.status = OcpStatus::kRelaxed;
+  else if (m.status == ocpStatusName(OcpStatus::kFailed))
+    r.status = OcpStatus::kFailed;
+  else
+    throw ReachError("transition trajectory: unknown status '" + m.status + "'");
+  r.relaxed = r.status == OcpStatus::kRelaxed;
+  r.reason = m.message;
+  r.eps = Eigen::Vector2d(m.relaxation.x, m.relaxation.y);
+  r.landing_position = fromPointMsg(m.final_foothold);
+  const Eigen::Index knots = static_cast<Eigen::Index>(m.time.size());
+  r.dt = m.dt;
+  r.time = Eigen::Map<const Eigen::VectorXd>(m.time.data(), knots);
+  r.q = fromRowMajor(m.q, model.nq(), knots, "q");
+  r.qd = fromRowMajor(m.qd, model.nq(), knots, "qd");
+  r.qdd = fromRowMajor(m.qdd, model.nq(), knots, "qdd");
+  r.u = fromRowMajor(m.u, model.nu(), knots, "u");
+  const Eigen::Index lambda_rows =
+      knots > 0 ? static_cast<Eigen::Index>(m.lambda.size()) / knots : 0;
+  r.lambda = fromRowMajor(m.lambda, lambda_rows, knots, "lambda");
+  r.violation.dynamics = m.max_dynamics_violation;  // the message keeps the largest of each pair
+  r.violation.stance_contact = m.max_contact_violation;
+  r.violation.stance_cone = m.max_cone_violation;
+  r.violation.torque = m.max_torque_violation;
+  r.violation.reachable_set = m.max_reach_violation;
+  r.cost = m.cost;
+  r.iterations = m.iterations;
+  r.solve_time = m.solve_time;
+  return r;
 }
 
 }  // namespace ros_bridge

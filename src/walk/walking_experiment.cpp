@@ -152,6 +152,7 @@ std::string WalkResult::summaryLine() const {
 
 struct WalkingExperiment::Impl {
   std::unique_ptr<FootstepTransitionPlanner> footsteps;  ///< policies with a check
+  FootstepPlanFunction plan_footstep;  ///< who plans the checked steps (empty: footsteps)
   WalkConfig walk;
   TvrConfig tvr_config;
   ContactConfig contact;
@@ -193,6 +194,14 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
 }
 
 WalkingExperiment::~WalkingExperiment() = default;
+
+void WalkingExperiment::setFootstepPlanner(FootstepPlanFunction plan) {
+  impl_->plan_footstep = std::move(plan);
+}
+
+const FootstepTransitionPlanner* WalkingExperiment::footstepPlanner() const {
+  return impl_->footsteps.get();
+}
 
 namespace {
 
@@ -419,12 +428,15 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
   current_.offset_clipped = step.offset_clipped;
 }
 
-// The policy's footstep check; the simulation waits (in sim time) for it and the OCP.
+// The policy's footstep check (in process or through setFootstepPlanner's function); the
+// simulation waits (in sim time) for it and the OCP.
 void WalkingExperiment::Loop::checkStep(double t, double ts) {
   checked_ = true;
   const WalkingPolicy& policy = wc_.policy;
   try {
-    const FootstepTransition step = impl_.footsteps->plan(footstepRequest(ts));
+    const FootstepPlanRequest request = footstepRequest(ts);
+    const FootstepTransition step =
+        impl_.plan_footstep ? impl_.plan_footstep(request) : impl_.footsteps->plan(request);
     recordCheck(step);
     const bool failed =
         !step.kinematically_feasible ||

@@ -1,7 +1,9 @@
 // rostest checker of bad_requests.test (a gtest executable run by rostest): both service nodes
 // get a few thousand malformed or over-limit requests, each must be rejected (success = false,
 // a reason) without the node growing (resident memory read from /proc/<pid>/status) or
-// stopping, and then a valid request must still be answered. Prints the BENCH line.
+// stopping, and then a valid request must still be answered. Prints the BENCH line. The
+// walking loop's plan_footstep gets malformed requests too, each rejected naming its field,
+// then a valid one.
 
 #include <dirent.h>
 #include <gtest/gtest.h>
@@ -18,7 +20,11 @@
 #include <vector>
 
 #include "reach_trajopt/CheckReachability.h"
+#include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
+#include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ros/footstep_plan_msgs.h"
+#include "reach_trajopt/walk/standing_pose.h"
 
 namespace {
 
@@ -201,11 +207,69 @@ TEST(BadRequests, LongestAllowedSwingKeepsTheTimeLimit) {
   EXPECT_LT(seconds, 10.0 + 5.0) << srv.response.message;
 }
 
+// plan_footstep (the walking loop's per-step service of transition_ocp_node): each malformed
+// request is rejected naming its field; the node then answers a valid one.
+TEST(BadRequests, PlanFootstepRejectsNamingTheFieldAndServesOn) {
+  using namespace reach_trajopt;
+  ros::NodeHandle nh;
+  std::string urdf;
+  ASSERT_TRUE(nh.getParam("robot_description", urdf));
+  const auto model = RobotModel::fromUrdfString(urdf, {}, "robot_description");
+  // Standing on the left sole, the right one to land beside it (kinematic check only: fast).
+  FootstepPlanRequest request;
+  request.stance = Side::kLeft;
+  request.q = standingConfiguration(*model, 0.6, "l_sole");
+  request.qd = Eigen::VectorXd::Zero(model->nq());
+  Workspace ws(*model);
+  model->update(ws, request.q, request.qd);
+  request.stance_pose = model->framePose(ws, model->frameId("l_sole"));
+  request.target = model->framePose(ws, model->frameId("r_sole")).translation();
+  request.check_reachability = false;
+  request.solve_ocp = false;
+  const reach_trajopt::PlanFootstep::Request valid =
+      ros_bridge::toPlanFootstepRequestMsg(request, ReachConfig(), ros::Time(0));
+  const std::vector<
+      std::pair<std::string, std::function<void(reach_trajopt::PlanFootstep::Request&)>>>
+      kinds = {
+          {"header.frame_id", [](auto& r) { r.header.frame_id = "map"; }},
+          {"stance", [](auto& r) { r.stance = "SS-L"; }},
+          {"stance_pose", [](auto& r) { r.stance_pose.assign(3, 0.0); }},
+          {"stance_pose", [](auto& r) { r.stance_pose[4] = 5.0; }},
+          {"target", [](auto& r) { r.target.x = kNaN; }},
+          {"target_yaw", [](auto& r) { r.target_yaw = {kInf}; }},
+          {"q", [](auto& r) { r.q.assign(200000, 0.0); }},
+          {"qd", [](auto& r) { r.qd[0] = kNaN; }},
+          {"touchdown_com", [](auto& r) { r.touchdown_com = {1.0}; }},
+          {"horizon", [](auto& r) { r.horizon = 1e9; }},
+          {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
+          {"seed", [](auto& r) { r.seed = -5; }},
+          {"ocp_policy", [](auto& r) { r.ocp_policy = "sometimes"; }},
+          {"on_infeasible", [](auto& r) { r.on_infeasible = "panic"; }},
+      };
+  for (const auto& [field, edit] : kinds) {
+    reach_trajopt::PlanFootstep srv;
+    srv.request = valid;
+    edit(srv.request);
+    ASSERT_TRUE(ros::service::call("plan_footstep", srv)) << "stopped serving at " << field;
+    EXPECT_FALSE(srv.response.success) << field;
+    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
+        << field << ": " << srv.response.message;
+    EXPECT_EQ(srv.response.trajectory.status, "error") << field;
+  }
+  reach_trajopt::PlanFootstep srv;
+  srv.request = valid;
+  ASSERT_TRUE(ros::service::call("plan_footstep", srv));
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(srv.response.verdict, srv.response.kinematically_feasible ? "kinematically_feasible"
+                                                                      : "kinematically_infeasible");
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "check_bad_requests");
   if (!ros::service::waitForService("check_reachability", ros::Duration(120)) ||
-      !ros::service::waitForService("plan_transition", ros::Duration(120))) {
+      !ros::service::waitForService("plan_transition", ros::Duration(120)) ||
+      !ros::service::waitForService("plan_footstep", ros::Duration(120))) {
     std::fprintf(stderr, "the services did not come up\n");
     return 1;
   }

@@ -114,5 +114,11 @@ reach_trajopt::TransitionTrajectory toTransitionTrajectoryMsg(
     const TransitionResult& result, const RobotModel& model,
     const std::vector<std::string>& lambda_frames, const ros::Time& t0);
 
+/// A TransitionResult from a TransitionTrajectory message (status, knots, q, qd, qdd, u,
+/// lambda, relaxation, landing, cost, iterations, solve time; its message as the reason).
+/// \throws ReachError naming the field of a matrix whose size does not fit `model`.
+TransitionResult fromTransitionTrajectoryMsg(const reach_trajopt::TransitionTrajectory& m,
+                                             const RobotModel& model);
+
 }  // namespace ros_bridge
 }  // namespace reach_trajopt

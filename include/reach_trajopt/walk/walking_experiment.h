@@ -153,6 +153,19 @@ class WalkingExperiment {
       const std::function<void(const StepRecord&)>& on_step = {},
       const std::function<void(const StepRecord&, const FootstepTransition&)>& on_check = {});
 
+  /// Plans one checked footstep (the check, the OCP and their fallbacks) for the loop; it
+  /// throws ReachError for a request it rejects (the step then goes on unchecked, verdict
+  /// "check_error", as with the in-process planner).
+  using FootstepPlanFunction = std::function<FootstepTransition(const FootstepPlanRequest&)>;
+  /// Who plans the checked footsteps of the next runs: `plan` (e.g. a ROS node, so the
+  /// stepping loop runs through the graph), or the in-process FootstepTransitionPlanner when
+  /// empty (the default). The simulation waits (in sim time) for it either way. It must plan
+  /// as footstepPlanner() does (same configuration) for the walk to match the in-process one.
+  void setFootstepPlanner(FootstepPlanFunction plan);
+  /// The in-process planner of the policies with a check (its configuration: the walk's
+  /// check_horizon and seed in reach); null for the policies without one.
+  const FootstepTransitionPlanner* footstepPlanner() const;
+
   const RobotModel& model() const { return *model_; }
   std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
 

@@ -1,0 +1,228 @@
+/// \file footstep_plan_msgs.cpp
+/// The plan_footstep service's conversions (see the header).
+
+#include "reach_trajopt/ros/footstep_plan_msgs.h"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ocp/transition_request.h"
+#include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/service_requests.h"
+
+namespace reach_trajopt {
+namespace ros_bridge {
+
+namespace {
+
+const std::pair<OcpPolicy, const char*> kOcpPolicies[] = {{OcpPolicy::kByVerdict, "by_verdict"},
+                                                          {OcpPolicy::kStrict, "strict"},
+                                                          {OcpPolicy::kAuto, "auto"}};
+const std::pair<InfeasibleFootholdPolicy, const char*> kInfeasiblePolicies[] = {
+    {InfeasibleFootholdPolicy::kNearestFeasible, "nearest_feasible"},
+    {InfeasibleFootholdPolicy::kRelaxTowardTarget, "relax_toward_target"},
+    {InfeasibleFootholdPolicy::kReject, "reject"},
+    {InfeasibleFootholdPolicy::kNoFallback, "no_fallback"}};
+
+template <typename Enum, size_t N>
+Enum parseName(const std::pair<Enum, const char*> (&table)[N], const std::string& field,
+               const std::string& name) {
+  std::string known;
+  for (const auto& [value, n] : table) {
+    if (name == n) return value;
+    known += (known.empty() ? "" : " | ") + std::string(n);
+  }
+  throw RequestError(field + ": unknown name '" + name + "' (expected " + known + ")");
+}
+
+Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const std::string& field) {
+  if (v.size() != size)
+    throw RequestError(field + ": expected " + std::to_string(size) + " numbers, got " +
+                       std::to_string(v.size()));
+  for (double x : v)
+    if (!std::isfinite(x)) throw RequestError(field + ": a number is not finite");
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+}  // namespace
+
+const char* ocpPolicyName(OcpPolicy p) {
+  for (const auto& [value, name] : kOcpPolicies)
+    if (value == p) return name;
+  return "by_verdict";
+}
+
+const char* infeasibleFootholdPolicyName(InfeasibleFootholdPolicy p) {
+  for (const auto& [value, name] : kInfeasiblePolicies)
+    if (value == p) return name;
+  return "nearest_feasible";
+}
+
+reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlanRequest& r,
+                                                              const ReachConfig& reach,
+                                                              const ros::Time& t0) {
+  reach_trajopt::PlanFootstep::Request m;
+  m.header.stamp = t0;
+  m.header.frame_id = kWorldFrame;
+  m.stance = r.stance == Side::kLeft ? "left" : "right";
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = r.stance_pose.linear();
+  m.stance_pose.assign(R.data(), R.data() + 9);
+  const Eigen::Vector3d p = r.stance_pose.translation();
+  m.stance_pose.insert(m.stance_pose.end(), p.data(), p.data() + 3);
+  m.target = toPointMsg(r.target);
+  if (r.target_yaw) m.target_yaw.push_back(*r.target_yaw);
+  m.q = asVector(r.q);
+  m.qd = asVector(r.qd);
+  if (r.touchdown_com)
+    m.touchdown_com = {r.touchdown_com->p.x(), r.touchdown_com->p.y(), r.touchdown_com->pd.x(),
+                       r.touchdown_com->pd.y()};
+  m.make_contact_consistent = r.make_contact_consistent;
+  m.check_reachability = r.check_reachability;
+  m.solve_ocp = r.solve_ocp;
+  m.horizon = r.horizon;
+  const ReachConfig& used = r.reach ? *r.reach : reach;
+  m.reach_horizon = used.horizon;
+  m.seed = static_cast<int64_t>(used.seed);
+  m.ocp_policy = ocpPolicyName(r.ocp_policy);
+  m.on_infeasible = infeasibleFootholdPolicyName(r.on_infeasible);
+  return m;
+}
+
+FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep::Request& m,
+                                               int nq, const ReachConfig& base) {
+  if (!m.header.frame_id.empty() && m.header.frame_id != kWorldFrame)
+    throw RequestError("header.frame_id: unknown frame '" + m.header.frame_id +
+                       "': positions must be in 'world'");
+  FootstepPlanRequest r;
+  if (m.stance != "left" && m.stance != "right")
+    throw RequestError("stance: expected 'left' or 'right', got '" + m.stance + "'");
+  r.stance = m.stance == "left" ? Side::kLeft : Side::kRight;
+  const Eigen::VectorXd pose = finiteVector(m.stance_pose, 12, "stance_pose");
+  const Eigen::Matrix3d R =
+      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(pose.data());
+  if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || R.determinant() < 0.0)
+    throw RequestError("stance_pose: the first 9 numbers are not a rotation matrix (row-major)");
+  r.stance_pose = Eigen::Isometry3d::Identity();
+  r.stance_pose.linear() = R;
+  r.stance_pose.translation() = pose.tail<3>();
+  r.target = finiteVector({m.target.x, m.target.y, m.target.z}, 3, "target");
+  if (m.target_yaw.size() > 1)
+    throw RequestError("target_yaw: expected no value or one, got " +
+                       std::to_string(m.target_yaw.size()));
+  if (!m.target_yaw.empty()) r.target_yaw = finiteVector(m.target_yaw, 1, "target_yaw")[0];
+  r.q = finiteVector(m.q, static_cast<size_t>(nq), "q");
+  r.qd = finiteVector(m.qd, static_cast<size_t>(nq), "qd");
+  if (!m.touchdown_com.empty()) {
+    const Eigen::VectorXd c = finiteVector(m.touchdown_com, 4, "touchdown_com");
+    r.touchdown_com = LipmState{c.head<2>(), c.tail<2>()};
+  }
+  r.make_contact_consistent = m.make_contact_consistent;
+  r.check_reachability = m.check_reachability;
+  r.solve_ocp = m.solve_ocp;
+  auto horizon = [](const std::string& field, double h) {
+    if (!std::isfinite(h) || h < 0.0 || h > kMaxTransitionHorizon) {
+      std::ostringstream os;
+      os << field << ": expected 0 (the default) or a horizon in (0, " << kMaxTransitionHorizon
+         << "] s, got " << h;
+      throw RequestError(os.str());
+    }
+    return h;
+  };
+  r.horizon = horizon("horizon", m.horizon);
+  ReachConfig reach = base;
+  if (horizon("reach_horizon", m.reach_horizon) > 0.0) reach.horizon = m.reach_horizon;
+  if (m.seed < -1) throw RequestError("seed: expected -1 (the node's) or >= 0");
+  if (m.seed >= 0) reach.seed = static_cast<std::uint64_t>(m.seed);
+  try {
+    reach.validate();
+  } catch (const ReachError& e) {
+    throw RequestError(std::string("reach_horizon/seed: ") + e.what());
+  }
+  r.reach = reach;
+  r.ocp_policy = parseName(kOcpPolicies, "ocp_policy", m.ocp_policy);
+  r.on_infeasible = parseName(kInfeasiblePolicies, "on_infeasible", m.on_infeasible);
+  return r;
+}
+
+reach_trajopt::PlanFootstep::Response toPlanFootstepResponseMsg(const FootstepTransition& step,
+                                                                const RobotModel& model,
+                                                                const ContactConfig& contact,
+                                                                const ros::Time& t0) {
+  reach_trajopt::PlanFootstep::Response m;
+  m.success = true;
+  m.message = step.verdict + ": " + step.reason;
+  m.kinematically_feasible = step.kinematically_feasible;
+  m.kinematics_reason = step.check.kinematics.reason;
+  m.reachable = step.reachable;
+  m.certificate = step.certificate;
+  m.verdict = step.verdict;
+  m.reason = step.reason;
+  m.hausdorff_distance = step.hausdorff_distance;
+  m.check_time = step.check_time_s;
+  m.ocp_time = step.ocp_time_s;
+  m.foothold = toPointMsg(step.foothold);
+  m.step_horizon = step.horizon;
+  const WitnessPath& w = step.check.reach.witness;
+  m.witness_valid = w.valid;
+  if (w.valid) {
+    const PathViolation& v = w.violation;
+    m.witness_violation = {v.dynamics,         v.cone,           v.torque,
+                           v.position_limit,   v.velocity_limit, v.contact,
+                           v.contact_velocity, v.integration,    v.ground};
+  }
+  m.witness_position_gap = w.position_gap;
+  m.witness_velocity_gap = w.velocity_gap;
+  m.witness_terminal_position_gap = w.terminal_position_gap;
+  m.witness_terminal_velocity_gap = w.terminal_velocity_gap;
+  m.trajectory = toTransitionTrajectoryMsg(step.trajectory, model,
+                                           {contact.left_sole_frame, contact.right_sole_frame}, t0);
+  return m;
+}
+
+FootstepTransition fromPlanFootstepResponseMsg(const reach_trajopt::PlanFootstep::Response& m,
+                                               const FootstepPlanRequest& request,
+                                               const RobotModel& model) {
+  FootstepTransition s;
+  s.request = request;
+  s.stance = request.stance;
+  s.kinematically_feasible = m.kinematically_feasible;
+  s.check.kinematically_feasible = m.kinematically_feasible;
+  s.check.kinematics.feasible = m.kinematically_feasible;
+  s.check.kinematics.reason = m.kinematics_reason;
+  s.reachable = m.reachable;
+  s.check.reachable = m.reachable;
+  s.certificate = m.certificate;
+  s.verdict = m.verdict;
+  s.reason = m.reason;
+  s.check.reason = m.reason;
+  s.hausdorff_distance = m.hausdorff_distance;
+  s.check_time_s = m.check_time;
+  s.ocp_time_s = m.ocp_time;
+  s.foothold = fromPointMsg(m.foothold);
+  s.horizon = m.step_horizon;
+  WitnessPath& w = s.check.reach.witness;
+  w.valid = m.witness_valid;
+  if (w.valid) {
+    if (m.witness_violation.size() != 9)
+      throw ReachError("plan_footstep response: witness_violation has " +
+                       std::to_string(m.witness_violation.size()) + " numbers, expected 9");
+    const std::vector<double>& v = m.witness_violation;
+    w.violation = PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+  }
+  w.position_gap = m.witness_position_gap;
+  w.velocity_gap = m.witness_velocity_gap;
+  w.terminal_position_gap = m.witness_terminal_position_gap;
+  w.terminal_velocity_gap = m.witness_terminal_velocity_gap;
+  s.trajectory = fromTransitionTrajectoryMsg(m.trajectory, model);
+  return s;
+}
+
+}  // namespace ros_bridge
+}  // namespace reach_trajopt

@@ -1,0 +1,192 @@
+// rostest checker of walk_nodes.test and killed_node_walk.test (a gtest executable run by
+// rostest): the walk of walk.launch with ~in_process false (every checked footstep planned by
+// transition_ocp_node's plan_footstep) gives the same WALK line and the same step records, byte
+// for byte, as the same scenario run in process here, and every checked step's messages
+// (reachability_result, transition_trajectory) arrive. The two differ only in wall times
+// (wall_s of the WALK line, check_time and ocp_time).
+// Without ~kill_after_steps every check's messages come from transition_ocp_node; with it, the
+// checker kills transition_ocp_node (rosnode kill) when that many step reports have arrived:
+// the walk must still equal the in-process one (sim_node plans the rest itself), the steps
+// before come from transition_ocp_node, the last from sim_node, no step without its messages.
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+#include <cstdlib>
+#include <mutex>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "reach_trajopt/CenterOfMassState.h"
+#include "reach_trajopt/ReachabilityResult.h"
+#include "reach_trajopt/StepReport.h"
+#include "reach_trajopt/TransitionTrajectory.h"
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/node_setup.h"
+#include "reach_trajopt/walk/walk_setup.h"
+
+using namespace reach_trajopt;
+namespace rb = reach_trajopt::ros_bridge;
+
+namespace {
+
+struct Received {
+  std::vector<reach_trajopt::StepReport> reports;
+  std::vector<std::string> check_publishers;  ///< publisher of each reachability_result
+  std::vector<double> check_stamps;           ///< its stamp (the sim time of the check) [s]
+  std::vector<std::string> trajectory_publishers;
+  std::string walk_line;
+};
+Received g_received;
+std::mutex g_mutex;
+int g_kill_after_steps = 0;  ///< 0: kill nothing
+bool g_killed = false;
+
+template <typename M>
+std::vector<uint8_t> bytes(const M& m) {
+  const uint32_t n = ros::serialization::serializationLength(m);
+  std::vector<uint8_t> b(n);
+  ros::serialization::OStream s(b.data(), n);
+  ros::serialization::serialize(s, m);
+  return b;
+}
+
+// The record without what depends on the machine (wall times) or the transport (seq).
+reach_trajopt::StepReport comparable(reach_trajopt::StepReport m) {
+  m.header.seq = 0;
+  m.check_time = 0.0;
+  m.ocp_time = 0.0;
+  return m;
+}
+
+std::string withoutWallTime(const std::string& line) {
+  return std::regex_replace(line, std::regex(" wall_s=[^ ]*"), "");
+}
+
+template <typename T>
+T param(const ros::NodeHandle& nh, const std::string& name, const T& fallback) {
+  T value;
+  return nh.getParam(name, value) ? value : fallback;
+}
+
+TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
+  ros::NodeHandle nh, pnh("~");
+  const double timeout = param(pnh, "timeout", 300.0);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+  auto received = [] {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    return g_received;
+  };
+  while (ros::ok() && received().walk_line.empty() && ros::WallTime::now() < deadline)
+    ros::WallDuration(0.05).sleep();
+  ros::WallDuration(1.0).sleep();  // the last step report and check messages
+  const Received got = received();
+  const bool got_killed = [] {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    return g_killed;
+  }();
+  ASSERT_FALSE(got.walk_line.empty()) << "no walk_result within ~timeout";
+
+  // The same scenario in process, from the same parameters.
+  WalkSetup setup = WalkSetup::fromYamlFile(param<std::string>(pnh, "config", ""));
+  const std::string sim_config = param<std::string>(pnh, "sim_config", "");
+  if (!sim_config.empty())
+    setup.sim = SimConfig::fromYaml(YamlSection::loadFile(sim_config).section("sim"));
+  setup.walk.policy = WalkingPolicy::parse(param<std::string>(pnh, "policy", "proposed"));
+  setup.walk.steps = param(pnh, "steps", 3);
+  setup.walk.seed = static_cast<unsigned>(param(pnh, "seed", 1));
+  setup.walk.initial_com_velocity.y() = param(pnh, "push_vy", 0.0);
+  const rb::TempUrdf urdf(rb::robotDescription(nh));
+  const std::unique_ptr<WalkingExperiment> experiment = setup.experiment(urdf.path());
+  const WalkResult in_process = experiment->run();
+
+  EXPECT_EQ(withoutWallTime(got.walk_line), withoutWallTime(in_process.summaryLine()));
+  ASSERT_EQ(got.reports.size(), in_process.records.size());
+  ASSERT_GT(in_process.records.size(), 0u);
+  for (size_t i = 0; i < in_process.records.size(); ++i) {
+    const StepRecord& r = in_process.records[i];
+    const reach_trajopt::StepReport expected =
+        comparable(rb::toStepReportMsg(r, setup.walk.policy, false, r.executed.z()));
+    const reach_trajopt::StepReport report = comparable(got.reports[i]);
+    EXPECT_EQ(bytes(report), bytes(expected)) << "step " << r.index << "\nnodes:\n"
+                                              << report << "\nin process:\n"
+                                              << expected;
+  }
+  size_t checked = 0;
+  for (const StepRecord& r : in_process.records) checked += r.verdict != "not_checked";
+  EXPECT_EQ(checked, in_process.records.size());
+  if (g_kill_after_steps == 0) {
+    // Every check went through transition_ocp_node (none fell back to sim_node's planner).
+    ASSERT_EQ(got.check_publishers.size(), checked);
+    ASSERT_EQ(got.trajectory_publishers.size(), checked);
+    for (size_t i = 0; i < checked; ++i) {
+      EXPECT_EQ(got.check_publishers[i], "/transition_ocp_node");
+      EXPECT_EQ(got.trajectory_publishers[i], "/transition_ocp_node");
+    }
+    return;
+  }
+  // Killed after kill_after_steps reports: those steps from the node, the last from sim_node,
+  // every step's check published (at most one twice: the one in flight when the node died).
+  ASSERT_TRUE(got_killed);
+  const std::set<double> stamps(got.check_stamps.begin(), got.check_stamps.end());
+  EXPECT_EQ(stamps.size(), checked) << "a checked step without its reachability_result";
+  ASSERT_GE(got.check_publishers.size(), checked);
+  EXPECT_LE(got.check_publishers.size(), checked + 1);
+  for (int i = 0; i < g_kill_after_steps; ++i)
+    EXPECT_EQ(got.check_publishers[i], "/transition_ocp_node") << "step " << i + 1;
+  EXPECT_EQ(got.check_publishers.back(), "/sim_node");
+  EXPECT_EQ(got.trajectory_publishers.back(), "/sim_node");
+}
+
+void onReport(const reach_trajopt::StepReport::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  g_received.reports.push_back(*m);
+  if (g_kill_after_steps > 0 && !g_killed &&
+      static_cast<int>(g_received.reports.size()) == g_kill_after_steps) {
+    g_killed = true;  // mid-walk: the next step's check is already on its way
+    std::thread([] {
+      if (std::system("rosnode kill /transition_ocp_node > /dev/null 2>&1") != 0)
+        ADD_FAILURE() << "rosnode kill /transition_ocp_node failed";
+    }).detach();
+  }
+}
+void onCheck(const ros::MessageEvent<const reach_trajopt::ReachabilityResult>& e) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  g_received.check_publishers.push_back(e.getPublisherName());
+  g_received.check_stamps.push_back(e.getMessage()->header.stamp.toSec());
+}
+void onTrajectory(const ros::MessageEvent<const reach_trajopt::TransitionTrajectory>& e) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  g_received.trajectory_publishers.push_back(e.getPublisherName());
+}
+void onResult(const std_msgs::String::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  g_received.walk_line = m->data;
+}
+void onCom(const reach_trajopt::CenterOfMassState::ConstPtr&) {}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "check_walk_nodes");
+  ros::NodeHandle nh;
+  ros::NodeHandle("~").getParam("kill_after_steps", g_kill_after_steps);
+  const ros::Subscriber reports = nh.subscribe("step_report", 100, onReport);
+  const ros::Subscriber checks = nh.subscribe("reachability_result", 100, onCheck);
+  const ros::Subscriber trajectories = nh.subscribe("transition_trajectory", 100, onTrajectory);
+  const ros::Subscriber result = nh.subscribe("walk_result", 1, onResult);
+  // Last: sim_node starts once com_state has this subscriber too (extra_com_subscribers).
+  const ros::Subscriber com = nh.subscribe("com_state", 10, onCom);
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const int rc = RUN_ALL_TESTS();
+  spinner.stop();
+  return rc;
+}
