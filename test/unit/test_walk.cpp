@@ -14,7 +14,14 @@ using namespace reach_trajopt;
 
 namespace {
 const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf";
+
+/// The biped's robot section with the URDF at `urdf`.
+RobotConfig bipedAt(const std::string& urdf) {
+  RobotConfig robot;
+  robot.urdf = urdf;
+  return robot;
 }
+}  // namespace
 
 TEST(SwingTrajectory, EndpointsAndDerivatives) {
   const Eigen::Vector3d a(0.0, -0.1, 0.0), b(0.3, -0.25, 0.0);
@@ -35,7 +42,8 @@ TEST(SwingTrajectory, EndpointsAndDerivatives) {
 TEST(WalkingExperiment, BaselineWalksInPlaceTwentySteps) {
   WalkConfig walk;
   walk.steps = 20;
-  WalkingExperiment experiment(kUrdf, walk, TvrConfig{}, ContactConfig{}, WbcConfig{}, SimConfig{});
+  WalkingExperiment experiment(bipedAt(kUrdf), walk, TvrConfig{}, ContactConfig{}, WbcConfig{},
+                               SimConfig{});
   int ticks = 0;
   const WalkResult r = experiment.run([&](const WalkTick&) { ++ticks; });
   EXPECT_FALSE(r.fell) << r.summaryLine();
@@ -63,8 +71,8 @@ TEST(WalkingExperiment, ConfigErrors) {
   walk = WalkConfig{};
   walk.check_horizon = walk.single_support_duration;  // the check must start within the swing
   EXPECT_THROW(walk.validate(), ReachError);
-  EXPECT_THROW(WalkingExperiment("/nonexistent.urdf", WalkConfig{}, TvrConfig{}, ContactConfig{},
-                                 WbcConfig{}, SimConfig{}),
+  EXPECT_THROW(WalkingExperiment(bipedAt("/nonexistent.urdf"), WalkConfig{}, TvrConfig{},
+                                 ContactConfig{}, WbcConfig{}, SimConfig{}),
                ReachError);
 }
 
@@ -74,7 +82,7 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
   WalkConfig walk = WalkConfig::fromYaml(file.section("walk"));
   walk.steps = 20;
   walk.forward_speed = 0.4;
-  WalkingExperiment experiment(kUrdf, walk, TvrConfig::fromYaml(file.section("planner")),
+  WalkingExperiment experiment(bipedAt(kUrdf), walk, TvrConfig::fromYaml(file.section("planner")),
                                ContactConfig::fromYaml(file.section("contact")),
                                WbcConfig::fromYaml(file.section("wbc")), SimConfig{});
   const WalkResult r = experiment.run();
