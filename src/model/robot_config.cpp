@@ -77,17 +77,13 @@ void RobotConfig::checkJoints(const RobotModel& model) const {
 }
 
 std::shared_ptr<const RobotModel> RobotConfig::loadModel(const std::string& urdf_override) const {
-  const auto model = RobotModel::fromUrdfFile(urdf_override.empty() ? urdfPath() : urdf_override,
-                                              modelOptions(*this));
-  checkJoints(*model);
-  return model;
+  return RobotModel::fromUrdfFile(urdf_override.empty() ? urdfPath() : urdf_override,
+                                  modelOptions(*this));
 }
 
 std::shared_ptr<const RobotModel> RobotConfig::modelFromUrdfString(
     const std::string& xml, const std::string& source) const {
-  const auto model = RobotModel::fromUrdfString(xml, modelOptions(*this), source);
-  checkJoints(*model);
-  return model;
+  return RobotModel::fromUrdfString(xml, modelOptions(*this), source);
 }
 
 void RobotConfig::validate() const {

@@ -52,10 +52,10 @@ struct RobotConfig {
   /// `urdf` with ${NAME} expanded. \throws ConfigError naming robot.urdf and NAME when the
   /// variable is not set or the brace is not closed.
   std::string urdfPath() const;
-  /// Loads urdfPath() with the locked joints, then checks the leg roles against the model.
+  /// Loads urdfPath() with the locked joints. The leg roles are checked where they are used
+  /// (checkJoints, by the standing pose): a model without legs loads too.
   /// \param urdf_override a URDF path to use instead (a tool's --urdf), "" for none
-  /// \throws ReachError naming the file, or ConfigError naming robot.<key> for a role whose
-  ///         joint is not in the model (or is locked) and a locked joint that does not exist.
+  /// \throws ReachError naming the file, or the locked joint that does not exist.
   std::shared_ptr<const RobotModel> loadModel(const std::string& urdf_override = "") const;
   /// The same from URDF text (a node's robot_description); `source` names it in errors.
   std::shared_ptr<const RobotModel> modelFromUrdfString(const std::string& xml,
