@@ -2,6 +2,10 @@
 /// eq. (13)-(21), Prop. 1-2) as a ROS service.
 ///   service check_reachability (reach_trajopt/CheckReachability)
 ///   publishes reachability_result (ReachabilityResult) and reachability_markers (MarkerArray)
+///   service check_footholds (reach_trajopt/CheckFootholds): the kinematic check of a batch of
+///   candidate footholds, as a worker of transition_ocp_node's nearest-feasible-foothold search
+///   (walk.launch workers:=N); publishes footholds_checked (std_msgs/UInt64, latched: the
+///   candidates checked so far)
 /// x_f is the kinematic feasibility solution (Sec. III-B) with the swing sole on the foothold;
 /// an infeasible foothold is answered "unreachable" with the IK's reason. Bad requests (NaN,
 /// wrong sizes, unknown frame, empty contact set, a foothold in the air) get success = false
@@ -11,9 +15,12 @@
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
+#include <std_msgs/UInt64.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "reach_trajopt/CheckFootholds.h"
 #include "reach_trajopt/CheckReachability.h"
+#include "reach_trajopt/ros/foothold_candidate_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/service_requests.h"
@@ -30,6 +37,9 @@ class ReachabilityNode {
     result_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 10);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 10);
     server_ = nh.advertiseService("check_reachability", &ReachabilityNode::check, this);
+    checked_pub_ = nh.advertise<std_msgs::UInt64>("footholds_checked", 1, true);
+    footholds_server_ =
+        nh.advertiseService("check_footholds", &ReachabilityNode::checkFootholds, this);
   }
 
  private:
@@ -80,9 +90,30 @@ class ReachabilityNode {
         });
   }
 
+  bool checkFootholds(reach_trajopt::CheckFootholds::Request& req,
+                      reach_trajopt::CheckFootholds::Response& res) {
+    return rb::answerOrReject(
+        "check_footholds",
+        [&] {
+          const FootholdCandidates batch = rb::fromCheckFootholdsRequestMsg(req, s_.model->nq());
+          res = rb::toCheckFootholdsResponseMsg(
+              checkFootholdCandidates(s_.planner->kinematics(), batch, false), req.request_id);
+          std_msgs::UInt64 count;
+          count.data = checked_ += batch.candidates.size();
+          checked_pub_.publish(count);
+        },
+        [&](const std::string& reason) {
+          res = reach_trajopt::CheckFootholds::Response();
+          res.request_id = req.request_id;
+          res.success = false;
+          res.message = reason;
+        });
+  }
+
   const rb::FootholdServiceSetup s_;
-  ros::Publisher result_pub_, marker_pub_;
-  ros::ServiceServer server_;
+  ros::Publisher result_pub_, marker_pub_, checked_pub_;
+  ros::ServiceServer server_, footholds_server_;
+  uint64_t checked_ = 0;  ///< candidates checked by check_footholds
 };
 
 }  // namespace

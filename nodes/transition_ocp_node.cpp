@@ -16,12 +16,20 @@
 /// (t_f - t_0 when the request gives 0; default: the reach horizon), ~ground_tolerance [m],
 /// ~reachability_samples (plan_footstep's reachability_result carries the output samples of
 /// every slice, at most 500 per set and slice; false: boundaries only; true).
+/// Reachability workers (walk.launch workers:=N): ~workers (N reachability_nodes whose
+/// check_footholds services, <~worker_prefix><i>/check_footholds for i < N, check the
+/// candidates of the nearest-feasible-foothold search in parallel; 0: in this process; 0),
+/// ~worker_prefix (relative, remappable; reachability_worker_), ~worker_timeout [s wall, the
+/// longest wait for a worker's answer and, at start, for its service; 10], ~worker_retry_period
+/// [s wall, how long a worker that failed or timed out is left out; 30]. A worker's failure
+/// sends its candidates to another worker or checks them here: the plans do not change.
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
@@ -32,6 +40,7 @@
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
+#include "reach_trajopt/ros/reachability_workers.h"
 #include "reach_trajopt/ros/service_requests.h"
 
 using namespace reach_trajopt;
@@ -45,6 +54,7 @@ class TransitionOcpNode {
       : s_(rb::FootholdServiceSetup::load(nh, pnh)), default_horizon_(s_.reach.horizon) {
     pnh.getParam("default_horizon", default_horizon_);
     pnh.getParam("reachability_samples", reachability_samples_);
+    startWorkers(nh, pnh);
     // Queues for a recorder of a walk (one message of each per step).
     traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
     reach_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
@@ -55,6 +65,38 @@ class TransitionOcpNode {
   }
 
  private:
+  // The reachability workers of the nearest-feasible search (~workers), before serving.
+  void startWorkers(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
+    int workers = 0;
+    std::string prefix = "reachability_worker_";
+    double timeout = 10.0, retry_period = 30.0;
+    pnh.getParam("workers", workers);
+    pnh.getParam("worker_prefix", prefix);
+    pnh.getParam("worker_timeout", timeout);
+    pnh.getParam("worker_retry_period", retry_period);
+    if (workers < 0) throw ConfigError("~workers must be >= 0, got " + std::to_string(workers));
+    if (workers == 0) return;
+    std::vector<std::string> services;
+    for (int i = 0; i < workers; ++i) {
+      services.push_back(prefix + std::to_string(i) + "/check_footholds");
+      if (!ros::service::waitForService(nh.resolveName(services.back()), ros::Duration(timeout)))
+        ROS_WARN(
+            "transition_ocp_node: worker service '%s' not up within ~worker_timeout; "
+            "its candidates go elsewhere until it is",
+            nh.resolveName(services.back()).c_str());
+    }
+    const KinematicFeasibility& kinematics = s_.planner->kinematics();
+    workers_ = std::make_unique<rb::ReachabilityWorkerPool>(
+        nh, services, timeout, retry_period, s_.model->nq(),
+        [&kinematics](const FootholdCandidates& b) {
+          return checkFootholdCandidates(kinematics, b, false);
+        });
+    s_.planner->setCandidateCheck(
+        [pool = workers_.get()](const FootholdCandidates& b) { return pool->check(b); });
+    ROS_INFO("transition_ocp_node: %d reachability workers (%s0..%d)", workers, prefix.c_str(),
+             workers - 1);
+  }
+
   bool plan(reach_trajopt::PlanTransition::Request& req,
             reach_trajopt::PlanTransition::Response& res) {
     const ros::Time t0 = req.header.stamp;
@@ -148,6 +190,7 @@ class TransitionOcpNode {
   const rb::FootholdServiceSetup s_;
   double default_horizon_;
   bool reachability_samples_ = true;
+  std::unique_ptr<rb::ReachabilityWorkerPool> workers_;  ///< none: ~workers 0
   ros::Publisher traj_pub_, reach_pub_, reach_marker_pub_, marker_pub_;
   ros::ServiceServer server_, footstep_server_;
 };

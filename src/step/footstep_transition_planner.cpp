@@ -202,8 +202,8 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     ocp.qdf = check.kinematics.qd_f;
     ocp.relaxation = RelaxationMode::kRelaxed;  // land as close as the OCP can
   } else {
-    const std::optional<NearestFoothold> near =
-        nearest_.find(r.stance, out.stance_contact, out.target, out.q0, td.pelvis);
+    const std::optional<NearestFoothold> near = nearest_.find(
+        r.stance, out.stance_contact, out.target, out.q0, td.pelvis, candidate_check_);
     if (!near) {
       out.reason += "; no kinematically feasible foothold within " +
                     std::to_string(nearest_.config().searchRadius()) + " m of the target";

@@ -123,7 +123,7 @@ struct FootstepTransition {
 };
 
 /// @brief Kinematic check + reachability check + transition OCP of one footstep (Sec. III).
-/// Immutable; plan() may run concurrently.
+/// Immutable once set up; plan() may run concurrently.
 class FootstepTransitionPlanner {
  public:
   /// \throws ReachError on invalid configs or unknown frames.
@@ -134,6 +134,11 @@ class FootstepTransitionPlanner {
   /// \throws ReachError on bad input (sizes, NaN, a target outside the workspace, a state the
   ///     check rejects) and, with InfeasibleFootholdPolicy::kReject, on an infeasible foothold.
   FootstepTransition plan(const FootstepPlanRequest& request) const;
+
+  /// Where the nearest-feasible search checks each ring's candidates (e.g. worker nodes);
+  /// empty (the default): in this process. The results do not depend on it. Set it before
+  /// plan() runs, not while it runs.
+  void setCandidateCheck(CandidateCheck check) { candidate_check_ = std::move(check); }
 
   /// Time from the check to touchdown [s] (the reachability horizon t_f - t_0).
   double horizon() const { return config_.reach.horizon; }
@@ -165,6 +170,7 @@ class FootstepTransitionPlanner {
   std::shared_ptr<const KinematicFeasibility> kinematics_;
   FootstepReachability footsteps_;
   NearestFeasibleFoothold nearest_;
+  CandidateCheck candidate_check_;
   TransitionOcp ocp_;
 };
 
