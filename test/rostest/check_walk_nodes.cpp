@@ -14,7 +14,8 @@
 // ~hang_worker_after_steps K as well, the checker hangs worker 0 (SIGSTOP, by the pid the node
 // reports) once K step reports have arrived: its calls time out, its candidates go to the other
 // worker, and the walk must still equal the in-process one with every step's messages from
-// transition_ocp_node; worker 0 is continued (SIGCONT) at the end so the launch can stop it.
+// transition_ocp_node, and worker 1 must have checked whole rings since; worker 0 is continued
+// (SIGCONT) at the end so the launch can stop it.
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -160,8 +161,13 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
       EXPECT_GT(g_worker_checked[i], 0u) << "worker " << i << " checked no candidate";
     if (g_hang_worker_after_steps > 0) {
       EXPECT_TRUE(g_hung) << "worker 0 was not hung";
-      EXPECT_GT(g_worker_checked[1], g_worker1_checked_at_hang)
-          << "no candidate went to worker 1 after worker 0 hung";
+      // Every candidate of every ring after the hang went to worker 1: its own part of the
+      // first ring plus worker 0's timed-out part, then whole rings (none lost or made up).
+      const uint64_t after_hang = g_worker_checked[1] - g_worker1_checked_at_hang;
+      const int directions = setup.footsteps.nearest_foothold.directions;
+      EXPECT_GT(after_hang, 0u) << "no candidate went to worker 1 after worker 0 hung";
+      EXPECT_EQ(after_hang % directions, 0u)
+          << after_hang << " candidates after the hang: not whole rings of " << directions;
     }
   }
   if (g_kill_after_steps == 0) {
