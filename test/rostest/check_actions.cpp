@@ -4,6 +4,9 @@
 // one-shot check_reachability service's answer to the same request byte for byte (without the
 // wall times); a newer goal preempts a running check before it ends (fewer feedbacks than
 // slices), the newer one succeeds; a cancel preempts a running check the same way.
+// transition_ocp_node's plan_transition_action: feedback from the check, then from the OCP;
+// the result equals the plan_transition service's answer (without wall times); a cancel during
+// the OCP preempts the plan.
 
 #include <actionlib/client/simple_action_client.h>
 #include <gtest/gtest.h>
@@ -15,6 +18,8 @@
 
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/CheckReachabilityAction.h"
+#include "reach_trajopt/PlanTransition.h"
+#include "reach_trajopt/PlanTransitionAction.h"
 
 namespace {
 
@@ -151,6 +156,86 @@ TEST(Actions, ANewerGoalPreemptsTheRunningCheckAndCancelStopsOne) {
   EXPECT_EQ(first.getState(), State::PREEMPTED) << first.getState().getText();
   EXPECT_FALSE(first.getResult()->success);
   EXPECT_LT(cancelled.size(), newer.size());
+}
+
+using PlanClient = actionlib::SimpleActionClient<reach_trajopt::PlanTransitionAction>;
+
+reach_trajopt::TransitionTrajectory withoutWallTime(reach_trajopt::TransitionTrajectory t) {
+  t.header.seq = 0;
+  t.solve_time = 0.0;
+  return t;
+}
+
+TEST(Actions, PlanTransitionReportsTheCheckThenTheOcpAndCancels) {
+  PlanClient client("plan_transition_action", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(60.0)));
+  reach_trajopt::PlanTransitionGoal goal;
+  goal.header.frame_id = "world";
+  goal.contact_mode = "SS-L";
+  goal.foothold.x = 0.05;
+  goal.foothold.y = -0.2;
+  goal.check_reachability = true;
+  goal.allow_relaxation = true;
+  std::mutex mutex;
+  std::vector<reach_trajopt::PlanTransitionFeedback> seen;
+  auto onFeedback = [&](const reach_trajopt::PlanTransitionFeedbackConstPtr& f) {
+    std::lock_guard<std::mutex> lock(mutex);
+    seen.push_back(*f);
+  };
+  client.sendGoal(goal, PlanClient::SimpleDoneCallback(), PlanClient::SimpleActiveCallback(),
+                  onFeedback);
+  ASSERT_TRUE(client.waitForResult(ros::Duration(240.0)));
+  EXPECT_EQ(client.getState(), State::SUCCEEDED) << client.getState().getText();
+  const reach_trajopt::PlanTransitionResult result = *client.getResult();
+  ASSERT_TRUE(result.success) << result.message;
+  ros::WallDuration(0.2).sleep();
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    size_t checks = 0, ocps = 0;
+    for (const auto& f : seen) {
+      if (f.stage == "check") {
+        EXPECT_EQ(ocps, 0u) << "check feedback after the OCP's";
+        ++checks;
+      } else {
+        EXPECT_EQ(f.stage, "ocp");
+        ++ocps;
+      }
+    }
+    EXPECT_GT(checks, 0u);
+    EXPECT_GT(ocps, 0u);
+    seen.clear();
+  }
+
+  ros::ServiceClient service =
+      ros::NodeHandle().serviceClient<reach_trajopt::PlanTransition>("plan_transition");
+  reach_trajopt::PlanTransition srv;
+  srv.request.header = goal.header;
+  srv.request.contact_mode = goal.contact_mode;
+  srv.request.foothold = goal.foothold;
+  srv.request.check_reachability = goal.check_reachability;
+  srv.request.allow_relaxation = goal.allow_relaxation;
+  ASSERT_TRUE(service.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(result.message, srv.response.message);
+  EXPECT_EQ(bytes(withoutWallTimes(result.reachability)),
+            bytes(withoutWallTimes(srv.response.reachability)));
+  EXPECT_EQ(bytes(withoutWallTime(result.trajectory)),
+            bytes(withoutWallTime(srv.response.trajectory)));
+
+  // Cancelled once the OCP runs.
+  client.sendGoal(goal, PlanClient::SimpleDoneCallback(), PlanClient::SimpleActiveCallback(),
+                  onFeedback);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(120.0);
+  auto inOcp = [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    return !seen.empty() && seen.back().stage == "ocp";
+  };
+  while (ros::ok() && !inOcp() && ros::WallTime::now() < deadline) ros::WallDuration(0.001).sleep();
+  ASSERT_TRUE(inOcp()) << "no OCP feedback";
+  client.cancelGoal();
+  ASSERT_TRUE(client.waitForResult(ros::Duration(120.0)));
+  EXPECT_EQ(client.getState(), State::PREEMPTED) << client.getState().getText();
+  EXPECT_FALSE(client.getResult()->success);
 }
 
 }  // namespace

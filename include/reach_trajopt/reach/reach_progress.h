@@ -7,7 +7,7 @@
 
 #include <functional>
 
-#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/cancelled.h"
 
 namespace reach_trajopt {
 
@@ -21,13 +21,7 @@ struct ReachProgress {
 };
 
 /// Called with each ReachProgress; returns false to cancel the check (it then throws
-/// ReachCancelled before the next slice).
+/// ReachCancelled, common/cancelled.h, before the next slice).
 using ReachProgressCallback = std::function<bool(const ReachProgress&)>;
-
-/// Thrown by a check whose progress callback returned false.
-class ReachCancelled : public ReachError {
- public:
-  using ReachError::ReachError;
-};
 
 }  // namespace reach_trajopt
