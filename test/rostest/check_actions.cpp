@@ -6,12 +6,14 @@
 // slices), the newer one succeeds; a cancel preempts a running check the same way.
 // transition_ocp_node's plan_transition_action: feedback from the check, then from the OCP;
 // the result equals the plan_transition service's answer (without wall times); a cancel during
-// the OCP preempts the plan.
+// the OCP preempts the plan. A malformed goal to either is aborted with the reason, and the
+// action serves on.
 
 #include <actionlib/client/simple_action_client.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <limits>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -159,6 +161,33 @@ TEST(Actions, ANewerGoalPreemptsTheRunningCheckAndCancelStopsOne) {
 }
 
 using PlanClient = actionlib::SimpleActionClient<reach_trajopt::PlanTransitionAction>;
+
+TEST(Actions, MalformedGoalsAreAbortedWithTheReasonAndTheActionsServeOn) {
+  Client check(kAction, true);
+  PlanClient plan("plan_transition_action", true);
+  ASSERT_TRUE(check.waitForServer(ros::Duration(60.0)));
+  ASSERT_TRUE(plan.waitForServer(ros::Duration(60.0)));
+  reach_trajopt::CheckReachabilityGoal bad = makeGoal(300);
+  bad.contact_mode = "SS-X";
+  check.sendGoal(bad);
+  ASSERT_TRUE(check.waitForResult(ros::Duration(60.0)));
+  EXPECT_EQ(check.getState(), State::ABORTED);
+  EXPECT_FALSE(check.getResult()->success);
+  EXPECT_NE(check.getResult()->message.find("SS-X"), std::string::npos)
+      << check.getResult()->message;
+  reach_trajopt::PlanTransitionGoal bad_plan;
+  bad_plan.contact_mode = "SS-L";
+  bad_plan.foothold.x = std::numeric_limits<double>::quiet_NaN();
+  plan.sendGoal(bad_plan);
+  ASSERT_TRUE(plan.waitForResult(ros::Duration(60.0)));
+  EXPECT_EQ(plan.getState(), State::ABORTED);
+  EXPECT_FALSE(plan.getResult()->success);
+  EXPECT_NE(plan.getResult()->message.find("non-finite"), std::string::npos)
+      << plan.getResult()->message;
+  check.sendGoal(makeGoal(300));  // still serving
+  ASSERT_TRUE(check.waitForResult(ros::Duration(120.0)));
+  EXPECT_EQ(check.getState(), State::SUCCEEDED) << check.getState().getText();
+}
 
 reach_trajopt::TransitionTrajectory withoutWallTime(reach_trajopt::TransitionTrajectory t) {
   t.header.seq = 0;
