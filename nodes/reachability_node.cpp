@@ -2,6 +2,13 @@
 /// eq. (13)-(21), Prop. 1-2) as a ROS service.
 ///   service check_reachability (reach_trajopt/CheckReachability)
 ///   publishes reachability_result (ReachabilityResult) and reachability_markers (MarkerArray)
+///   action check_reachability_action (reach_trajopt/CheckReachability.action): the same check
+///   with feedback after each time slice (direction, slices, samples, QPs); a newer goal or a
+///   cancel preempts the running one before its next slice (result: success false, "preempted")
+///   service check_footholds (reach_trajopt/CheckFootholds): the kinematic check of a batch of
+///   candidate footholds, as a worker of transition_ocp_node's nearest-feasible-foothold search
+///   (walk.launch workers:=N); publishes footholds_checked (std_msgs/UInt64, latched: the
+///   candidates checked so far)
 /// x_f is the kinematic feasibility solution (Sec. III-B) with the swing sole on the foothold;
 /// an infeasible foothold is answered "unreachable" with the IK's reason. Bad requests (NaN,
 /// wrong sizes, unknown frame, empty contact set, a foothold in the air) get success = false
@@ -10,10 +17,17 @@
 /// optionally walk; default config/biped.yaml of the package), ~ground_tolerance [m, 0.02].
 /// The robot is read from the `robot_description` parameter (URDF text).
 
+#include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
+#include <std_msgs/UInt64.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <memory>
+
+#include "reach_trajopt/CheckFootholds.h"
 #include "reach_trajopt/CheckReachability.h"
+#include "reach_trajopt/CheckReachabilityAction.h"
+#include "reach_trajopt/ros/foothold_candidate_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/service_requests.h"
@@ -30,11 +44,25 @@ class ReachabilityNode {
     result_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 10);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("reachability_markers", 10);
     server_ = nh.advertiseService("check_reachability", &ReachabilityNode::check, this);
+    checked_pub_ = nh.advertise<std_msgs::UInt64>("footholds_checked", 1, true);
+    footholds_server_ =
+        nh.advertiseService("check_footholds", &ReachabilityNode::checkFootholds, this);
+    action_ = std::make_unique<CheckAction>(
+        nh, "check_reachability_action",
+        [this](const reach_trajopt::CheckReachabilityGoalConstPtr& goal) { execute(goal); }, false);
+    action_->start();
   }
 
  private:
   bool check(reach_trajopt::CheckReachability::Request& req,
              reach_trajopt::CheckReachability::Response& res) {
+    return answer(req, res, {});
+  }
+
+  // The check of one request, for the service and the action (with its progress).
+  bool answer(const reach_trajopt::CheckReachability::Request& req,
+              reach_trajopt::CheckReachability::Response& res,
+              const ReachProgressCallback& progress) {
     const ros::Time t0 = req.header.stamp;
     return rb::answerOrReject(
         "check_reachability",
@@ -64,7 +92,7 @@ class ReachabilityNode {
             res.result = rb::infeasibleFootholdMsg(ik.reason, swing_frame, r.target.position, t0);
           } else {
             const ReachResult result =
-                s_.planner->analyzer().check(rb::toReachProblem(r, ik), config);
+                s_.planner->analyzer().check(rb::toReachProblem(r, ik), config, progress);
             res.result = rb::toReachabilityResultMsg(result, r, swing_frame, config.delta, t0,
                                                      req.return_samples);
           }
@@ -80,9 +108,72 @@ class ReachabilityNode {
         });
   }
 
+  // check_reachability_action: the service's check with feedback after each slice; a newer
+  // goal or a cancel preempts it before its next slice.
+  void execute(const reach_trajopt::CheckReachabilityGoalConstPtr& goal) {
+    reach_trajopt::CheckReachability::Request req;
+    req.header = goal->header;
+    req.contact_mode = goal->contact_mode;
+    req.q = goal->q;
+    req.qd = goal->qd;
+    req.foothold = goal->foothold;
+    req.swing_duration = goal->swing_duration;
+    req.forward_samples = goal->forward_samples;
+    req.backward_samples = goal->backward_samples;
+    req.seed = goal->seed;
+    req.return_samples = goal->return_samples;
+    bool cancelled = false;
+    const ReachProgressCallback progress = [&](const ReachProgress& p) {
+      if (action_->isPreemptRequested() || !ros::ok()) return !(cancelled = true);
+      reach_trajopt::CheckReachabilityFeedback f;
+      f.direction = p.forward ? "forward" : "backward";
+      f.slices_done = static_cast<uint32_t>(p.slices_done);
+      f.slices_total = static_cast<uint32_t>(p.slices_total);
+      f.samples = static_cast<uint64_t>(p.samples);
+      f.qps = static_cast<uint64_t>(p.qps);
+      action_->publishFeedback(f);
+      return true;
+    };
+    reach_trajopt::CheckReachability::Response res;
+    answer(req, res, progress);
+    reach_trajopt::CheckReachabilityResult result;
+    result.success = res.success;
+    result.message = res.message;
+    result.result = res.result;
+    if (cancelled)
+      action_->setPreempted(result, res.message);
+    else if (res.success)
+      action_->setSucceeded(result, res.message);
+    else
+      action_->setAborted(result, res.message);
+  }
+
+  bool checkFootholds(reach_trajopt::CheckFootholds::Request& req,
+                      reach_trajopt::CheckFootholds::Response& res) {
+    return rb::answerOrReject(
+        "check_footholds",
+        [&] {
+          const FootholdCandidates batch = rb::fromCheckFootholdsRequestMsg(req, s_.model->nq());
+          res = rb::toCheckFootholdsResponseMsg(
+              checkFootholdCandidates(s_.planner->kinematics(), batch, false), req.request_id);
+          std_msgs::UInt64 count;
+          count.data = checked_ += batch.candidates.size();
+          checked_pub_.publish(count);
+        },
+        [&](const std::string& reason) {
+          res = reach_trajopt::CheckFootholds::Response();
+          res.request_id = req.request_id;
+          res.success = false;
+          res.message = reason;
+        });
+  }
+
+  using CheckAction = actionlib::SimpleActionServer<reach_trajopt::CheckReachabilityAction>;
   const rb::FootholdServiceSetup s_;
-  ros::Publisher result_pub_, marker_pub_;
-  ros::ServiceServer server_;
+  std::unique_ptr<CheckAction> action_;  ///< its goals run on the action server's thread
+  ros::Publisher result_pub_, marker_pub_, checked_pub_;
+  ros::ServiceServer server_, footholds_server_;
+  uint64_t checked_ = 0;  ///< candidates checked by check_footholds
 };
 
 }  // namespace

@@ -2,6 +2,9 @@
 /// service, optionally seeded by the reachability witness, with the relaxation of an
 /// unreachable foothold (the robot steps to the closest reachable point).
 ///   service plan_transition (reach_trajopt/PlanTransition)
+///   action plan_transition_action (reach_trajopt/PlanTransition.action): plan_transition with
+///   feedback from the check (slices, samples, QPs) and the OCP (gradient evaluations); a newer
+///   goal or a cancel preempts the running plan (result: success false, "preempted")
 ///   service plan_footstep (reach_trajopt/PlanFootstep): one checked footstep of the walking
 ///   loop through the whole per-step pipeline (step/footstep_transition_planner.h), as the
 ///   in-process loop plans it (sim_node ~in_process:=false calls it); it also publishes
@@ -16,15 +19,25 @@
 /// (t_f - t_0 when the request gives 0; default: the reach horizon), ~ground_tolerance [m],
 /// ~reachability_samples (plan_footstep's reachability_result carries the output samples of
 /// every slice, at most 500 per set and slice; false: boundaries only; true).
+/// Reachability workers (walk.launch workers:=N): ~workers (N reachability_nodes whose
+/// check_footholds services, <~worker_prefix><i>/check_footholds for i < N, check the
+/// candidates of the nearest-feasible-foothold search in parallel; 0: in this process; 0),
+/// ~worker_prefix (relative, remappable; reachability_worker_), ~worker_timeout [s wall, the
+/// longest wait for a worker's answer and, at start, for its service; 10], ~worker_retry_period
+/// [s wall, how long a worker that failed or timed out is left out; 30]. A worker's failure
+/// sends its candidates to another worker or checks them here: the plans do not change.
 /// The robot is read from the `robot_description` parameter (URDF text).
 
+#include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
+#include "reach_trajopt/PlanTransitionAction.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ros/conversions.h"
@@ -32,6 +45,7 @@
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
+#include "reach_trajopt/ros/reachability_workers.h"
 #include "reach_trajopt/ros/service_requests.h"
 
 using namespace reach_trajopt;
@@ -45,6 +59,7 @@ class TransitionOcpNode {
       : s_(rb::FootholdServiceSetup::load(nh, pnh)), default_horizon_(s_.reach.horizon) {
     pnh.getParam("default_horizon", default_horizon_);
     pnh.getParam("reachability_samples", reachability_samples_);
+    startWorkers(nh, pnh);
     // Queues for a recorder of a walk (one message of each per step).
     traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
     reach_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
@@ -52,11 +67,108 @@ class TransitionOcpNode {
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("transition_markers", 100);
     server_ = nh.advertiseService("plan_transition", &TransitionOcpNode::plan, this);
     footstep_server_ = nh.advertiseService("plan_footstep", &TransitionOcpNode::planFootstep, this);
+    transition_action_ = std::make_unique<TransitionAction>(
+        nh, "plan_transition_action",
+        [this](const reach_trajopt::PlanTransitionGoalConstPtr& goal) { executeTransition(goal); },
+        false);
+    transition_action_->start();
   }
 
  private:
+  // The reachability workers of the nearest-feasible search (~workers), before serving.
+  void startWorkers(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
+    int workers = 0;
+    std::string prefix = "reachability_worker_";
+    double timeout = 10.0, retry_period = 30.0;
+    pnh.getParam("workers", workers);
+    pnh.getParam("worker_prefix", prefix);
+    pnh.getParam("worker_timeout", timeout);
+    pnh.getParam("worker_retry_period", retry_period);
+    if (workers < 0) throw ConfigError("~workers must be >= 0, got " + std::to_string(workers));
+    if (workers == 0) return;
+    std::vector<std::string> services;
+    for (int i = 0; i < workers; ++i) {
+      services.push_back(prefix + std::to_string(i) + "/check_footholds");
+      if (!ros::service::waitForService(nh.resolveName(services.back()), ros::Duration(timeout)))
+        ROS_WARN(
+            "transition_ocp_node: worker service '%s' not up within ~worker_timeout; "
+            "its candidates go elsewhere until it is",
+            nh.resolveName(services.back()).c_str());
+    }
+    const KinematicFeasibility& kinematics = s_.planner->kinematics();
+    workers_ = std::make_unique<rb::ReachabilityWorkerPool>(
+        nh, services, timeout, retry_period, s_.model->nq(),
+        [&kinematics](const FootholdCandidates& b) {
+          return checkFootholdCandidates(kinematics, b, false);
+        });
+    s_.planner->setCandidateCheck(
+        [pool = workers_.get()](const FootholdCandidates& b) { return pool->check(b); });
+    ROS_INFO("transition_ocp_node: %d reachability workers (%s0..%d)", workers, prefix.c_str(),
+             workers - 1);
+  }
+
   bool plan(reach_trajopt::PlanTransition::Request& req,
             reach_trajopt::PlanTransition::Response& res) {
+    return answerTransition(req, res, {});
+  }
+
+  // plan_transition_action: the service's plan with feedback from the check and the OCP; a
+  // newer goal or a cancel preempts it at its next progress report.
+  void executeTransition(const reach_trajopt::PlanTransitionGoalConstPtr& goal) {
+    reach_trajopt::PlanTransition::Request req;
+    req.header = goal->header;
+    req.contact_mode = goal->contact_mode;
+    req.q = goal->q;
+    req.qd = goal->qd;
+    req.foothold = goal->foothold;
+    req.swing_duration = goal->swing_duration;
+    req.check_reachability = goal->check_reachability;
+    req.allow_relaxation = goal->allow_relaxation;
+    bool cancelled = false;
+    auto wanted = [&] {
+      return !(cancelled = transition_action_->isPreemptRequested() || !ros::ok());
+    };
+    FootstepPlanProgress progress;
+    progress.check = [&](const ReachProgress& p) {
+      if (!wanted()) return false;
+      reach_trajopt::PlanTransitionFeedback f;
+      f.stage = "check";
+      f.direction = p.forward ? "forward" : "backward";
+      f.slices_done = static_cast<uint32_t>(p.slices_done);
+      f.slices_total = static_cast<uint32_t>(p.slices_total);
+      f.samples = static_cast<uint64_t>(p.samples);
+      f.qps = static_cast<uint64_t>(p.qps);
+      transition_action_->publishFeedback(f);
+      return true;
+    };
+    progress.ocp = [&](const OcpProgress& p) {
+      if (!wanted()) return false;
+      reach_trajopt::PlanTransitionFeedback f;
+      f.stage = "ocp";
+      f.relaxed = p.relaxed;
+      f.ocp_evaluations = static_cast<uint32_t>(p.evaluations);
+      transition_action_->publishFeedback(f);
+      return true;
+    };
+    reach_trajopt::PlanTransition::Response res;
+    answerTransition(req, res, progress);
+    reach_trajopt::PlanTransitionResult result;
+    result.success = res.success;
+    result.message = res.message;
+    result.reachability = res.reachability;
+    result.trajectory = res.trajectory;
+    if (cancelled)
+      transition_action_->setPreempted(result, res.message);
+    else if (res.success)
+      transition_action_->setSucceeded(result, res.message);
+    else
+      transition_action_->setAborted(result, res.message);
+  }
+
+  // One plan_transition request, for the service and the action (with its progress).
+  bool answerTransition(const reach_trajopt::PlanTransition::Request& req,
+                        reach_trajopt::PlanTransition::Response& res,
+                        const FootstepPlanProgress& progress) {
     const ros::Time t0 = req.header.stamp;
     res.reachability = rb::reachabilityVerdictMsg("not_checked", "", t0);
     return rb::answerOrReject(
@@ -80,7 +192,7 @@ class TransitionOcpNode {
           step_request.on_infeasible = req.allow_relaxation
                                            ? InfeasibleFootholdPolicy::kRelaxTowardTarget
                                            : InfeasibleFootholdPolicy::kReject;
-          const FootstepTransition step = s_.planner->plan(step_request);
+          const FootstepTransition step = s_.planner->plan(step_request, progress);
           if (req.check_reachability && step.kinematically_feasible) {
             res.reachability = rb::toReachabilityResultMsg(step.check.reach, r,
                                                            rb::swingFrame(s_.contact, r.stance),
@@ -145,9 +257,12 @@ class TransitionOcpNode {
         });
   }
 
+  using TransitionAction = actionlib::SimpleActionServer<reach_trajopt::PlanTransitionAction>;
   const rb::FootholdServiceSetup s_;
+  std::unique_ptr<TransitionAction> transition_action_;  ///< goals run on its own thread
   double default_horizon_;
   bool reachability_samples_ = true;
+  std::unique_ptr<rb::ReachabilityWorkerPool> workers_;  ///< none: ~workers 0
   ros::Publisher traj_pub_, reach_pub_, reach_marker_pub_, marker_pub_;
   ros::ServiceServer server_, footstep_server_;
 };

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "reach_trajopt/common/cancelled.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/ocp/transition_check.h"
@@ -56,6 +57,9 @@ struct NloptBridge {
   bool valid = false, has_gradients = false;
   NlpValues values;
   int gradient_evaluations = 0;
+  int evaluations_before = 0;  ///< of the earlier rounds of this solve (progress reports)
+  const OcpProgressCallback* progress = nullptr;
+  bool cancelled = false;
   std::string error;
 
   bool prepare(unsigned n, const double* xp, bool gradients) {
@@ -77,7 +81,16 @@ struct NloptBridge {
     }
     valid = true;
     has_gradients = gradients;
-    if (gradients) ++gradient_evaluations;
+    if (gradients) {
+      ++gradient_evaluations;
+      if (progress && *progress &&
+          !(*progress)({nlp->relaxed(), evaluations_before + gradient_evaluations})) {
+        cancelled = true;
+        valid = false;
+        opt->force_stop();
+        return false;
+      }
+    }
     return true;
   }
 
@@ -111,13 +124,17 @@ struct NloptBridge {
 
 /// Runs SLSQP from x (updated in place). Returns NLopt's code name; `error` gets callback
 /// failures.
+/// \throws ReachCancelled when `progress` returns false.
 std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, double max_time,
-                     Eigen::VectorXd& x, int& evaluations, std::string& error) {
+                     Eigen::VectorXd& x, int& evaluations, std::string& error,
+                     const OcpProgressCallback& progress) {
   const unsigned n = static_cast<unsigned>(nlp.variableCount());
   nlopt::opt opt(nlopt::LD_SLSQP, n);
   NloptBridge bridge;
   bridge.nlp = &nlp;
   bridge.opt = &opt;
+  bridge.progress = &progress;
+  bridge.evaluations_before = evaluations;
   auto toStd = [](const Eigen::VectorXd& v) {
     return std::vector<double>(v.data(), v.data() + v.size());
   };
@@ -149,6 +166,10 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, doub
   } catch (const std::runtime_error&) {
     code = nlopt::FAILURE;
   }
+  if (bridge.cancelled)
+    throw ReachCancelled("transition OCP cancelled after " +
+                         std::to_string(evaluations + bridge.gradient_evaluations) +
+                         " evaluations");
   if (!bridge.error.empty()) error = bridge.error;
   const Eigen::VectorXd xn = Eigen::Map<const Eigen::VectorXd>(xv.data(), n);
   if (xn.allFinite()) x = xn;
@@ -294,7 +315,8 @@ bool TransitionOcp::finalStateOnContacts(const TransitionRequest& r) const {
 }
 
 TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool relaxed,
-                                          Clock::time_point deadline) const {
+                                          Clock::time_point deadline,
+                                          const OcpProgressCallback& progress) const {
   TransitionNlp nlp(model_, config_, contact_, request, relaxed);
   Eigen::VectorXd x = nlp.initialGuess();
   TransitionResult res;
@@ -308,7 +330,7 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
       if (res.time.size() == 0) nlp.sampleSolution(x, config_.output_dt, res);
       break;
     }
-    res.nlopt_status = runSlsqp(nlp, config_, remaining, x, res.iterations, error);
+    res.nlopt_status = runSlsqp(nlp, config_, remaining, x, res.iterations, error, progress);
     ++res.solves;
     res.variables = nlp.variableCount();
     res.constraints = nlp.equalityCount() + nlp.inequalityCount();
@@ -350,7 +372,8 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
   return res;
 }
 
-TransitionResult TransitionOcp::solve(const TransitionRequest& request) const {
+TransitionResult TransitionOcp::solve(const TransitionRequest& request,
+                                      const OcpProgressCallback& progress) const {
   const Clock::time_point start = Clock::now();
   const Clock::time_point deadline = start + std::chrono::duration_cast<Clock::duration>(
                                                  std::chrono::duration<double>(config_.time_limit));
@@ -358,23 +381,23 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request) const {
   TransitionResult res;
   switch (request.relaxation) {
     case RelaxationMode::kStrict:
-      res = solveMode(request, false, deadline);
+      res = solveMode(request, false, deadline, progress);
       break;
     case RelaxationMode::kRelaxed:
-      res = solveMode(request, true, deadline);
+      res = solveMode(request, true, deadline, progress);
       break;
     case RelaxationMode::kAuto: {
       if (finalStateOnContacts(request)) {
-        res = solveMode(request, false, deadline);
+        res = solveMode(request, false, deadline, progress);
         if (res.status != OcpStatus::kFailed) break;
         const TransitionResult strict = res;
-        res = solveMode(request, true, deadline);
+        res = solveMode(request, true, deadline, progress);
         res.iterations += strict.iterations;
         res.solves += strict.solves;
         const std::string note = "strict problem failed (" + strict.reason + ")";
         res.reason = res.reason.empty() ? note : note + "; relaxed: " + res.reason;
       } else {
-        res = solveMode(request, true, deadline);
+        res = solveMode(request, true, deadline, progress);
         const std::string note = "x_f is off its contacts: solved the relaxed problem";
         res.reason = res.reason.empty() ? note : note + "; " + res.reason;
       }

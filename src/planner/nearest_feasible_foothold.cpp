@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "reach_trajopt/common/config_fields.h"
+#include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
 
@@ -45,19 +46,59 @@ NearestFeasibleFoothold::NearestFeasibleFoothold(
   config_.validate();
 }
 
+std::vector<CandidateOutcome> checkFootholdCandidates(const KinematicFeasibility& kinematics,
+                                                      const FootholdCandidates& batch,
+                                                      bool stop_at_first_decisive) {
+  std::vector<CandidateOutcome> outcomes;
+  outcomes.reserve(batch.candidates.size());
+  for (const FlatContact& p : batch.candidates) {
+    CandidateOutcome o;
+    try {
+      o.kinematics = kinematics.check(batch.stance, batch.stance_foothold, p, batch.q_init,
+                                      batch.pelvis_position);
+    } catch (const ReachError& e) {
+      o.error = e.what();
+    }
+    const bool decisive = !o.error.empty() || o.kinematics.feasible;
+    outcomes.push_back(std::move(o));
+    if (decisive && stop_at_first_decisive) break;
+  }
+  return outcomes;
+}
+
+std::vector<FlatContact> NearestFeasibleFoothold::ringCandidates(const FlatContact& target,
+                                                                 int ring) const {
+  std::vector<FlatContact> candidates;
+  candidates.reserve(config_.directions);
+  for (int d = 0; d < config_.directions; ++d) {
+    const double angle = 2.0 * M_PI * d / config_.directions;
+    FlatContact p = target;
+    p.position = target.position +
+                 ring * config_.ring_step * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
+    candidates.push_back(p);
+  }
+  return candidates;
+}
+
 std::optional<NearestFoothold> NearestFeasibleFoothold::find(
     Side stance, const FlatContact& stance_foothold, const FlatContact& target,
-    const Eigen::VectorXd& q_init, const std::optional<Eigen::Vector3d>& pelvis_position) const {
+    const Eigen::VectorXd& q_init, const std::optional<Eigen::Vector3d>& pelvis_position,
+    const CandidateCheck& check) const {
+  FootholdCandidates batch{stance, stance_foothold, {}, q_init, pelvis_position};
   for (int ring = 1; ring <= config_.rings; ++ring) {
-    for (int d = 0; d < config_.directions; ++d) {
-      const double angle = 2.0 * M_PI * d / config_.directions;
-      FlatContact p = target;
-      p.position = target.position +
-                   ring * config_.ring_step * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
-      KinematicFeasibilityResult k =
-          kinematics_->check(stance, stance_foothold, p, q_init, pelvis_position);
-      if (k.feasible) return NearestFoothold{p, std::move(k)};
+    batch.candidates = ringCandidates(target, ring);
+    std::vector<CandidateOutcome> outcomes =
+        check ? check(batch) : checkFootholdCandidates(*kinematics_, batch, true);
+    for (size_t i = 0; i < outcomes.size(); ++i) {
+      if (!outcomes[i].error.empty()) throw ReachError(outcomes[i].error);
+      if (outcomes[i].kinematics.feasible)
+        return NearestFoothold{batch.candidates[i], std::move(outcomes[i].kinematics)};
     }
+    if (outcomes.size() != batch.candidates.size())
+      throw ReachError("nearest feasible foothold: the candidate check answered " +
+                       std::to_string(outcomes.size()) + " of " +
+                       std::to_string(batch.candidates.size()) + " candidates of ring " +
+                       std::to_string(ring));
   }
   return std::nullopt;
 }

@@ -43,8 +43,8 @@ Eigen::VectorXd FootstepReachability::touchdownVelocity(const FootstepRequest& r
       Eigen::Vector3d(r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y(), 0.0));
 }
 
-FootstepResult FootstepReachability::check(const FootstepRequest& r,
-                                           const ReachConfig& config) const {
+FootstepResult FootstepReachability::check(const FootstepRequest& r, const ReachConfig& config,
+                                           const ReachProgressCallback& progress) const {
   FootstepResult out = kinematicStage(r);
   if (!out.kinematically_feasible) return out;
   ReachProblem p;
@@ -55,7 +55,7 @@ FootstepResult FootstepReachability::check(const FootstepRequest& r,
   p.qdf = out.qdf;
   p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();
   p.target = r.target.pose();
-  out.reach = analyzer_->check(p, config);
+  out.reach = analyzer_->check(p, config, progress);
   out.reachable = out.reach.reachable;
   out.reason = out.reach.reason;
   return out;

@@ -124,7 +124,8 @@ Eigen::VectorXd ReachabilityAnalyzer::sampleConfiguration(const ReachResult& res
       result.semi_implicit, slice, index);
 }
 
-ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfig& config) const {
+ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfig& config,
+                                        const ReachProgressCallback& progress) const {
   const auto t_start = Clock::now();
   config.validate();
   config.requireResourcesWithinLimits(model_->nq());  // before any sample is drawn
@@ -157,9 +158,9 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
 
   // ---- forward set (15)-(16) and backward set (17)-(20) ----------------------------------
   const PropagationStats fwd = propagateSet(ctx, PropagationDirection::kForward, 0, pb.q0, pb.qd0,
-                                            n_fwd, threads, res.forward);
+                                            n_fwd, threads, res.forward, progress);
   const PropagationStats bwd = propagateSet(ctx, PropagationDirection::kBackward, i_t, pb.qf,
-                                            pb.qdf, n_bwd, threads, res.backward);
+                                            pb.qdf, n_bwd, threads, res.backward, progress);
   res.counts.forward_samples = fwd.samples;
   res.counts.forward_rejected = fwd.rejected;
   res.counts.forward_qps = fwd.qps;

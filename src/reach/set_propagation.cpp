@@ -189,7 +189,8 @@ SampleSlice rootSlice(const ReachContext& ctx, double time, const Eigen::VectorX
 template <class Step>
 PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_index,
                                const Eigen::VectorXd& q, const Eigen::VectorXd& qd, int steps,
-                               int threads, std::vector<SampleSlice>& slices) {
+                               int threads, std::vector<SampleSlice>& slices,
+                               const ReachProgressCallback& progress) {
   const auto t0 = Clock::now();
   const ReachConfig& config = ctx.config;
   const double dt = config.dt;
@@ -212,6 +213,14 @@ PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_i
     stats.boundary_time += since(tb);
     stats.samples += next.size();
     slices.push_back(std::move(next));
+    if (progress) {
+      ReachProgress p{forward, j + 1, steps, stats.samples, 0};
+      for (const auto& sc : scratch) p.qps += sc->step.qpCount();
+      if (!progress(p))
+        throw ReachCancelled(std::string("reachability check cancelled after ") +
+                             std::to_string(j + 1) + " of " + std::to_string(steps) + " " +
+                             (forward ? "forward" : "backward") + " slices");
+    }
   }
   for (const auto& s : scratch) stats.qps += s->step.qpCount();
   stats.propagation_time = since(t0) - stats.boundary_time;
@@ -222,10 +231,13 @@ PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_i
 
 PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
                               int root_index, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                              int steps, int threads, std::vector<SampleSlice>& slices) {
+                              int steps, int threads, std::vector<SampleSlice>& slices,
+                              const ReachProgressCallback& progress) {
   if (direction == PropagationDirection::kForward)
-    return propagateWith<ForwardStep>(ctx, true, root_index, q, qd, steps, threads, slices);
-  return propagateWith<BackwardStep>(ctx, false, root_index, q, qd, steps, threads, slices);
+    return propagateWith<ForwardStep>(ctx, true, root_index, q, qd, steps, threads, slices,
+                                      progress);
+  return propagateWith<BackwardStep>(ctx, false, root_index, q, qd, steps, threads, slices,
+                                     progress);
 }
 
 Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,

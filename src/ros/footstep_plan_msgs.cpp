@@ -38,6 +38,8 @@ Enum parseName(const std::pair<Enum, const char*> (&table)[N], const std::string
   throw RequestError(field + ": unknown name '" + name + "' (expected " + known + ")");
 }
 
+}  // namespace
+
 Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const std::string& field) {
   if (v.size() != size)
     throw RequestError(field + ": expected " + std::to_string(size) + " numbers, got " +
@@ -50,8 +52,6 @@ Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const st
 std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
-
-}  // namespace
 
 const char* ocpPolicyName(OcpPolicy p) {
   for (const auto& [value, name] : kOcpPolicies)

@@ -73,7 +73,8 @@ FootstepTransitionPlanner::FootstepTransitionPlanner(std::shared_ptr<const Robot
       nearest_(kinematics_, config.nearest_foothold),
       ocp_(model, config.ocp, contact) {}
 
-FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r) const {
+FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
+                                                   const FootstepPlanProgress& progress) const {
   const RobotModel& m = *model_;
   m.checkState(r.q, r.qd);
   requireFinite("FootstepTransitionPlanner: target", r.target);
@@ -88,8 +89,8 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r)
   out.horizon = r.horizon > 0.0 ? r.horizon : reach.horizon;
   const Eigen::Isometry3d held = initialState(r, out);
   const Touchdown touchdown = predictTouchdown(r, out);
-  checkFoothold(r, reach, touchdown, out);
-  solveTransition(r, held, touchdown, out);
+  checkFoothold(r, reach, touchdown, progress.check, out);
+  solveTransition(r, held, touchdown, progress.ocp, out);
   return out;
 }
 
@@ -139,6 +140,7 @@ FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown
 
 void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
                                               const ReachConfig& reach, const Touchdown& td,
+                                              const ReachProgressCallback& progress,
                                               FootstepTransition& out) const {
   const auto check_start = std::chrono::steady_clock::now();
   FootstepRequest request;
@@ -151,7 +153,7 @@ void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
   request.touchdown_com_velocity = td.com_velocity.head<2>();
   request.touchdown_pelvis_position = td.pelvis;
   if (r.check_reachability) {
-    out.check = footsteps_.check(request, reach);
+    out.check = footsteps_.check(request, reach, progress);
   } else {
     out.check = footsteps_.kinematicStage(request);
   }
@@ -169,6 +171,7 @@ void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
 
 void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
                                                 const Eigen::Isometry3d& held, const Touchdown& td,
+                                                const OcpProgressCallback& progress,
                                                 FootstepTransition& out) const {
   const RobotModel& m = *model_;
   const FootstepResult& check = out.check;
@@ -202,8 +205,8 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     ocp.qdf = check.kinematics.qd_f;
     ocp.relaxation = RelaxationMode::kRelaxed;  // land as close as the OCP can
   } else {
-    const std::optional<NearestFoothold> near =
-        nearest_.find(r.stance, out.stance_contact, out.target, out.q0, td.pelvis);
+    const std::optional<NearestFoothold> near = nearest_.find(
+        r.stance, out.stance_contact, out.target, out.q0, td.pelvis, candidate_check_);
     if (!near) {
       out.reason += "; no kinematically feasible foothold within " +
                     std::to_string(nearest_.config().searchRadius()) + " m of the target";
@@ -228,7 +231,7 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
   }
   seedFromWitness(check.reach, ocp);
   const auto ocp_start = std::chrono::steady_clock::now();
-  out.trajectory = ocp_.solve(ocp);
+  out.trajectory = ocp_.solve(ocp, progress);
   out.ocp_time_s = secondsSince(ocp_start);
   // Without a usable trajectory the swing still goes to the nearest kinematically feasible
   // foothold (the target itself when it is feasible).

@@ -3,7 +3,7 @@
 // a reason) without the node growing (resident memory read from /proc/<pid>/status) or
 // stopping, and then a valid request must still be answered. Prints the BENCH line. The
 // walking loop's plan_footstep gets malformed requests too, each rejected naming its field,
-// then a valid one.
+// then a valid one; so does a reachability worker's check_footholds (the request id echoed).
 
 #include <dirent.h>
 #include <gtest/gtest.h>
@@ -19,10 +19,12 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/CheckFootholds.h"
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
 #include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/ros/foothold_candidate_msgs.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/walk/standing_pose.h"
 
@@ -264,12 +266,63 @@ TEST(BadRequests, PlanFootstepRejectsNamingTheFieldAndServesOn) {
                                                                       : "kinematically_infeasible");
 }
 
+TEST(BadRequests, CheckFootholdsRejectsNamingTheFieldAndServesOn) {
+  using namespace reach_trajopt;
+  ros::NodeHandle nh;
+  std::string urdf;
+  ASSERT_TRUE(nh.getParam("robot_description", urdf));
+  const auto model = RobotModel::fromUrdfString(urdf, {}, "robot_description");
+  // Standing on the left sole; three candidates for the right one around where it stands.
+  FootholdCandidates batch;
+  batch.stance = Side::kLeft;
+  batch.q_init = standingConfiguration(*model, 0.6, "l_sole");
+  Workspace ws(*model);
+  model->update(ws, batch.q_init, Eigen::VectorXd::Zero(model->nq()));
+  batch.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
+  for (double dx : {-0.02, 0.0, 0.02}) {
+    FlatContact c;
+    c.position = model->framePose(ws, model->frameId("r_sole")).translation();
+    c.position.x() += dx;
+    batch.candidates.push_back(c);
+  }
+  const reach_trajopt::CheckFootholds::Request valid =
+      ros_bridge::toCheckFootholdsRequestMsg(batch, 77);
+  const std::vector<
+      std::pair<std::string, std::function<void(reach_trajopt::CheckFootholds::Request&)>>>
+      kinds = {
+          {"stance", [](auto& r) { r.stance = "SS-L"; }},
+          {"stance_position", [](auto& r) { r.stance_position.z = kNaN; }},
+          {"stance_yaw", [](auto& r) { r.stance_yaw = kInf; }},
+          {"candidate_yaw", [](auto& r) { r.candidate_yaw.pop_back(); }},
+          {"candidates[1]", [](auto& r) { r.candidates[1].x = kNaN; }},
+          {"q_init", [](auto& r) { r.q_init.assign(200000, 0.0); }},
+          {"pelvis_position", [](auto& r) { r.pelvis_position = {1.0}; }},
+      };
+  for (const auto& [field, edit] : kinds) {
+    reach_trajopt::CheckFootholds srv;
+    srv.request = valid;
+    edit(srv.request);
+    ASSERT_TRUE(ros::service::call("check_footholds", srv)) << "stopped serving at " << field;
+    EXPECT_FALSE(srv.response.success) << field;
+    EXPECT_EQ(srv.response.request_id, 77u) << field;
+    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
+        << field << ": " << srv.response.message;
+  }
+  reach_trajopt::CheckFootholds srv;
+  srv.request = valid;
+  ASSERT_TRUE(ros::service::call("check_footholds", srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(srv.response.request_id, 77u);
+  EXPECT_EQ(ros_bridge::fromCheckFootholdsResponseMsg(srv.response, 3, model->nq()).size(), 3u);
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "check_bad_requests");
   if (!ros::service::waitForService("check_reachability", ros::Duration(120)) ||
       !ros::service::waitForService("plan_transition", ros::Duration(120)) ||
-      !ros::service::waitForService("plan_footstep", ros::Duration(120))) {
+      !ros::service::waitForService("plan_footstep", ros::Duration(120)) ||
+      !ros::service::waitForService("check_footholds", ros::Duration(120))) {
     std::fprintf(stderr, "the services did not come up\n");
     return 1;
   }

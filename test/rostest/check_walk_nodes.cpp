@@ -8,11 +8,24 @@
 // checker kills transition_ocp_node (rosnode kill) when that many step reports have arrived:
 // the walk must still equal the in-process one (sim_node plans the rest itself), the steps
 // before come from transition_ocp_node, the last from sim_node, no step without its messages.
+// With ~workers N (workers_walk.test) transition_ocp_node checks the candidates of its
+// nearest-feasible-foothold search on N reachability workers: the walk must equal the
+// in-process one and every worker must have checked candidates (its footholds_checked). With
+// ~hang_worker_after_steps K as well, the checker hangs worker 0 (SIGSTOP, by the pid the node
+// reports) once K step reports have arrived: its calls time out, its candidates go to the other
+// worker, and the walk must still equal the in-process one with every step's messages from
+// transition_ocp_node, and worker 1 must have checked whole rings since; worker 0 is continued
+// (SIGCONT) at the end so the launch can stop it.
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <signal.h>
 #include <std_msgs/String.h>
+#include <std_msgs/UInt64.h>
+#include <sys/types.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <regex>
@@ -47,6 +60,26 @@ Received g_received;
 std::mutex g_mutex;
 int g_kill_after_steps = 0;  ///< 0: kill nothing
 bool g_killed = false;
+int g_hang_worker_after_steps = 0;  ///< 0: hang no worker
+pid_t g_worker0_pid = 0;            ///< read before the walk starts
+bool g_hung = false;
+/// Candidates checked by each worker (its latched footholds_checked), and by worker 1 once
+/// worker 0 was hung.
+std::vector<uint64_t> g_worker_checked;
+uint64_t g_worker1_checked_at_hang = 0;
+
+const char* kHungWorker = "/reachability_worker_0/reachability_node";
+
+// The pid of a running node, from its XML-RPC getPid (through rosnode info); 0: unknown.
+pid_t nodePid(const std::string& node) {
+  const std::string command = "rosnode info " + node + " 2>/dev/null | sed -n 's/^Pid: //p'";
+  FILE* f = popen(command.c_str(), "r");
+  if (!f) return 0;
+  char buffer[64] = {0};
+  const bool read = fgets(buffer, sizeof(buffer), f) != nullptr;
+  pclose(f);
+  return read ? static_cast<pid_t>(std::atol(buffer)) : 0;
+}
 
 template <typename M>
 std::vector<uint8_t> bytes(const M& m) {
@@ -121,6 +154,22 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
   size_t checked = 0;
   for (const StepRecord& r : in_process.records) checked += r.verdict != "not_checked";
   EXPECT_EQ(checked, in_process.records.size());
+  const int workers = param(pnh, "workers", 0);
+  if (workers > 0) {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    for (int i = 0; i < workers; ++i)
+      EXPECT_GT(g_worker_checked[i], 0u) << "worker " << i << " checked no candidate";
+    if (g_hang_worker_after_steps > 0) {
+      EXPECT_TRUE(g_hung) << "worker 0 was not hung";
+      // Every candidate of every ring after the hang went to worker 1: its own part of the
+      // first ring plus worker 0's timed-out part, then whole rings (none lost or made up).
+      const uint64_t after_hang = g_worker_checked[1] - g_worker1_checked_at_hang;
+      const int directions = setup.footsteps.nearest_foothold.directions;
+      EXPECT_GT(after_hang, 0u) << "no candidate went to worker 1 after worker 0 hung";
+      EXPECT_EQ(after_hang % directions, 0u)
+          << after_hang << " candidates after the hang: not whole rings of " << directions;
+    }
+  }
   if (g_kill_after_steps == 0) {
     // Every check went through transition_ocp_node (none fell back to sim_node's planner).
     ASSERT_EQ(got.check_publishers.size(), checked);
@@ -147,6 +196,13 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
 void onReport(const reach_trajopt::StepReport::ConstPtr& m) {
   std::lock_guard<std::mutex> lock(g_mutex);
   g_received.reports.push_back(*m);
+  if (g_hang_worker_after_steps > 0 && !g_hung &&
+      static_cast<int>(g_received.reports.size()) == g_hang_worker_after_steps) {
+    // At once (mid-walk: the next step's search is on its way): a hung node, not a dead one.
+    g_hung = g_worker0_pid > 0 && ::kill(g_worker0_pid, SIGSTOP) == 0;
+    if (!g_hung) ADD_FAILURE() << "could not hang " << kHungWorker;
+    if (g_worker_checked.size() > 1) g_worker1_checked_at_hang = g_worker_checked[1];
+  }
   if (g_kill_after_steps > 0 && !g_killed &&
       static_cast<int>(g_received.reports.size()) == g_kill_after_steps) {
     g_killed = true;  // mid-walk: the next step's check is already on its way
@@ -170,6 +226,10 @@ void onResult(const std_msgs::String::ConstPtr& m) {
   g_received.walk_line = m->data;
 }
 void onCom(const reach_trajopt::CenterOfMassState::ConstPtr&) {}
+void onWorkerChecked(size_t worker, const std_msgs::UInt64::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  g_worker_checked[worker] = m->data;
+}
 
 }  // namespace
 
@@ -178,15 +238,29 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "check_walk_nodes");
   ros::NodeHandle nh;
   ros::NodeHandle("~").getParam("kill_after_steps", g_kill_after_steps);
+  ros::NodeHandle("~").getParam("hang_worker_after_steps", g_hang_worker_after_steps);
+  int workers = 0;
+  ros::NodeHandle("~").getParam("workers", workers);
+  g_worker_checked.assign(std::max(workers, 0), 0);
+  std::vector<ros::Subscriber> worker_subs;
+  for (int i = 0; i < workers; ++i)
+    worker_subs.push_back(nh.subscribe<std_msgs::UInt64>(
+        "reachability_worker_" + std::to_string(i) + "/footholds_checked", 10,
+        [i](const std_msgs::UInt64::ConstPtr& m) { onWorkerChecked(i, m); }));
   const ros::Subscriber reports = nh.subscribe("step_report", 100, onReport);
   const ros::Subscriber checks = nh.subscribe("reachability_result", 100, onCheck);
   const ros::Subscriber trajectories = nh.subscribe("transition_trajectory", 100, onTrajectory);
   const ros::Subscriber result = nh.subscribe("walk_result", 1, onResult);
+  if (g_hang_worker_after_steps > 0) {  // before the walk starts: rosnode info takes a while
+    ros::service::waitForService("/reachability_worker_0/check_footholds", ros::Duration(60.0));
+    g_worker0_pid = nodePid(kHungWorker);
+  }
   // Last: sim_node starts once com_state has this subscriber too (extra_com_subscribers).
   const ros::Subscriber com = nh.subscribe("com_state", 10, onCom);
   ros::AsyncSpinner spinner(1);
   spinner.start();
   const int rc = RUN_ALL_TESTS();
+  if (g_hung) ::kill(g_worker0_pid, SIGCONT);  // so that the launch can stop it
   spinner.stop();
   return rc;
 }

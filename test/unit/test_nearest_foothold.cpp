@@ -1,11 +1,14 @@
 // The nearest kinematically feasible foothold (planner/nearest_feasible_foothold.h) on the
 // shipped biped: a target inside the stance sole is replaced by the first feasible ring point,
 // which the kinematic check itself accepts (an independent re-check), no closer ring holds a
-// feasible point, and a search too small to leave the infeasible region finds nothing.
+// feasible point, and a search too small to leave the infeasible region finds nothing. A ring
+// checked in chunks elsewhere (as worker nodes do) finds the same foothold and posture, bit for
+// bit, as the search in process; a check that answers too few candidates is an error.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_config.h"
@@ -52,6 +55,44 @@ TEST(NearestFeasibleFoothold, ReplacesAFootThroughTheOtherByTheFirstFeasibleRing
       p.position += k * config.ring_step * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
       EXPECT_FALSE(kf->check(Side::kLeft, stance, p, {}).feasible) << "ring " << k << " dir " << d;
     }
+}
+
+TEST(NearestFeasibleFoothold, RingsCheckedInChunksGiveTheInProcessAnswer) {
+  const auto kf = kinematics();
+  const NearestFeasibleFoothold search(kf, NearestFootholdConfig{});
+  const FlatContact stance = at(0.0, 0.1), target = at(0.02, 0.05);
+  int batches = 0;
+  // Three chunks per ring, the last one first, each checked in full (what a worker answers).
+  const CandidateCheck chunked = [&](const FootholdCandidates& batch) {
+    ++batches;
+    const size_t n = batch.candidates.size();
+    std::vector<std::vector<CandidateOutcome>> parts(3);
+    for (int c = 2; c >= 0; --c) {
+      FootholdCandidates part = batch;
+      part.candidates.assign(batch.candidates.begin() + n * c / 3,
+                             batch.candidates.begin() + n * (c + 1) / 3);
+      parts[c] = checkFootholdCandidates(*kf, part, false);
+    }
+    std::vector<CandidateOutcome> all;
+    for (auto& p : parts) all.insert(all.end(), p.begin(), p.end());
+    return all;
+  };
+  const auto local = search.find(Side::kLeft, stance, target, {}, std::nullopt);
+  const auto remote = search.find(Side::kLeft, stance, target, {}, std::nullopt, chunked);
+  ASSERT_TRUE(local && remote);
+  EXPECT_GT(batches, 1);  // the target's ring 1 is infeasible: more than one ring was checked
+  EXPECT_EQ(remote->foothold.position, local->foothold.position);
+  EXPECT_EQ(remote->kinematics.q_f, local->kinematics.q_f);
+  EXPECT_EQ(remote->kinematics.iterations, local->kinematics.iterations);
+  EXPECT_EQ(remote->kinematics.position_residual, local->kinematics.position_residual);
+
+  const CandidateCheck short_answer = [&](const FootholdCandidates& batch) {
+    FootholdCandidates first = batch;
+    first.candidates.resize(1);
+    return checkFootholdCandidates(*kf, first, false);
+  };
+  EXPECT_THROW(search.find(Side::kLeft, stance, target, {}, std::nullopt, short_answer),
+               ReachError);
 }
 
 TEST(NearestFeasibleFoothold, SearchTooSmallFindsNothing) {

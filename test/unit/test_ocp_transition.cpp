@@ -9,6 +9,8 @@
 //  - A footstep 0.3 m beyond the leg's kinematic reach: relaxed, the landing is kinematically
 //    feasible, so |eps| is at least the distance to the kinematic edge.
 //  - Warm start from a seed path, time limit, bad input.
+//  - Progress (ocp_progress.h): reported at every gradient evaluation, counting up to the
+//    result's iterations, the solution the same as unheard; returning false cancels.
 // Units of the 1e-4 bound: contacts in m, rad, m/s, rad/s, m/s^2, rad/s^2; eq. (1) residual
 // divided by the effort limit (actuated rows) or the weight m g (base rows); cone rows and the
 // torque excess divided by m g and u_max.
@@ -18,7 +20,9 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
+#include "reach_trajopt/common/cancelled.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 #include "reach_trajopt/model/robot_model.h"
@@ -296,6 +300,29 @@ TEST(TransitionOcp, StepBeyondLegReachLandsOnFeasibleFoothold) {
   std::cout << "[ beyond IK ] edge " << lo << " m, landing x " << res.landing_position.x()
             << " m, |eps| " << res.eps.norm() << " m, " << res.iterations
             << " gradient evaluations, " << res.solve_time << " s\n";
+}
+
+TEST(TransitionOcp, ProgressCountsEvaluationsAndCancels) {
+  const TransitionOcp ocp(biped(), caseConfig());
+  const TransitionRequest req = stepRequest(0.25);
+  const TransitionResult quiet = ocp.solve(req);
+  std::vector<OcpProgress> seen;
+  const TransitionResult heard = ocp.solve(req, [&](const OcpProgress& p) {
+    seen.push_back(p);
+    return true;
+  });
+  ASSERT_FALSE(seen.empty());
+  for (size_t i = 1; i < seen.size(); ++i)
+    if (seen[i].relaxed == seen[i - 1].relaxed)
+      EXPECT_EQ(seen[i].evaluations, seen[i - 1].evaluations + 1) << i;
+  EXPECT_EQ(seen.back().evaluations, heard.iterations);
+  EXPECT_EQ(heard.status, quiet.status);
+  EXPECT_EQ(heard.iterations, quiet.iterations);
+  EXPECT_TRUE(heard.q == quiet.q);
+
+  int calls = 0;
+  EXPECT_THROW(ocp.solve(req, [&](const OcpProgress&) { return ++calls < 5; }), ReachCancelled);
+  EXPECT_EQ(calls, 5);
 }
 
 TEST(TransitionOcp, TimeLimitGivesFailedStatus) {

@@ -6,6 +6,8 @@
 // simulating the recurrences with unit inputs (independently of the library), checks that
 // no sample lies outside it, and that the sampled position extent reaches >= 90% of the exact
 // one at t = 20, 50, 100 ms, forward and backward; also 1-vs-2-thread determinism and errors.
+// The progress callback (reach_progress.h) sees every slice of each direction in order, its
+// last counts equal the result's, listening changes nothing, and returning false cancels.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -267,6 +269,39 @@ TEST(ReachDoubleIntegrator, OneAndTwoThreadsGiveIdenticalResults) {
   }
   EXPECT_EQ(a.reachable, b.reachable);
   EXPECT_EQ(a.reason, b.reason);
+}
+
+TEST(ReachDoubleIntegrator, ProgressReportsEverySliceAndCancels) {
+  const ReachConfig c = diConfig();
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
+  const ReachResult quiet = an.check(diProblem(), c);
+  std::vector<ReachProgress> seen;
+  const ReachResult heard = an.check(diProblem(), c, [&](const ReachProgress& p) {
+    seen.push_back(p);
+    return true;
+  });
+  const int n_fwd = static_cast<int>(quiet.forward.size()) - 1;
+  const int n_bwd = static_cast<int>(quiet.backward.size()) - 1;
+  ASSERT_EQ(static_cast<int>(seen.size()), n_fwd + n_bwd);
+  for (int i = 0; i < n_fwd + n_bwd; ++i) {
+    const bool forward = i < n_fwd;
+    EXPECT_EQ(seen[i].forward, forward) << i;
+    EXPECT_EQ(seen[i].slices_done, forward ? i + 1 : i - n_fwd + 1) << i;
+    EXPECT_EQ(seen[i].slices_total, forward ? n_fwd : n_bwd) << i;
+  }
+  EXPECT_EQ(seen[n_fwd - 1].samples, quiet.counts.forward_samples);
+  EXPECT_EQ(seen[n_fwd - 1].qps, quiet.counts.forward_qps);
+  EXPECT_EQ(seen.back().samples, quiet.counts.backward_samples);
+  EXPECT_EQ(seen.back().qps, quiet.counts.backward_qps);
+  ASSERT_EQ(heard.forward.size(), quiet.forward.size());
+  for (std::size_t j = 0; j < quiet.forward.size(); ++j)
+    EXPECT_TRUE(heard.forward[j].qd == quiet.forward[j].qd);
+  EXPECT_EQ(heard.reason, quiet.reason);
+
+  int calls = 0;
+  EXPECT_THROW(an.check(diProblem(), c, [&](const ReachProgress&) { return ++calls < 3; }),
+               ReachCancelled);
+  EXPECT_EQ(calls, 3);
 }
 
 TEST(BoundarySelection, TheSameBoundaryForOneAndTwoThreads) {

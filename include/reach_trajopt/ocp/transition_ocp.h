@@ -29,6 +29,7 @@
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/ocp_config.h"
+#include "reach_trajopt/ocp/ocp_progress.h"
 #include "reach_trajopt/ocp/transition_request.h"
 #include "reach_trajopt/ocp/transition_result.h"
 
@@ -43,8 +44,11 @@ class TransitionOcp {
                 const ContactConfig& contact = {});
 
   /// Solves one request. Throws ReachError on bad input (see validate()); solver trouble is a
-  /// result with status kFailed and a reason, never an exception.
-  TransitionResult solve(const TransitionRequest& request) const;
+  /// result with status kFailed and a reason, never an exception. `progress` (ocp_progress.h;
+  /// may be empty) hears of every gradient evaluation; \throws ReachCancelled when it
+  /// returns false.
+  TransitionResult solve(const TransitionRequest& request,
+                         const OcpProgressCallback& progress = {}) const;
 
   /// Throws ReachError naming the problem: wrong sizes or non-finite values, a horizon that is
   /// not positive or shorter than two output samples, slice / seed times outside [0, horizon],
@@ -61,7 +65,8 @@ class TransitionOcp {
 
  private:
   TransitionResult solveMode(const TransitionRequest& request, bool relaxed,
-                             std::chrono::steady_clock::time_point deadline) const;
+                             std::chrono::steady_clock::time_point deadline,
+                             const OcpProgressCallback& progress) const;
 
   std::shared_ptr<const RobotModel> model_;
   TransitionOcpConfig config_;

@@ -6,10 +6,17 @@
 /// points per ring, the first direction along +x, counter-clockwise). The first feasible point
 /// found is returned with its IK posture; none within rings * ring_step is a result, not an
 /// error. Not in the paper (its planner never proposes such steps); see docs/method.md.
+/// The candidates of one ring are independent IK problems: they are checked as one batch by a
+/// CandidateCheck, in this process by default or elsewhere (e.g. by worker nodes, in parallel);
+/// the first feasible one in direction order is the answer either way, so where the batch ran
+/// does not change the result.
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 
@@ -33,6 +40,34 @@ struct NearestFootholdConfig {
   double searchRadius() const { return rings * ring_step; }  ///< [m]
 };
 
+/// One ring's candidate footholds, each checked with the same stance and IK start.
+struct FootholdCandidates {
+  Side stance = Side::kLeft;            ///< the held sole
+  FlatContact stance_foothold;          ///< where it is held [m, rad]
+  std::vector<FlatContact> candidates;  ///< the swing sole's candidate footholds [m, rad]
+  Eigen::VectorXd q_init;               ///< IK start (size n_q)
+  std::optional<Eigen::Vector3d> pelvis_position;  ///< see KinematicFeasibility::check [m]
+};
+
+/// The check of one candidate: the IK's result, or the message of the error its check threw
+/// (e.g. a candidate outside the workspace); `error` empty means `kinematics` holds.
+struct CandidateOutcome {
+  KinematicFeasibilityResult kinematics;
+  std::string error;
+};
+
+/// Checks a batch of candidates; returns one outcome per candidate in order, or a prefix that
+/// ends at the first feasible or failed one (what the search needs; the rest is not looked at).
+/// \throws ReachError when the batch could not be checked at all.
+using CandidateCheck = std::function<std::vector<CandidateOutcome>(const FootholdCandidates&)>;
+
+/// Checks `batch` in this process, in order, with `kinematics`. `stop_at_first_decisive`: stop
+/// after the first feasible or failed candidate (the search's own use); false: every candidate
+/// (a worker answering part of a ring).
+std::vector<CandidateOutcome> checkFootholdCandidates(const KinematicFeasibility& kinematics,
+                                                      const FootholdCandidates& batch,
+                                                      bool stop_at_first_decisive);
+
 /// A feasible foothold found near the target.
 struct NearestFoothold {
   FlatContact foothold;                   ///< the feasible foothold [m, rad]
@@ -48,10 +83,17 @@ class NearestFeasibleFoothold {
   /// \param target     the infeasible foothold (its yaw is kept)
   /// \param q_init     IK start (size n_q)
   /// \param pelvis_position  passed to KinematicFeasibility::check
+  /// \param check    where each ring's candidates are checked; empty: in this process
   /// \return the first feasible ring point, or none.
+  /// \throws ReachError when a candidate's check fails before a feasible one is found (the
+  ///     message of that check), or when `check` answers fewer candidates than it must.
   std::optional<NearestFoothold> find(Side stance, const FlatContact& stance_foothold,
                                       const FlatContact& target, const Eigen::VectorXd& q_init,
-                                      const std::optional<Eigen::Vector3d>& pelvis_position) const;
+                                      const std::optional<Eigen::Vector3d>& pelvis_position,
+                                      const CandidateCheck& check = {}) const;
+  /// The candidates of ring `ring` (1-based) around `target`, the first along +x,
+  /// counter-clockwise (each keeps the target's yaw).
+  std::vector<FlatContact> ringCandidates(const FlatContact& target, int ring) const;
   const NearestFootholdConfig& config() const { return config_; }
 
  private:

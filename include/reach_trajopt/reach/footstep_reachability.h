@@ -51,7 +51,9 @@ class FootstepReachability {
   /// \throws ReachError on bad input (see ReachabilityAnalyzer::check and
   ///     KinematicFeasibility::check); an infeasible foothold is a result, not an error.
   FootstepResult check(const FootstepRequest& request) const;
-  FootstepResult check(const FootstepRequest& request, const ReachConfig& config) const;
+  /// \param progress  the reachability check's (reach_progress.h; may be empty)
+  FootstepResult check(const FootstepRequest& request, const ReachConfig& config,
+                       const ReachProgressCallback& progress = {}) const;
 
   /// The kinematic stage alone: kinematics, kinematically_feasible, qdf (the touchdown
   /// velocity x_f would have) and reason; reach stays empty, reachable false.

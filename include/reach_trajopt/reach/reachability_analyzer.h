@@ -59,6 +59,7 @@
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/reach/hausdorff.h"
 #include "reach_trajopt/reach/reach_config.h"
+#include "reach_trajopt/reach/reach_progress.h"
 #include "reach_trajopt/reach/sample_slice.h"
 #include "reach_trajopt/reach/window_comparison.h"
 #include "reach_trajopt/reach/witness_path.h"
@@ -122,8 +123,11 @@ class ReachabilityAnalyzer {
   /// m_k's or the target's contacts or the limits (an infeasible x_f), a mode without
   /// footholds, or a config with an empty window or zero samples.
   ReachResult check(const ReachProblem& problem) const;
-  /// Same with another configuration (e.g. more samples) for this one call.
-  ReachResult check(const ReachProblem& problem, const ReachConfig& config) const;
+  /// Same with another configuration (e.g. more samples) for this one call, reporting its
+  /// progress after each slice to `progress` (reach_progress.h; may be empty).
+  /// \throws ReachCancelled when `progress` returns false.
+  ReachResult check(const ReachProblem& problem, const ReachConfig& config,
+                    const ReachProgressCallback& progress = {}) const;
 
   /// The configuration q of sample `index` of a slice (exact, from its parent chain).
   /// \param forward  true: result.forward, false: result.backward

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "reach_trajopt/reach/reach_context.h"
+#include "reach_trajopt/reach/reach_progress.h"
 #include "reach_trajopt/reach/sample_slice.h"
 
 namespace reach_trajopt {
@@ -32,12 +33,14 @@ struct PropagationStats {
 /// \param root_index  time index of the root: slice j is at time (root_index + sign j) dt, sign
 ///     +1 forward (root x_0 at index 0), -1 backward (root x_f at index i_t).
 /// \param q, qd       the root state (size n_q each)
+/// \param progress    called after each slice; false cancels (ReachCancelled); may be empty
 /// \param steps       slices to add after the root
 /// \param threads     OpenMP threads (>= 1)
 /// \param[out] slices the root slice followed by `steps` slices
 PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
                               int root_index, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                              int steps, int threads, std::vector<SampleSlice>& slices);
+                              int steps, int threads, std::vector<SampleSlice>& slices,
+                              const ReachProgressCallback& progress = {});
 
 /// The configuration q of sample `index` of slice `slice` (exact, from its parent's stored
 /// configuration). \param semi_implicit  the forward integrator used (forward slices only)

@@ -9,8 +9,10 @@
 
 #include <ros/time.h>
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/contact/contact_config.h"
@@ -21,6 +23,12 @@
 
 namespace reach_trajopt {
 namespace ros_bridge {
+
+/// The vector of a message field that must hold `size` finite numbers.
+/// \throws RequestError naming `field` (its size, a non-finite number).
+Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const std::string& field);
+/// The float64[] of a message field.
+std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v);
 
 /// The names of the messages: "by_verdict" | "strict" | "auto".
 const char* ocpPolicyName(OcpPolicy p);

@@ -62,8 +62,9 @@ struct FootholdServiceSetup {
   ReachConfig reach;
   FootholdRequestLimits limits;
   /// The core's step pipeline (kinematic check, reachability, OCP) built from the same
-  /// sections; its kinematics() and analyzer() serve check_reachability.
-  std::shared_ptr<const FootstepTransitionPlanner> planner;
+  /// sections; its kinematics() and analyzer() serve check_reachability. Not const: a node
+  /// may plug where its candidate footholds are checked (setCandidateCheck) before it serves.
+  std::shared_ptr<FootstepTransitionPlanner> planner;
   Eigen::VectorXd standing_q;  ///< x_0 of a request with empty q, qd (size n_q)
 
   /// Reads the parameters and builds everything.

@@ -122,8 +122,16 @@ struct FootstepTransition {
   bool usable() const { return trajectory.status != OcpStatus::kFailed; }
 };
 
+/// Progress callbacks of FootstepTransitionPlanner::plan (either may be empty): the
+/// reachability check's after each slice, the OCP's after each gradient evaluation. Either
+/// returning false cancels the plan (ReachCancelled, common/cancelled.h).
+struct FootstepPlanProgress {
+  ReachProgressCallback check;
+  OcpProgressCallback ocp;
+};
+
 /// @brief Kinematic check + reachability check + transition OCP of one footstep (Sec. III).
-/// Immutable; plan() may run concurrently.
+/// Immutable once set up; plan() may run concurrently.
 class FootstepTransitionPlanner {
  public:
   /// \throws ReachError on invalid configs or unknown frames.
@@ -133,7 +141,14 @@ class FootstepTransitionPlanner {
   /// Plans the swing from x_0 to the foothold (see the file comment).
   /// \throws ReachError on bad input (sizes, NaN, a target outside the workspace, a state the
   ///     check rejects) and, with InfeasibleFootholdPolicy::kReject, on an infeasible foothold.
-  FootstepTransition plan(const FootstepPlanRequest& request) const;
+  /// \param progress  where the check and the OCP report their progress (may be empty)
+  FootstepTransition plan(const FootstepPlanRequest& request,
+                          const FootstepPlanProgress& progress = {}) const;
+
+  /// Where the nearest-feasible search checks each ring's candidates (e.g. worker nodes);
+  /// empty (the default): in this process. The results do not depend on it. Set it before
+  /// plan() runs, not while it runs.
+  void setCandidateCheck(CandidateCheck check) { candidate_check_ = std::move(check); }
 
   /// Time from the check to touchdown [s] (the reachability horizon t_f - t_0).
   double horizon() const { return config_.reach.horizon; }
@@ -152,10 +167,11 @@ class FootstepTransitionPlanner {
   Touchdown predictTouchdown(const FootstepPlanRequest& r, const FootstepTransition& out) const;
   /// Steps 2-3 into out.check and the verdict fields.
   void checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
-                     FootstepTransition& out) const;
+                     const ReachProgressCallback& progress, FootstepTransition& out) const;
   /// Steps 4-5 into out.trajectory and out.foothold.
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
-                       const Touchdown& td, FootstepTransition& out) const;
+                       const Touchdown& td, const OcpProgressCallback& progress,
+                       FootstepTransition& out) const;
   /// The verdict of a checked, kinematically feasible step from its witness and its OCP.
   void certify(FootstepTransition& out) const;
 
@@ -165,6 +181,7 @@ class FootstepTransitionPlanner {
   std::shared_ptr<const KinematicFeasibility> kinematics_;
   FootstepReachability footsteps_;
   NearestFeasibleFoothold nearest_;
+  CandidateCheck candidate_check_;
   TransitionOcp ocp_;
 };
 
