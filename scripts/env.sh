@@ -13,3 +13,6 @@ BIN="$WS/devel/lib/reach_trajopt"
 # OpenMP threads sleep when idle instead of spinning (the reachability check's threads share
 # the machine with other work: bench/README.md, reach.walk_check); a value set outside wins.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
+# Robots of example-robot-data (test/bench venv), for configs such as config/talos.yaml
+# (robot.urdf: ${EXAMPLE_ROBOT_DATA}/talos_data/...); a value set outside wins.
+export EXAMPLE_ROBOT_DATA="${EXAMPLE_ROBOT_DATA:-$VENV/lib/python3.11/site-packages/cmeel.prefix/share/example-robot-data/robots}"

@@ -23,8 +23,10 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/state_json.h"
+#include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/model/robot_model.h"
 
 using reach_trajopt::ReachError;
@@ -35,7 +37,8 @@ namespace {
 
 void usage() {
   std::cerr
-      << "usage: model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]\n";
+      << "usage: model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]\n"
+         "       model_info --config FILE [...] (the robot section's URDF and locked joints)\n";
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -164,7 +167,7 @@ Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws,
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string urdf, state_file, frames_arg;
+  std::string urdf, state_file, frames_arg, config_path;
   bool json_summary = false;
   reach_trajopt::ModelOptions options;
   for (int i = 1; i < argc; ++i) {
@@ -177,6 +180,8 @@ int main(int argc, char** argv) {
       state_file = argv[++i];
     } else if (a == "--frames" && i + 1 < argc) {
       frames_arg = argv[++i];
+    } else if (a == "--config" && i + 1 < argc) {
+      config_path = argv[++i];
     } else if (a == "-h" || a == "--help") {
       usage();
       return 0;
@@ -188,12 +193,19 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (urdf.empty()) {
+  if (urdf.empty() && config_path.empty()) {
     usage();
     return 2;
   }
   try {
-    const auto model = RobotModel::fromUrdfFile(urdf, options);
+    // --config: the robot section's URDF (unless one is given) and its locked joints.
+    if (!config_path.empty()) {
+      const reach_trajopt::RobotConfig robot = reach_trajopt::RobotConfig::fromConfigFile(
+          reach_trajopt::YamlSection::loadFile(config_path));
+      if (urdf.empty()) urdf = robot.urdfPath();
+      options.locked_joints = robot.locked_joints;
+    }
+    const auto model = reach_trajopt::RobotModel::fromUrdfFile(urdf, options);
     if (state_file.empty()) {
       if (json_summary)
         printSummaryJson(*model);

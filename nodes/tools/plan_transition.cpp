@@ -33,6 +33,7 @@
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
@@ -66,7 +67,7 @@ json matrixRows(const Eigen::MatrixXd& m, int stride) {
 int main(int argc, char** argv) {
   using namespace reach_trajopt;
   try {
-    std::string input = "-", urdf = "urdf/biped.urdf", config = "config/biped.yaml";
+    std::string input = "-", urdf, config = "config/biped.yaml";
     int stride = 1;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -90,18 +91,20 @@ int main(int argc, char** argv) {
     }
     const json doc = JsonReader::parseFile(input);
 
-    const auto model = RobotModel::fromUrdfFile(urdf);
     ContactConfig contact_cfg;
     TransitionOcpConfig ocp_cfg;
     KinematicFeasibilityConfig kf_cfg;
+    RobotConfig robot;
     if (!config.empty()) {
       const YamlSection yaml = YamlSection::loadFile(config);
+      robot = RobotConfig::fromConfigFile(yaml);
       if (yaml.has("contact")) contact_cfg = ContactConfig::fromYaml(yaml.section("contact"));
       // The OCP's landing height is the IK's pelvis height (FootstepPlannerConfig::fromYaml).
       const FootstepPlannerConfig stages = FootstepPlannerConfig::fromYaml(yaml);
       ocp_cfg = stages.ocp;
       kf_cfg = stages.kinematics;
     }
+    const auto model = robot.loadModel(urdf);
 
     TransitionRequestJson in = readTransitionRequest(JsonReader(doc, input), model->nq());
     TransitionRequest& r = in.request;

@@ -48,7 +48,7 @@ std::vector<WalkingPolicy> parsePolicies(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", svg_path, csv_path;
+  std::string config_path = "config/biped.yaml", urdf, svg_path, csv_path;
   std::string policies = "baseline,unbounded,kinematic,proposed";
   PushGrid grid;
   int jobs = 2;

@@ -36,6 +36,7 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
+#include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reach_request_json.h"
 #include "reach_trajopt/reach/swing_state.h"
@@ -67,12 +68,14 @@ json columns(const Eigen::Ref<const Eigen::MatrixXd>& M) {
 int main(int argc, char** argv) {
   std::string paths[3];
   int n_paths = 0;
-  std::string threads_arg;
+  std::string threads_arg, config_arg;
   bool samples = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--threads" && i + 1 < argc) {
       threads_arg = argv[++i];
+    } else if (a == "--config" && i + 1 < argc) {
+      config_arg = argv[++i];
     } else if (a == "--samples") {
       samples = true;
     } else if (n_paths < 3) {
@@ -81,14 +84,25 @@ int main(int argc, char** argv) {
       n_paths = 4;
     }
   }
+  // --config FILE request.json: the URDF is the config's robot.urdf.
+  if (!config_arg.empty() && n_paths == 1) {
+    paths[2] = paths[0];
+    paths[1] = config_arg;
+    paths[0].clear();
+    n_paths = 3;
+  } else if (!config_arg.empty()) {
+    n_paths = 0;
+  }
   if (n_paths != 3) {
     std::cerr << "usage: reach_check <robot.urdf> <config.yaml> <request.json> [--threads N] "
-                 "[--samples]\n";
+                 "[--samples]\n"
+                 "       reach_check --config <config.yaml> <request.json> [...] (the URDF: "
+                 "robot.urdf)\n";
     return 2;
   }
   try {
-    const auto model = RobotModel::fromUrdfFile(paths[0]);
     const YamlSection yaml = YamlSection::loadFile(paths[1]);
+    const auto model = RobotConfig::fromConfigFile(yaml).loadModel(paths[0]);
     ContactConfig contact;
     if (yaml.has("contact")) contact = ContactConfig::fromYaml(yaml.section("contact"));
     ReachConfig config;

@@ -51,6 +51,7 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/step/reference_cases.h"
@@ -207,7 +208,7 @@ Recheck recheckCertificate(const RobotModel& model, const ContactConfig& contact
 
 int main(int argc, char** argv) {
   try {
-    std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", requests_path;
+    std::string config_path = "config/biped.yaml", urdf, requests_path;
     std::string grid_s, half_s, max_s, reference_path, reach_path;
     bool bench_case = false, details = false;
     for (int i = 1; i < argc; ++i) {
@@ -255,7 +256,7 @@ int main(int argc, char** argv) {
         throw ReachError("--reach-config '" + reach_path + "' has no reach: section");
       cfg.reach = ReachConfig::fromYaml(reach_file.section("reach"), cfg.reach);
     }
-    const auto model = RobotModel::fromUrdfFile(urdf);
+    const auto model = RobotConfig::fromConfigFile(file).loadModel(urdf);
     const FootstepTransitionPlanner planner(model, contact, cfg);
     std::optional<ReachConfig> reference;
     if (!reference_path.empty()) {

@@ -2,7 +2,11 @@
 ///
 ///   walk_experiment [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                   [--policy P] [--steps N] [--seed S] [--push vx,vy]
-///                   [--forward-speed v] [--records FILE.csv] [--plan-requests FILE.jsonl]
+///                   [--forward-speed v] [--settle S] [--records FILE.csv]
+///                   [--plan-requests FILE.jsonl]
+///
+/// --config: the robot and its parameters (config/talos.yaml: TALOS legs); --urdf overrides
+/// its robot.urdf. --settle S: stand S seconds before the first step (--steps 0: stand only).
 ///
 /// --policy: a walking policy (walk/walking_policy.h), a preset baseline | unbounded | kinematic |
 /// proposed, optionally with parts: "kinematic,swing=interpolation"; --mode is the same option.
@@ -24,11 +28,12 @@ using namespace reach_trajopt;
 
 /// Upper bound of --steps (docs/limits.md): each proposed step costs seconds of checks.
 constexpr long long kMaxWalkSteps = 1000;
+/// Upper bound of --settle [s] (a standing test of an hour is a typo, not a test).
+constexpr double kMaxSettleSeconds = 600.0;
 
 int main(int argc, char** argv) {
-  std::string config_path = "config/biped.yaml", urdf = "urdf/biped.urdf", records_path,
-              requests_path;
-  std::string mode, push, steps, seed, speed;
+  std::string config_path = "config/biped.yaml", urdf, records_path, requests_path;
+  std::string mode, push, steps, seed, speed, settle;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -50,6 +55,8 @@ int main(int argc, char** argv) {
         push = next();
       else if (a == "--forward-speed")
         speed = next();
+      else if (a == "--settle")
+        settle = next();
       else if (a == "--records")
         records_path = next();
       else if (a == "--plan-requests")
@@ -70,6 +77,11 @@ int main(int argc, char** argv) {
     if (!seed.empty())
       walk.seed = static_cast<unsigned>(parseIntOption("--seed", seed, 0, 4294967295LL));
     if (!speed.empty()) walk.forward_speed = parseDoubleOption("--forward-speed", speed);
+    // Standing before the first lift-off [s]; with --steps 0 the run is a standing test.
+    if (!settle.empty()) {
+      walk.settle_duration = parseDoubleOption("--settle", settle, 0.0, kMaxSettleSeconds);
+      walk.max_sim_time = std::max(walk.max_sim_time, walk.settle_duration + 1.0);
+    }
     if (!push.empty()) {
       const auto comma = push.find(',');
       if (comma == std::string::npos)

@@ -58,9 +58,9 @@ YAML::Node checkedRoot(const YAML::Node& root, const std::string& source) {
 }  // namespace
 
 const std::vector<std::string>& configSections() {
-  static const std::vector<std::string> sections = {"contact", "planner", "kinematic_feasibility",
-                                                    "reach",   "wbc",     "walk",
-                                                    "ocp",     "sim",     "nearest_foothold"};
+  static const std::vector<std::string> sections = {
+      "robot", "contact", "planner", "kinematic_feasibility", "reach", "wbc",
+      "walk",  "ocp",     "sim",     "nearest_foothold"};
   return sections;
 }
 

@@ -117,6 +117,7 @@ std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf
                                                       const std::string& source) {
   if (!options.gravity.allFinite()) throw ModelError("non-finite gravity for " + source);
   validateUrdf(urdf, source);  // axes, masses, inertias (urdf_validation.h)
+  lockJoints(urdf, options.locked_joints, source);
   if (!urdf.root_link_) throw ModelError("URDF has no root link: " + source);
   // kdl_parser drops (and warns about) the root link's inertia; we keep it ourselves.
   const urdf::InertialSharedPtr root_inertial = urdf.root_link_->inertial;
@@ -130,6 +131,7 @@ std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf
   model.name_ = urdf.getName();
   model.source_ = source;
   model.gravity_ = options.gravity;
+  model.locked_joints_ = options.locked_joints;
   const urdf::LinkConstSharedPtr root = urdf.getRoot();
   if (!root) throw ModelError("URDF has no root link: " + source);
   bool floating = root->name != "world";

@@ -49,9 +49,10 @@ FootholdServiceSetup FootholdServiceSetup::load(const ros::NodeHandle& nh,
   const std::string config_path = configPath(pnh);
   FootholdRequestLimits limits;
   pnh.getParam("ground_tolerance", limits.ground_tolerance);
-  const std::shared_ptr<const RobotModel> model =
-      RobotModel::fromUrdfString(urdf, {}, "robot_description");
   const YamlSection file = YamlSection::loadFile(config_path);
+  const RobotConfig robot = RobotConfig::fromConfigFile(file);
+  const std::shared_ptr<const RobotModel> model =
+      robot.modelFromUrdfString(urdf, "robot_description");
   const ContactConfig contact = ContactConfig::fromYaml(file.section("contact"));
   const ReachConfig reach = ReachConfig::fromYaml(file.section("reach"));
   const WalkConfig walk =
@@ -61,7 +62,7 @@ FootholdServiceSetup FootholdServiceSetup::load(const ros::NodeHandle& nh,
   FootstepPlannerConfig planner = FootstepPlannerConfig::fromYaml(file);
   planner.reach = reach;
   s.planner = std::make_shared<FootstepTransitionPlanner>(model, contact, planner);
-  s.standing_q = standingConfiguration(*model, walk.knee_bend, contact.left_sole_frame);
+  s.standing_q = standingConfiguration(*model, walk.knee_bend, contact.left_sole_frame, robot);
   return s;
 }
 

@@ -127,6 +127,14 @@ BulletWorld::BulletWorld(const SimBodyTree& tree, const std::vector<std::string>
     sole_body_[s] = f.first;
     sole_in_principal_[s] = tree_.bodies[f.first].principal.inverse() * f.second;
     soles_[s].frame = sole_names[s];
+    if (config_.sole_box_size.minCoeff() > 0.0) {
+      SimShape box;
+      box.type = SimShape::Type::kBox;
+      box.link = sole_names[s];
+      box.size = config_.sole_box_size;
+      box.pose = f.second * Eigen::Translation3d(0.0, 0.0, 0.5 * box.size.z());
+      tree_.bodies[f.first].shapes.push_back(box);
+    }
   }
   if (sole_body_[0] == sole_body_[1]) {
     throw ModelError(tree_.source + ": both sole frames are on body '" +
@@ -160,7 +168,7 @@ void BulletWorld::findLegs() {
 std::unique_ptr<BulletWorld> BulletWorld::fromUrdfFile(const std::string& urdf_path,
                                                        const RobotModel& model,
                                                        const SimConfig& config) {
-  SimBodyTree tree = SimBodyTree::fromUrdfFile(urdf_path);
+  SimBodyTree tree = SimBodyTree::fromUrdfFile(urdf_path, model.lockedJoints());
   if (tree.floating_base != model.floatingBase()) {
     throw ModelError(urdf_path + ": the robot model and the simulator disagree on the base (" +
                      std::string(model.floatingBase() ? "floating" : "fixed") + " in the model)");

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/model/joint_locking.h"
 
 namespace reach_trajopt {
 
@@ -185,17 +186,19 @@ class Builder {
 
 }  // namespace
 
-SimBodyTree SimBodyTree::fromUrdfFile(const std::string& path) {
+SimBodyTree SimBodyTree::fromUrdfFile(const std::string& path, const LockedJoints& locked) {
   std::ifstream in(path);
   if (!in) throw ModelError("cannot open URDF file '" + path + "'");
   std::stringstream ss;
   ss << in.rdbuf();
-  return fromUrdfString(ss.str(), path);
+  return fromUrdfString(ss.str(), path, locked);
 }
 
-SimBodyTree SimBodyTree::fromUrdfString(const std::string& xml, const std::string& source) {
+SimBodyTree SimBodyTree::fromUrdfString(const std::string& xml, const std::string& source,
+                                        const LockedJoints& locked) {
   urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
   if (!model) throw ModelError(source + ": malformed URDF (urdfdom could not parse it)");
+  lockJoints(*model, locked, source);
   return Builder(*model, source).build();
 }
 

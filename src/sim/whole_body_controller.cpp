@@ -67,7 +67,8 @@ WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model
       cone_(contact),
       left_sole_(model_->frameId(contact.left_sole_frame)),
       right_sole_(model_->frameId(contact.right_sole_frame)),
-      pelvis_(model_->frameId(model_->linkNames().front())),
+      pelvis_(model_->frameId(config.pelvis_frame.empty() ? model_->linkNames().front()
+                                                          : config.pelvis_frame)),
       posture_(posture),
       ws_(*model_),
       qp_single_(model_->nq() + 6, 6 + 6, ContactWrenchCone::kRows + 2 * model_->nu()),

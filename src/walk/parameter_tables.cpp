@@ -4,6 +4,7 @@
 #include "reach_trajopt/walk/parameter_tables.h"
 
 #include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/planner/nearest_feasible_foothold.h"
@@ -16,7 +17,8 @@
 namespace reach_trajopt {
 
 std::vector<ParameterTable> parameterTables() {
-  return {ContactConfig::fields().table(),
+  return {RobotConfig::fields().table(),
+          ContactConfig::fields().table(),
           TvrConfig::fields().table(),
           KinematicFeasibilityConfig::fields().table(),
           ReachConfig::fields().table(),

@@ -9,6 +9,7 @@ namespace reach_trajopt {
 
 WalkSetup WalkSetup::fromYaml(const YamlSection& root) {
   WalkSetup s;
+  s.robot = RobotConfig::fromConfigFile(root);
   if (root.has("walk")) s.walk = WalkConfig::fromYaml(root.section("walk"));
   s.tvr = TvrConfig::fromYaml(root.section("planner"));
   s.contact = ContactConfig::fromYaml(root.section("contact"));
@@ -22,8 +23,10 @@ WalkSetup WalkSetup::fromYamlFile(const std::string& path) {
   return fromYaml(YamlSection::loadFile(path));
 }
 
-std::unique_ptr<WalkingExperiment> WalkSetup::experiment(const std::string& urdf_path) const {
-  return std::make_unique<WalkingExperiment>(urdf_path, walk, tvr, contact, wbc, sim, &footsteps);
+std::unique_ptr<WalkingExperiment> WalkSetup::experiment(const std::string& urdf_override) const {
+  RobotConfig r = robot;
+  if (!urdf_override.empty()) r.urdf = urdf_override;
+  return std::make_unique<WalkingExperiment>(r, walk, tvr, contact, wbc, sim, &footsteps);
 }
 
 }  // namespace reach_trajopt

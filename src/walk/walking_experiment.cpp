@@ -158,22 +158,24 @@ struct WalkingExperiment::Impl {
   ContactConfig contact;
   WbcConfig wbc_config;
   SimConfig sim_config;
-  std::string urdf;
+  RobotConfig robot;
 };
 
-WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk,
+WalkingExperiment::WalkingExperiment(const RobotConfig& robot, const WalkConfig& walk,
                                      const TvrConfig& tvr, const ContactConfig& contact,
                                      const WbcConfig& wbc, const SimConfig& sim,
                                      const FootstepPlannerConfig* proposed)
-    : model_(RobotModel::fromUrdfFile(urdf_path)), impl_(std::make_unique<Impl>()) {
+    : impl_(std::make_unique<Impl>()) {
+  robot.validate();
+  model_ = robot.loadModel();
   walk.validate();
   tvr.validate();
   contact.validate();
   wbc.validate();
   sim.validate();
+  const FootstepPlannerConfig defaults;
+  const FootstepPlannerConfig& c = proposed ? *proposed : defaults;
   if (walk.policy.checksFoothold()) {
-    const FootstepPlannerConfig defaults;
-    const FootstepPlannerConfig& c = proposed ? *proposed : defaults;
     ReachConfig reach = c.reach;
     reach.horizon = walk.check_horizon;
     reach.seed = walk.seed;  // the run's seed reaches the sampler (its only random draws)
@@ -186,11 +188,16 @@ WalkingExperiment::WalkingExperiment(const std::string& urdf_path, const WalkCon
   impl_->tvr_config = tvr;
   impl_->contact = contact;
   impl_->wbc_config = wbc;
+  // The pelvis is named once, in KinematicFeasibilityConfig.
+  impl_->wbc_config.pelvis_frame = c.kinematics.pelvis_frame;
   impl_->sim_config = sim;
   // The robot's sole frames are named once, in ContactConfig.
   impl_->sim_config.left_sole_frame = contact.left_sole_frame;
   impl_->sim_config.right_sole_frame = contact.right_sole_frame;
-  impl_->urdf = urdf_path;
+  if (robot.sim_sole_boxes)
+    impl_->sim_config.sole_box_size = Eigen::Vector3d(
+        2.0 * contact.half_length, 2.0 * contact.half_width, robot.sim_sole_box_height);
+  impl_->robot = robot;
 }
 
 WalkingExperiment::~WalkingExperiment() = default;
@@ -292,11 +299,11 @@ WalkingExperiment::Loop::Loop(
       on_step_(on_step),
       on_check_(on_check),
       sole_{m_.frameId(impl.contact.left_sole_frame), m_.frameId(impl.contact.right_sole_frame)},
-      pelvis_(m_.frameId(m_.linkNames().front())),
+      pelvis_(m_.frameId(impl.wbc_config.pelvis_frame)),
       ws_(m_),
       ws_traj_(m_),
       J_traj_(6, m_.nq()),
-      q0_(standingConfiguration(m_, wc_.knee_bend, impl.contact.left_sole_frame)),
+      q0_(standingConfiguration(m_, wc_.knee_bend, impl.contact.left_sole_frame, impl.robot)),
       com0_([&] {
         m_.update(ws_, q0_, Eigen::VectorXd::Zero(m_.nq()));
         return m_.centerOfMass(ws_);
@@ -308,7 +315,7 @@ WalkingExperiment::Loop::Loop(
       swing_(wc_.first_swing) {
   const Eigen::VectorXd qd0 =
       doubleSupportBaseVelocity(m_, q0_, sole_[0], sole_[1], wc_.initial_com_velocity);
-  world_ = BulletWorld::fromUrdfFile(impl.urdf, m_, impl.sim_config);
+  world_ = BulletWorld::fromUrdfFile(impl.robot.urdfPath(), m_, impl.sim_config);
   world_->reset(q0_, qd0);
   dt_ = world_->timeStep();
   result_.policy = wc_.policy;

@@ -27,6 +27,8 @@ BIN = Path(os.environ.get("REACH_BIN", _WS / "devel" / "lib" / "reach_trajopt"))
 SITE_PACKAGES = Path(sysconfig.get_paths()["purelib"])
 CMEEL_PREFIX = SITE_PACKAGES / "cmeel.prefix"
 EXAMPLE_ROBOTS = CMEEL_PREFIX / "share" / "example-robot-data" / "robots"
+# config/talos.yaml names its URDF through ${EXAMPLE_ROBOT_DATA} (scripts/env.sh sets it too).
+os.environ.setdefault("EXAMPLE_ROBOT_DATA", str(EXAMPLE_ROBOTS))
 
 # A tool that hangs is a failure; generous because the machine is shared (2 cores).
 TOOL_TIMEOUT_S = 300

@@ -47,14 +47,33 @@ def urdf_root_link(urdf_text):
     return roots[0] if roots else None
 
 
+def reduced_model(model, locked):
+    """`model` with the joints of `locked` (name -> position [rad or m]) held there and removed
+    (pin.buildReducedModel); a continuous joint's position is its angle."""
+    q_ref = pin.neutral(model)
+    ids = []
+    for name, position in locked.items():
+        jid = model.getJointId(name)
+        assert jid < model.njoints, f"Pinocchio has no joint '{name}'"
+        jm = model.joints[jid]
+        if jm.nq == 2:
+            q_ref[jm.idx_q:jm.idx_q + 2] = [math.cos(position), math.sin(position)]
+        else:
+            q_ref[jm.idx_q] = position
+        ids.append(jid)
+    return pin.buildReducedModel(model, sorted(ids), q_ref)
+
+
 class Reference:
     """Pinocchio model of a URDF plus the map between its coordinates and ours."""
 
-    def __init__(self, urdf_path, floating):
+    def __init__(self, urdf_path, floating, locked=None):
         if floating:
             self.model = pin.buildModelFromUrdf(str(urdf_path), floating_root_joint())
         else:
             self.model = pin.buildModelFromUrdf(str(urdf_path))
+        if locked:  # joint name -> position: Pinocchio's buildReducedModel
+            self.model = reduced_model(self.model, locked)
         self.data = self.model.createData()
         self.floating = floating
         m = self.model
@@ -120,7 +139,7 @@ class Reference:
         out["M"] = np.triu(M) + np.triu(M, 1).T
         out["b"] = pin.nonLinearEffects(m, d, q, v).copy()
         out["com"] = pin.centerOfMass(m, d, q).copy()
-        out["com_jacobian"] = pin.jacobianCenterOfMass(m, d, q).copy()
+        out["com_jacobian"] = pin.jacobianCenterOfMass(m, d, q).copy().reshape(3, m.nv)
         pin.computeJointJacobians(m, d, q)
         pin.forwardKinematics(m, d, q, v, np.zeros(m.nv))
         pin.updateFramePlacements(m, d)
@@ -132,7 +151,7 @@ class Reference:
             out["frames"][name] = {
                 "position": d.oMf[fid].translation.copy(),
                 "rotation": d.oMf[fid].rotation.copy(),
-                "jacobian": pin.getFrameJacobian(m, d, fid, LWA).copy(),
+                "jacobian": pin.getFrameJacobian(m, d, fid, LWA).copy().reshape(6, m.nv),
                 "jdot_qd": np.concatenate([linear, angular]),
             }
         return out
@@ -148,9 +167,11 @@ class ModelCheck:
     link of the URDF). `failures` lists each disagreeing quantity with its worst relative error."""
 
     def __init__(self, urdf_path, tmp_dir, key, floating, n_states=10, seed=20200701,
-                 frames=None):
+                 frames=None, config=None, locked=None):
+        """`config`, `locked`: a config file whose robot.locked_joints model_info applies
+        (--config) and the same joints for Pinocchio's reduced model."""
         self.key = key
-        self.ref = Reference(urdf_path, floating)
+        self.ref = Reference(urdf_path, floating, locked)
         m = self.ref.model
         if frames is None:
             frames = [f.name for f in m.frames if f.type == pin.FrameType.BODY
@@ -159,6 +180,8 @@ class ModelCheck:
         rng = np.random.default_rng(seed)
         samples = [self.ref.sample(rng) for _ in range(n_states)]
         base = [urdf_path] + ([] if floating else ["--fixed-base"])
+        if config is not None:
+            base += ["--config", config]
 
         summary = run_tool("model_info", *base, "--json").json()
         self.summary = summary

@@ -20,6 +20,13 @@ CONFIG = REPO / "config" / "biped.yaml"
 NQ = 18
 
 
+def biped_config_with(old, new):
+    """config/biped.yaml's text with `old` replaced by `new` (which must occur)."""
+    text = CONFIG.read_text()
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
 def standing_q():
     q = [0.0] * NQ
     q[2] = 0.9
@@ -154,6 +161,27 @@ CASES = [
      {"r.json": edited(TRANSITION_REQUEST, ("swing_target",),
                        {"position": [0.0, 0.1, 0.0], "yaw": 0.0})},
      ["swing_target", "infeasible"]),
+    # The robot section (model/robot_config.h): a role without a joint, an unset variable, a
+    # locked joint that does not exist or is held outside its limits, an unknown key.
+    ("silent", "robot_role_unknown_joint", "walk_experiment", ["--config", "{c}", "--steps", "1"],
+     {"c.yaml": biped_config_with("left_knee: l_knee", "left_knee: l_kneee")},
+     ["robot.left_knee", "l_kneee"]),
+    ("silent", "robot_urdf_unset_variable", "walk_experiment", ["--config", "{c}"],
+     {"c.yaml": biped_config_with("urdf: urdf/biped.urdf", "urdf: ${NO_SUCH_VARIABLE_7}/b.urdf")},
+     ["robot.urdf", "NO_SUCH_VARIABLE_7"]),
+    ("silent", "robot_locked_joint_missing", "plan_transition", ["{r}", "--config", "{c}"],
+     {"c.yaml": biped_config_with("locked_joints: {}", "locked_joints: {l_elbow: 0.1}"),
+      "r.json": TRANSITION_REQUEST}, ["locked joint", "l_elbow"]),
+    ("silent", "robot_locked_outside_limits", "model_info", ["--config", "{c}"],
+     {"c.yaml": (REPO / "config" / "talos.yaml").read_text().replace(
+         "arm_left_4_joint: -0.525366", "arm_left_4_joint: 5.0")},
+     ["arm_left_4_joint", "limits"]),
+    ("silent", "robot_locked_and_role", "walk_experiment", ["--config", "{c}"],
+     {"c.yaml": biped_config_with("locked_joints: {}", "locked_joints: {l_hip_yaw: 0.0}")},
+     ["left_hip_yaw", "locked_joints"]),
+    ("silent", "robot_unknown_key", "reach_check", ["--config", "{c}", "{r}"],
+     {"c.yaml": biped_config_with("  sim_sole_boxes:", "  sim_sole_box: true\n  sim_sole_boxes:"),
+      "r.json": SWING_REQUEST}, ["robot.sim_sole_box", "unknown key"]),
     ("silent", "walk_steps_5x", "walk_experiment", ["--steps", "5x"], {}, ["--steps", "5x"]),
     ("silent", "walk_push_garbage", "walk_experiment", ["--push", "0,abc"], {}, ["--push"]),
     ("silent", "walk_unknown_policy", "walk_experiment", ["--policy", "fast"], {},

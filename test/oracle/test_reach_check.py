@@ -124,13 +124,15 @@ def test_bad_requests_fail_cleanly(di_files, tmp_path):
     assert run.returncode == 2 and "not valid JSON" in run.output, run.describe()
 
 
-def bent_knees(names, x, y):
+def bent_knees(names, x, y, z=1.1, legs=(("l_hip_pitch", "l_knee", "l_ankle_pitch"),
+                                         ("r_hip_pitch", "r_knee", "r_ankle_pitch"))):
+    """A configuration with the base at (x, y, z) and both knees bent by 0.8 rad."""
     q = [0.0] * len(names)
-    q[0], q[1], q[2] = x, y, 1.1
-    for s in ("l_", "r_"):
-        q[names.index(s + "hip_pitch")] = -0.4
-        q[names.index(s + "knee")] = 0.8
-        q[names.index(s + "ankle_pitch")] = -0.4
+    q[0], q[1], q[2] = x, y, z
+    for hip, knee, ankle in legs:
+        q[names.index(hip)] = -0.4
+        q[names.index(knee)] = 0.8
+        q[names.index(ankle)] = -0.4
     return q
 
 
@@ -139,26 +141,32 @@ NAMES = ["base_x", "base_y", "base_z", "base_yaw", "base_pitch", "base_roll",
          "r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee", "r_ankle_pitch", "r_ankle_roll"]
 
 
-def test_biped_normal_footstep_witness_satisfies_the_dynamics_per_pinocchio(tmp_path):
-    pin = pytest.importorskip("pinocchio")
-    target = np.array([0.25, -0.12, 0.0])
+def normal_footstep_request(path, names, stance_y, target, legs=None, base_z=1.1):
+    """Single support on the left sole at (0, stance_y), the right sole 3 cm behind and 2 cm
+    above `target`, moving onto it within the horizon; a small sample budget."""
+    target = np.array(target, float)
     p0 = target + np.array([-0.03, 0.0, 0.02])
     horizon = 0.06
-    req = write_json(tmp_path / "step.json", {
+    q_init = bent_knees(names, 0.5 * p0[0], 0.5 * (stance_y + p0[1]), base_z,
+                        *([legs] if legs else []))
+    return write_json(path, {
         "mode": "SS-L",
-        "stance": {"position": [0.0, 0.1, 0.0], "yaw": 0.0},
+        "stance": {"position": [0.0, stance_y, 0.0], "yaw": 0.0},
         "target": {"position": target.tolist(), "yaw": 0.0},
         "swing": {"position": p0.tolist(), "velocity": (2 * (target - p0) / horizon).tolist(),
-                  "q_init": bent_knees(NAMES, 0.5 * p0[0], 0.5 * (0.1 + p0[1]))},
+                  "q_init": q_init},
         "config": {"horizon": horizon, "window_start": 0.02, "window_end": 0.04,
                    "initial_samples": 500, "children_per_parent": 4,
                    "backward_children_per_parent": 12, "max_boundary": 40,
-                   "interior_samples": 12, "angular_bins": 8}})
-    res = run_tool("reach_check", REPO / "urdf" / "biped.urdf", REPO / "config" / "biped.yaml",
-                   req).json()
-    assert res["joint_names"] == NAMES
-    # The witness, certified or not, is a path without a jump (x_0 -> a, then the bridge):
-    # every step is re-checked here; a certified one also ends on x_f at t_f.
+                   "interior_samples": 12, "angular_bins": 8}}), horizon
+
+
+def check_witness_with_pinocchio(res, model, sole_name, stance, cone, horizon):
+    """Re-checks every step of reach_check's witness with Pinocchio: eq. (1) (RNEA residual),
+    the stance sole's wrench cone, |u| <= the URDF effort limits and the held stance sole.
+    `model`: Pinocchio's model with our floating base (x, y, z, yaw, pitch, roll) first."""
+    pin = pytest.importorskip("pinocchio")
+    names = res["joint_names"]
     w = res["witness"]
     assert w["junction"] == -1 and w["bridge_start"] >= 0
     assert res["reachable"] == w["certified"], res["reason"]
@@ -167,18 +175,12 @@ def test_biped_normal_footstep_witness_satisfies_the_dynamics_per_pinocchio(tmp_
     if w["certified"]:
         assert np.allclose(w["time"][-1], horizon)
         assert w["terminal_position_gap"] <= 1e-3 and w["terminal_velocity_gap"] <= 1e-2
-    # Pinocchio model with our floating base (x, y, z, yaw, pitch, roll).
-    root = pin.JointModelComposite()
-    for j in (pin.JointModelPX(), pin.JointModelPY(), pin.JointModelPZ(),
-              pin.JointModelRZ(), pin.JointModelRY(), pin.JointModelRX()):
-        root.addJoint(j)
-    model = pin.buildModelFromUrdf(str(REPO / "urdf" / "biped.urdf"), root)
     data = model.createData()
     # Our coordinate i -> Pinocchio index (by joint name; the root composite is first).
-    idx = list(range(6)) + [model.joints[model.getJointId(n)].idx_q for n in NAMES[6:]]
-    sole = model.getFrameId("l_sole")
+    idx = list(range(6)) + [model.joints[model.getJointId(n)].idx_q for n in names[6:]]
+    effort = model.effortLimit[idx[6:]]
+    sole = model.getFrameId(sole_name)
     dt = res["dt"]
-    cone_c = cone_matrix(0.7, 0.135, 0.08)
     worst = 0.0
     for k in range(len(q) - 1):
         qp, vp, ap = (np.zeros(model.nq) for _ in range(3))
@@ -194,10 +196,47 @@ def test_biped_normal_footstep_witness_satisfies_the_dynamics_per_pinocchio(tmp_
         worst = max(worst, np.abs(resid).max())
         R = data.oMf[sole].rotation
         w_sole = np.concatenate([R.T @ lam[k][:3], R.T @ lam[k][3:]])
-        assert (cone_c @ w_sole).min() >= -1e-6, f"step {k}: wrench outside the cone"
-        assert np.all(np.abs(u[k]) <= np.array([150, 300, 300, 300, 200, 150] * 2) + 1e-6)
-        assert np.linalg.norm(data.oMf[sole].translation - np.array([0.0, 0.1, 0.0])) <= 1e-4
+        assert (cone @ w_sole).min() >= -1e-6, f"step {k}: wrench outside the cone"
+        assert np.all(np.abs(u[k]) <= effort + 1e-6), f"step {k}: torque above the limits"
+        assert np.linalg.norm(data.oMf[sole].translation - np.array(stance)) <= 1e-4
     assert worst <= 1e-6, f"eq. (1) residual {worst} per Pinocchio"
+    return w
+
+
+def test_biped_normal_footstep_witness_satisfies_the_dynamics_per_pinocchio(tmp_path):
+    pin = pytest.importorskip("pinocchio")
+    req, horizon = normal_footstep_request(tmp_path / "step.json", NAMES, 0.1, [0.25, -0.12, 0.0])
+    res = run_tool("reach_check", REPO / "urdf" / "biped.urdf", REPO / "config" / "biped.yaml",
+                   req).json()
+    assert res["joint_names"] == NAMES
+    from model_oracle import floating_root_joint
+    model = pin.buildModelFromUrdf(str(REPO / "urdf" / "biped.urdf"), floating_root_joint())
+    check_witness_with_pinocchio(res, model, "l_sole", [0.0, 0.1, 0.0],
+                                 cone_matrix(0.7, 0.135, 0.08), horizon)
+
+
+def test_talos_legs_normal_footstep_witness_satisfies_the_dynamics_per_pinocchio(tmp_path):
+    """The same on TALOS legs (config/talos.yaml: the robot section's URDF, its 20 locked
+    joints), re-checked on Pinocchio's buildReducedModel of talos_reduced.urdf."""
+    pin = pytest.importorskip("pinocchio")
+    from model_oracle import floating_root_joint, reduced_model
+    from test_model_locked_joints import TALOS, shipped_locked_joints
+    config = REPO / "config" / "talos.yaml"
+    names = ["base_x", "base_y", "base_z", "base_yaw", "base_pitch", "base_roll"] + [
+        f"leg_{side}_{i}_joint" for side in ("left", "right") for i in range(1, 7)]
+    legs = tuple((f"leg_{s}_3_joint", f"leg_{s}_4_joint", f"leg_{s}_5_joint")
+                 for s in ("left", "right"))
+    req, horizon = normal_footstep_request(tmp_path / "talos_step.json", names, 0.085,
+                                           [0.15, -0.1, 0.0], legs, base_z=1.0)
+    run = run_tool("reach_check", "--config", config, req)
+    assert run.returncode == 0, run.describe()
+    res = run.json()
+    assert res["joint_names"] == names
+    model = reduced_model(pin.buildModelFromUrdf(str(TALOS), floating_root_joint()),
+                          shipped_locked_joints(config))
+    w = check_witness_with_pinocchio(res, model, "left_sole_link", [0.0, 0.085, 0.0],
+                                     cone_matrix(0.7, 0.1, 0.05), horizon)
+    assert len(w["q"]) > 10
 
 
 def cone_matrix(mu, X, Y):

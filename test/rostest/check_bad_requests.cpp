@@ -218,7 +218,7 @@ TEST(BadRequests, PlanFootstepRejectsNamingTheFieldAndServesOn) {
   // Standing on the left sole, the right one to land beside it (kinematic check only: fast).
   FootstepPlanRequest request;
   request.stance = Side::kLeft;
-  request.q = standingConfiguration(*model, 0.6, "l_sole");
+  request.q = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
   request.qd = Eigen::VectorXd::Zero(model->nq());
   Workspace ws(*model);
   model->update(ws, request.q, request.qd);

@@ -20,7 +20,7 @@ const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.u
 struct Fixture {
   std::shared_ptr<const RobotModel> model = RobotModel::fromUrdfFile(kUrdf);
   ContactConfig contact;
-  Eigen::VectorXd standing = standingConfiguration(*model, 0.6, "l_sole");
+  Eigen::VectorXd standing = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
   geometry_msgs::Point foothold = [] {
     geometry_msgs::Point p;
     p.x = 0.1;

@@ -14,7 +14,14 @@ using namespace reach_trajopt;
 
 namespace {
 const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf";
+
+/// The biped's robot section with the URDF at `urdf`.
+RobotConfig bipedAt(const std::string& urdf) {
+  RobotConfig robot;
+  robot.urdf = urdf;
+  return robot;
 }
+}  // namespace
 
 TEST(SwingTrajectory, EndpointsAndDerivatives) {
   const Eigen::Vector3d a(0.0, -0.1, 0.0), b(0.3, -0.25, 0.0);
@@ -35,7 +42,8 @@ TEST(SwingTrajectory, EndpointsAndDerivatives) {
 TEST(WalkingExperiment, BaselineWalksInPlaceTwentySteps) {
   WalkConfig walk;
   walk.steps = 20;
-  WalkingExperiment experiment(kUrdf, walk, TvrConfig{}, ContactConfig{}, WbcConfig{}, SimConfig{});
+  WalkingExperiment experiment(bipedAt(kUrdf), walk, TvrConfig{}, ContactConfig{}, WbcConfig{},
+                               SimConfig{});
   int ticks = 0;
   const WalkResult r = experiment.run([&](const WalkTick&) { ++ticks; });
   EXPECT_FALSE(r.fell) << r.summaryLine();
@@ -63,8 +71,8 @@ TEST(WalkingExperiment, ConfigErrors) {
   walk = WalkConfig{};
   walk.check_horizon = walk.single_support_duration;  // the check must start within the swing
   EXPECT_THROW(walk.validate(), ReachError);
-  EXPECT_THROW(WalkingExperiment("/nonexistent.urdf", WalkConfig{}, TvrConfig{}, ContactConfig{},
-                                 WbcConfig{}, SimConfig{}),
+  EXPECT_THROW(WalkingExperiment(bipedAt("/nonexistent.urdf"), WalkConfig{}, TvrConfig{},
+                                 ContactConfig{}, WbcConfig{}, SimConfig{}),
                ReachError);
 }
 
@@ -74,7 +82,7 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
   WalkConfig walk = WalkConfig::fromYaml(file.section("walk"));
   walk.steps = 20;
   walk.forward_speed = 0.4;
-  WalkingExperiment experiment(kUrdf, walk, TvrConfig::fromYaml(file.section("planner")),
+  WalkingExperiment experiment(bipedAt(kUrdf), walk, TvrConfig::fromYaml(file.section("planner")),
                                ContactConfig::fromYaml(file.section("contact")),
                                WbcConfig::fromYaml(file.section("wbc")), SimConfig{});
   const WalkResult r = experiment.run();
@@ -288,4 +296,65 @@ TEST(PushEnvelope, SweepEqualsSingleWalksOnAnyNumberOfJobs) {
   }
   EXPECT_GT(fell, 0) << "0.6 m/s pushes topple the baseline";
   EXPECT_EQ(one.survived(), 16 - 2 * fell);
+}
+
+// ---- TALOS legs (config/talos.yaml): another robot through the same loop, from its config ----
+
+namespace {
+
+/// config/talos.yaml, its URDF from the project venv's example-robot-data (scripts/env.sh sets
+/// EXAMPLE_ROBOT_DATA; the default here is the same directory).
+WalkSetup talosSetup(const std::string& policy, int steps) {
+  setenv("EXAMPLE_ROBOT_DATA",
+         (std::string(REACH_TRAJOPT_SOURCE_DIR) +
+          "/.venv/lib/python3.11/site-packages/cmeel.prefix/share/example-robot-data/robots")
+             .c_str(),
+         /*overwrite=*/0);
+  WalkSetup setup =
+      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/talos.yaml");
+  setup.walk.policy = WalkingPolicy::parse(policy);
+  setup.walk.steps = steps;
+  return setup;
+}
+
+}  // namespace
+
+TEST(TalosWalk, StandsTenSecondsOnItsLockedLegs) {
+  WalkSetup setup = talosSetup("baseline", 0);
+  setup.walk.settle_duration = 10.0;
+  const std::unique_ptr<WalkingExperiment> experiment = setup.experiment();
+  EXPECT_EQ(experiment->model().nq(), 18) << "6 + 12 leg joints: the rest is locked";
+  double min_pelvis_z = 1e9;
+  const FrameId pelvis = experiment->model().frameId("base_link");
+  Workspace ws(experiment->model());
+  const WalkResult r = experiment->run([&](const WalkTick& tick) {
+    experiment->model().update(ws, *tick.q, *tick.qd);
+    min_pelvis_z =
+        std::min(min_pelvis_z, experiment->model().framePose(ws, pelvis).translation().z());
+  });
+  EXPECT_FALSE(r.fell) << r.summaryLine();
+  EXPECT_NEAR(r.sim_time, 10.0, 0.01);
+  // The standing pelvis height of the config, within 5 cm, all along.
+  EXPECT_GT(min_pelvis_z, setup.footsteps.kinematics.pelvis_height - 0.05);
+}
+
+TEST(TalosWalk, BaselineWalksInPlaceTwentySteps) {
+  const WalkResult r = talosSetup("baseline", 20).experiment()->run();
+  EXPECT_FALSE(r.fell) << r.summaryLine();
+  EXPECT_EQ(r.steps, 20) << r.summaryLine();
+  EXPECT_LT(r.max_touchdown_error, 0.02) << r.summaryLine();
+  for (const StepRecord& s : r.records) EXPECT_NEAR(s.executed.z(), 0.0, 0.01) << s.index;
+}
+
+TEST(TalosWalk, ProposedKeepsWalkingAfterALateralPush) {
+  WalkSetup setup = talosSetup("proposed", 6);
+  setup.walk.initial_com_velocity = Eigen::Vector2d(0.0, 0.3);
+  setup.footsteps.reach.initial_samples = 2000;
+  const WalkResult r = setup.experiment()->run();
+  EXPECT_FALSE(r.fell) << r.summaryLine();
+  EXPECT_EQ(r.steps, 6) << r.summaryLine();
+  expectCheckedAndTracked(r, 1);
+  int reachable = 0;
+  for (const StepRecord& s : r.records) reachable += s.verdict == "reachable";
+  EXPECT_GE(reachable, 3) << r.summaryLine();
 }

@@ -15,7 +15,7 @@ const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.u
 
 TEST(WholeBodyController, HoldsStandingForTenSeconds) {
   const auto model = RobotModel::fromUrdfFile(kUrdf);
-  const Eigen::VectorXd q0 = standingConfiguration(*model, 0.6);
+  const Eigen::VectorXd q0 = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
   const Eigen::VectorXd qd0 = Eigen::VectorXd::Zero(model->nq());
   SimConfig sim_config;
   auto world = BulletWorld::fromUrdfFile(kUrdf, *model, sim_config);

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/model/joint_locking.h"
 
 namespace reach_trajopt {
 
@@ -71,6 +72,9 @@ struct ModelOptions {
   Base base = Base::kAuto;
   /// Gravity in the world frame [m/s^2].
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+  /// Joints held at these positions and removed from q (joint_locking.h), like Pinocchio's
+  /// buildReducedModel; their links stay as frames, their masses in the carrying body.
+  LockedJoints locked_joints;
 };
 
 class Workspace;
@@ -106,6 +110,9 @@ class RobotModel {
   Eigen::MatrixXd selectionMatrix() const;
   double totalMass() const { return total_mass_; }  ///< [kg]
   const Eigen::Vector3d& gravity() const { return gravity_; }
+  /// The joints locked when the model was built (ModelOptions::locked_joints), so a simulator
+  /// built from the same URDF can lock them too.
+  const LockedJoints& lockedJoints() const { return locked_joints_; }
 
   /// Frame of a link or fixed frame by name; throws ReachError("unknown frame 'x' in <src>").
   FrameId frameId(const std::string& name) const;
@@ -177,6 +184,7 @@ class RobotModel {
   bool floating_base_ = false;
   double total_mass_ = 0.0;
   Eigen::Vector3d gravity_;
+  LockedJoints locked_joints_;
   std::vector<JointInfo> joints_;
   std::vector<std::string> frame_names_;
   std::vector<std::string> link_names_;

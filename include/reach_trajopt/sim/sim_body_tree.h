@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/model/joint_locking.h"
+
 namespace reach_trajopt {
 
 /// A collision primitive of a body (URDF <collision>); only box, sphere and cylinder.
@@ -60,8 +62,10 @@ struct SimBodyTree {
 
   /// Parses and merges. Throws ReachError naming the source on a missing or malformed file, a
   /// floating or planar joint, or a revolute/prismatic joint without limits.
-  static SimBodyTree fromUrdfFile(const std::string& path);
-  static SimBodyTree fromUrdfString(const std::string& xml, const std::string& source);
+  /// `locked`: joints turned into fixed ones first (model/joint_locking.h), as in the model.
+  static SimBodyTree fromUrdfFile(const std::string& path, const LockedJoints& locked = {});
+  static SimBodyTree fromUrdfString(const std::string& xml, const std::string& source,
+                                    const LockedJoints& locked = {});
 
   /// Body index and pose in its URDF frame of a URDF link; throws ReachError when unknown.
   const std::pair<int, Eigen::Isometry3d>& frame(const std::string& link) const;

@@ -29,6 +29,10 @@ struct SimConfig {
   /// are ContactConfig's (section `contact:`), which WalkingExperiment copies here.
   std::string left_sole_frame = "l_sole";
   std::string right_sole_frame = "r_sole";
+  /// Full sizes [m] of a contact box added under each sole frame (its bottom face on the
+  /// sole); zero: none, the URDF's collision shapes only. Not a YAML key: robot.sim_sole_boxes
+  /// and the contact rectangle, which WalkingExperiment copies here.
+  Eigen::Vector3d sole_box_size = Eigen::Vector3d::Zero();
   int solver_iterations = 20;      ///< Bullet constraint-solver iterations per step
   double collision_margin = 1e-3;  ///< Bullet convex margin [m] (rounds box corners)
   /// Bullet clamps every velocity coordinate to this [m/s, rad/s]; kept out of reach.

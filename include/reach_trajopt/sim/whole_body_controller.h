@@ -43,6 +43,9 @@ struct WbcConfig {
   double w_posture = 0.03, kp_posture = 60.0, kd_posture = 12.0;  ///< actuated joints
   double w_qdd = 1e-4;                                            ///< regularization of qdd
   double w_lambda = 1e-6;  ///< regularization of contact wrenches (N^2 -> cost)
+  /// Frame whose orientation the pelvis task holds; "" is the URDF root link. Not a YAML key:
+  /// the robot's pelvis is kinematic_feasibility.pelvis_frame, which WalkingExperiment copies.
+  std::string pelvis_frame;
   /// \throws ConfigError naming a negative or non-finite field.
   void validate() const;
   /// The YAML keys of section `wbc:` (the member names), their units and meaning.

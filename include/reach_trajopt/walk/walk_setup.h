@@ -16,6 +16,7 @@ class YamlSection;
 
 /// @brief The configs of one walking run and the experiment they build.
 struct WalkSetup {
+  RobotConfig robot;  ///< section robot: (optional: the biped)
   WalkConfig walk;
   TvrConfig tvr;
   ContactConfig contact;
@@ -26,8 +27,9 @@ struct WalkSetup {
   /// \throws ConfigError naming the file, section and key of a bad or missing value.
   static WalkSetup fromYaml(const YamlSection& root);
   static WalkSetup fromYamlFile(const std::string& path);
-  /// The experiment on the robot of `urdf_path` (validates every config).
-  std::unique_ptr<WalkingExperiment> experiment(const std::string& urdf_path) const;
+  /// The experiment on `robot`, or on the URDF `urdf_override` when not empty (a tool's
+  /// --urdf; the locked joints and leg roles stay robot's). Validates every config.
+  std::unique_ptr<WalkingExperiment> experiment(const std::string& urdf_override = "") const;
 };
 
 }  // namespace reach_trajopt

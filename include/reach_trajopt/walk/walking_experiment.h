@@ -19,6 +19,7 @@
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/sim/sim_config.h"
@@ -140,7 +141,8 @@ class WalkingExperiment {
   /// `proposed` configures the checks, the nearest foothold search and the OCP; used by
   /// policies with a check (defaults when null).
   /// The simulator reports the wrenches of `contact`'s sole frames (`sim`'s are replaced).
-  WalkingExperiment(const std::string& urdf_path, const WalkConfig& walk, const TvrConfig& tvr,
+  /// `robot` gives the URDF, its locked joints and the leg joints of the standing pose.
+  WalkingExperiment(const RobotConfig& robot, const WalkConfig& walk, const TvrConfig& tvr,
                     const ContactConfig& contact, const WbcConfig& wbc, const SimConfig& sim,
                     const FootstepPlannerConfig* proposed = nullptr);
   ~WalkingExperiment();
