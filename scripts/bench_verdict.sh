@@ -7,6 +7,7 @@
 # Then the same grid with config/reach_fast.yaml's smaller sample budget, every foothold also
 # checked with config/reach_reference.yaml's: `BENCH reach.verdict_fast ref=reference
 # agreement=..` (and that budget's own reach.verdict line, as reach.verdict_budget_fast).
+# Last, TALOS legs: `BENCH reach.verdict_talos` (the same oracle on another robot).
 #   scripts/bench_verdict.sh [grid N = 7]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
@@ -17,3 +18,8 @@ cd "$REPO"
   --grid "${1:-7}" --half-width 0.15 --reach-config config/reach_fast.yaml \
   --reference-config config/reach_reference.yaml |
   sed 's/^BENCH reach.verdict /BENCH reach.verdict_budget_fast /'
+# TALOS legs (config/talos.yaml): 3 footsteps of its pushed proposed walk
+# (test/fixtures/talos_walk_requests.jsonl, `walk_experiment --config config/talos.yaml
+# --policy proposed --steps 3 --push 0,0.3 --plan-requests`), 3 x 3 footholds within +-0.1 m.
+"$BIN/verdict_grid" --config config/talos.yaml --requests test/fixtures/talos_walk_requests.jsonl \
+  --grid 3 --half-width 0.1 | sed 's/^BENCH reach.verdict /BENCH reach.verdict_talos /'

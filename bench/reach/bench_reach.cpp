@@ -46,6 +46,39 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+/// Median stage times [s] of `repeats` checks of `req` with `cfg`, and the last result.
+struct CaseTimes {
+  double total = 0.0, cpu = 0.0, forward = 0.0, backward = 0.0, boundary = 0.0, hausdorff = 0.0,
+         witness = 0.0;
+  FootstepResult result;
+};
+
+CaseTimes timeCase(const FootstepReachability& check, const FootstepRequest& req,
+                   const ReachConfig& cfg, int repeats) {
+  std::vector<double> tot, fw, bw, bd, hd, wt, cpu;
+  CaseTimes out;
+  for (int k = 0; k < repeats; ++k) {
+    const double c0 = cpuSeconds();
+    out.result = check.check(req, cfg);
+    cpu.push_back(cpuSeconds() - c0);
+    const ReachTimings& t = out.result.reach.timings;
+    tot.push_back(t.total);
+    fw.push_back(t.forward);
+    bw.push_back(t.backward);
+    bd.push_back(t.boundary);
+    hd.push_back(t.hausdorff);
+    wt.push_back(t.witness);
+  }
+  out.total = median(tot);
+  out.cpu = median(cpu);
+  out.forward = median(fw);
+  out.backward = median(bw);
+  out.boundary = median(bd);
+  out.hausdorff = median(hd);
+  out.witness = median(wt);
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -91,32 +124,20 @@ int main(int argc, char** argv) {
     ReachConfig cfg = base;
     cfg.threads = c.threads;
     if (!c.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
-    std::vector<double> tot, fw, bw, bd, hd, wt, cpu;
-    FootstepResult r;
-    for (int k = 0; k < repeats; ++k) {
-      const double c0 = cpuSeconds();
-      r = check.check(req, cfg);
-      cpu.push_back(cpuSeconds() - c0);
-      const ReachTimings& t = r.reach.timings;
-      tot.push_back(t.total);
-      fw.push_back(t.forward);
-      bw.push_back(t.backward);
-      bd.push_back(t.boundary);
-      hd.push_back(t.hausdorff);
-      wt.push_back(t.witness);
-    }
+    const CaseTimes m = timeCase(check, req, cfg, repeats);
+    const FootstepResult& r = m.result;
     const ReachCounts& n = r.reach.counts;
     const long qps = n.forward_qps + n.backward_qps;
-    const double total = median(tot);
+    const double total = m.total;
     if (c.bidirectional && c.threads == 1) total_1 = total;
     std::printf(
         "BENCH reach.check mode=%s ours_s=%.4f cpu_s=%.4f forward_s=%.4f backward_s=%.4f "
         "boundary_s=%.4f "
         "hausdorff_s=%.4f witness_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld "
         "reachable=%d peak_rss_mib=%.1f\n",
-        c.name, total, median(cpu), median(fw), median(bw), median(bd), median(hd), median(wt),
-        samples, c.threads, qps, qps / (median(fw) + median(bw)),
-        n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, peakRssMiB());
+        c.name, total, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff, m.witness, samples,
+        c.threads, qps, qps / (m.forward + m.backward), n.forward_samples + n.backward_samples,
+        r.reachable ? 1 : 0, peakRssMiB());
     if (c.bidirectional && c.threads == 2 && total_1 > 0.0)
       std::printf("BENCH reach.speedup threads=2 ratio=%.2f\n", total_1 / total);
   }
@@ -130,32 +151,19 @@ int main(int argc, char** argv) {
   for (int threads : {1, 2}) {
     ReachConfig cfg = walk_config.reach;
     cfg.threads = threads;
-    std::vector<double> tot, fw, bw, bd, hd, wt, cpu;
-    FootstepResult r;
-    for (int k = 0; k < repeats; ++k) {
-      const double c0 = cpuSeconds();
-      r = check.check(req, cfg);
-      cpu.push_back(cpuSeconds() - c0);
-      const ReachTimings& t = r.reach.timings;
-      tot.push_back(t.total);
-      fw.push_back(t.forward);
-      bw.push_back(t.backward);
-      bd.push_back(t.boundary);
-      hd.push_back(t.hausdorff);
-      wt.push_back(t.witness);
-    }
+    const CaseTimes m = timeCase(check, req, cfg, repeats);
+    const FootstepResult& r = m.result;
     const ReachCounts& n = r.reach.counts;
-    if (threads == 1) walk_1 = median(tot);
+    if (threads == 1) walk_1 = m.total;
     std::printf(
         "BENCH reach.check mode=walk_horizon horizon_s=%.3f ours_s=%.4f cpu_s=%.4f forward_s=%.4f "
         "backward_s=%.4f boundary_s=%.4f hausdorff_s=%.4f witness_s=%.4f threads=%d qps=%ld "
         "kept=%ld reachable=%d peak_rss_mib=%.1f\n",
-        cfg.horizon, median(tot), median(cpu), median(fw), median(bw), median(bd), median(hd),
-        median(wt), threads, n.forward_qps + n.backward_qps, n.forward_samples + n.backward_samples,
+        cfg.horizon, m.total, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff, m.witness,
+        threads, n.forward_qps + n.backward_qps, n.forward_samples + n.backward_samples,
         r.reachable ? 1 : 0, peakRssMiB());
     if (threads == 2)
-      std::printf("BENCH reach.speedup mode=walk_horizon threads=2 ratio=%.2f\n",
-                  walk_1 / median(tot));
+      std::printf("BENCH reach.speedup mode=walk_horizon threads=2 ratio=%.2f\n", walk_1 / m.total);
   }
   return 0;
 }

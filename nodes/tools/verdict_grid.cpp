@@ -23,7 +23,8 @@
 /// reachable: the planner's verdict (footstep_transition_planner.h: the check's bridged witness
 /// or the local solve); certified / false_reachable (FR): reachable verdicts whose certificate
 /// passes / fails this tool's re-check; ocp_converged (K): footholds where the strict OCP seeded
-/// without the witness converged; false_unreachable (FU): "not shown reachable" kinematically
+/// without the witness converged within the joint velocity limits (which it reports but does
+/// not constrain); false_unreachable (FU): "not shown reachable" kinematically
 /// feasible footholds where it converged; bridge_certified: reachable verdicts certified by
 /// the bridge alone; reachable_strict_converged: reachable verdicts whose strict OCP converged.
 /// --reach-config: the `reach:` section of FILE replaces --config's (e.g. config/reach_fast.yaml).
@@ -330,7 +331,8 @@ int main(int argc, char** argv) {
           plain.check_reachability = false;
           plain.ocp_policy = OcpPolicy::kStrict;
           const FootstepTransition ocp = planner.plan(plain);
-          const bool ocp_ok = ocp.trajectory.status == OcpStatus::kConverged;
+          // Converged within the joint velocity limits: a feasible path (as a certificate).
+          const bool ocp_ok = ocp.trajectory.reachesTargetWithinLimits(cfg.ocp.tolerance);
           converged += ocp_ok;
           std::string recheck = "-";
           if (checked.reachable) {

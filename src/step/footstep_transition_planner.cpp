@@ -240,9 +240,15 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
 void FootstepTransitionPlanner::certify(FootstepTransition& out) const {
   const bool strict_converged =
       out.trajectory.status == OcpStatus::kConverged && !out.trajectory.relaxed;
+  // The OCP reports the joint velocity limits but does not constrain them: a certificate
+  // must respect them as the bridge's path does (TALOS's are tight enough to matter).
+  const bool certifies = out.trajectory.reachesTargetWithinLimits(config_.ocp.tolerance);
   if (out.check.reachable) {
     out.certificate = "bridge";
-  } else if (strict_converged) {
+  } else if (strict_converged && !certifies) {
+    out.reason += "; not a certificate: the strict OCP's path exceeds a joint velocity limit by " +
+                  std::to_string(out.trajectory.violation.velocity_limits) + " (relative)";
+  } else if (certifies) {
     out.certificate = "local_solve";
     out.reason =
         "reachable: certified by the local solve, the strict OCP seeded with the "

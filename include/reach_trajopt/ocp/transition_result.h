@@ -61,6 +61,13 @@ struct TransitionResult {
   int variables = 0;               ///< size of the last NLP
   int constraints = 0;             ///< rows of the last NLP (equalities + inequalities)
   double solve_time = 0.0;         ///< wall time [s]
+
+  /// A path x_0 -> x_f that shows the target reachable: the strict problem converged and the
+  /// joint velocities, reported but not constrained by the OCP, stay within their limits
+  /// (relative excess <= `tolerance`).
+  bool reachesTargetWithinLimits(double tolerance) const {
+    return status == OcpStatus::kConverged && !relaxed && violation.velocity_limits <= tolerance;
+  }
 };
 
 }  // namespace reach_trajopt
