@@ -13,7 +13,8 @@
 /// Output: {"status": "converged"|"relaxed"|"failed", "reason", "nlopt_status", "relaxed",
 ///   "eps", "landing_position", "dt", "time", "q", "qd", "qdd", "u", "lambda" (one row per
 ///   sample; lambda = [left f, tau; right f, tau] world), "violation": {family: value},
-///   "cost", "iterations", "solves", "variables", "constraints", "solve_time"}.
+///   "cost", "iterations", "solves", "variables", "constraints", "solve_time", "qf", "qdf" (the
+///   x_f solved for)}.
 /// --stride k keeps every k-th sample (and the last) in the output arrays.
 /// Read by readTransitionRequest (transition_request_json.h): unknown keys, wrong sizes, a horizon
 /// over its bound and an IK-infeasible target without "qf" are errors naming the key.
@@ -40,6 +41,7 @@
 #include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "violations_json.h"
 
 using reach_trajopt::ReachError;
 using json = nlohmann::json;
@@ -139,18 +141,17 @@ int main(int argc, char** argv) {
     out["qdd"] = matrixRows(res.qdd, stride);
     out["u"] = matrixRows(res.u, stride);
     out["lambda"] = matrixRows(res.lambda, stride);
-    out["violation"] = {{"dynamics", v.dynamics},           {"stance_contact", v.stance_contact},
-                        {"stance_cone", v.stance_cone},     {"new_contact", v.new_contact},
-                        {"new_cone", v.new_cone},           {"torque", v.torque},
-                        {"joint_limits", v.joint_limits},   {"velocity_limits", v.velocity_limits},
-                        {"reachable_set", v.reachable_set}, {"initial_state", v.initial_state},
-                        {"final_state", v.final_state},     {"max", v.max()}};
+    out["violation"] = violationsJson(v);
     out["cost"] = res.cost;
     out["iterations"] = res.iterations;
     out["solves"] = res.solves;
     out["variables"] = res.variables;
     out["constraints"] = res.constraints;
     out["solve_time"] = res.solve_time;
+    // x_f the OCP was given (the request's, or the Sec. III-B IK solution): a reference solver
+    // and check_transition can start from the same one.
+    out["qf"] = std::vector<double>(r.qf.data(), r.qf.data() + r.qf.size());
+    out["qdf"] = std::vector<double>(r.qdf.data(), r.qdf.data() + r.qdf.size());
     std::cout << out.dump() << "\n";
     return res.status == OcpStatus::kFailed ? 1 : 0;
   } catch (const std::exception& e) {

@@ -3,7 +3,7 @@
 ///   walk_experiment [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                   [--policy P] [--steps N] [--seed S] [--push vx,vy]
 ///                   [--forward-speed v] [--settle S] [--records FILE.csv]
-///                   [--plan-requests FILE.jsonl]
+///                   [--plan-requests FILE.jsonl] [--ocp-requests FILE.jsonl]
 ///
 /// --config: the robot and its parameters (config/talos.yaml: TALOS legs); --urdf overrides
 /// its robot.urdf. --settle S: stand S seconds before the first step (--steps 0: stand only).
@@ -13,6 +13,9 @@
 /// Prints one line per step and ends with `WALK mode=<policy> steps=<n> fell=<yes|no> ...`
 /// and the policy's definition.
 /// Option values are parsed strictly (cli_args.h): "--steps 5x" is an error naming --steps.
+/// --ocp-requests: each checked, kinematically feasible footstep's strict transition OCP request
+/// (x_0 as used, x_f and qd_f of the check, no reachable-set hulls, no seed), one JSON per line
+/// in plan_transition's format (ocp/transition_request_json.h), e.g. for bench/crocoddyl.
 /// Exit status: 0 ran (fallen or not), 2 bad input.
 
 #include <cstdio>
@@ -21,6 +24,7 @@
 #include <string>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
@@ -32,7 +36,8 @@ constexpr long long kMaxWalkSteps = 1000;
 constexpr double kMaxSettleSeconds = 600.0;
 
 int main(int argc, char** argv) {
-  std::string config_path = "config/biped.yaml", urdf, records_path, requests_path;
+  std::string config_path = "config/biped.yaml", urdf, records_path, requests_path,
+              ocp_requests_path;
   std::string mode, push, steps, seed, speed, settle;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -61,6 +66,8 @@ int main(int argc, char** argv) {
         records_path = next();
       else if (a == "--plan-requests")
         requests_path = next();
+      else if (a == "--ocp-requests")
+        ocp_requests_path = next();
       else
         throw std::runtime_error("unknown argument '" + a + "'");
     } catch (const std::exception& e) {
@@ -99,7 +106,26 @@ int main(int argc, char** argv) {
         throw ReachError("cannot write --plan-requests file '" + requests_path + "'");
     }
     // --plan-requests: each checked footstep's request, one JSON per line (verdict_grid input).
+    std::ofstream ocp_requests_out;
+    if (!ocp_requests_path.empty()) {
+      ocp_requests_out.open(ocp_requests_path);
+      if (!ocp_requests_out)
+        throw ReachError("cannot write --ocp-requests file '" + ocp_requests_path + "'");
+    }
     const auto on_check = [&](const StepRecord&, const FootstepTransition& step) {
+      if (ocp_requests_out.is_open() && step.check.kinematically_feasible) {
+        TransitionRequest ocp;
+        ocp.stance = step.stance;
+        ocp.stance_pose = step.stance_contact.pose();
+        ocp.swing_target = step.target.pose();
+        ocp.horizon = step.horizon;
+        ocp.q0 = step.q0;
+        ocp.qd0 = step.qd0;
+        ocp.qf = step.check.kinematics.q_f;
+        ocp.qdf = step.check.qdf;
+        ocp.relaxation = RelaxationMode::kStrict;
+        ocp_requests_out << transitionRequestToJson(ocp).dump() << "\n";
+      }
       if (!requests_out.is_open()) return;
       nlohmann::json j = footstepPlanRequestJson(step.request);
       j["reach_horizon"] = step.horizon;  // the walk's check horizon

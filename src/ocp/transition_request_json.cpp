@@ -3,6 +3,7 @@
 
 #include "reach_trajopt/ocp/transition_request_json.h"
 
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -69,6 +70,47 @@ TransitionRequestJson readTransitionRequest(const JsonReader& r, int nq) {
     q.seed.q = s.at("q").matrix(static_cast<Eigen::Index>(n), nq).transpose();
   }
   return out;
+}
+
+namespace {
+
+nlohmann::json flatPose(const Eigen::Isometry3d& pose) {
+  const Eigen::Vector3d p = pose.translation();
+  return {{"position", {p.x(), p.y(), p.z()}},
+          {"yaw", std::atan2(pose.linear()(1, 0), pose.linear()(0, 0))}};
+}
+
+std::vector<double> values(const Eigen::VectorXd& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+}  // namespace
+
+nlohmann::json transitionRequestToJson(const TransitionRequest& r) {
+  nlohmann::json j;
+  j["stance"] = r.stance == Side::kLeft ? "left" : "right";
+  j["stance_pose"] = flatPose(r.stance_pose);
+  j["swing_target"] = flatPose(r.swing_target);
+  j["horizon"] = r.horizon;
+  j["q0"] = values(r.q0);
+  j["qd0"] = values(r.qd0);
+  if (r.qf.size() > 0) {
+    j["qf"] = values(r.qf);
+    j["qdf"] = values(r.qdf);
+  }
+  j["relaxation"] = r.relaxation == RelaxationMode::kAuto     ? "auto"
+                    : r.relaxation == RelaxationMode::kStrict ? "strict"
+                                                              : "relaxed";
+  if (!r.slices.empty()) {
+    nlohmann::json slices = nlohmann::json::array();
+    for (const ReachableSlice& s : r.slices) {
+      nlohmann::json A = nlohmann::json::array();
+      for (Eigen::Index i = 0; i < s.A.rows(); ++i) A.push_back({s.A(i, 0), s.A(i, 1)});
+      slices.push_back({{"time", s.time}, {"A", A}, {"b", values(s.b)}});
+    }
+    j["slices"] = slices;
+  }
+  return j;
 }
 
 }  // namespace reach_trajopt

@@ -266,6 +266,14 @@ CASES = [
                             {"q": standing_q(), "qd": [0.0] * (NQ - 1)}]}}, ["states[1].qd"]),
     ("message", "qp_invalid_json", "qp_solve", ["{p}"], {"p.json": '{"G": [[1]], "g": [1'},
      ["p.json", "JSON"]),
+    # check_transition: a trajectory with short wrench rows, a request without the x_f to check
+    ("message", "check_transition_lambda_rows", "check_transition", ["{r}", "{t}"],
+     {"r.json": edited(TRANSITION_REQUEST, ("qf",), standing_q()),
+      "t.json": {"time": [0.0, 0.4], "q": [standing_q()] * 2, "qd": [[0.0] * NQ] * 2,
+                 "qdd": [[0.0] * NQ] * 2, "u": [[0.0] * (NQ - 6)] * 2,
+                 "lambda": [[0.0] * 11] * 2}}, ["t.json", "lambda"]),
+    ("message", "check_transition_request_without_qf", "check_transition", ["{r}", "{r}"],
+     {"r.json": TRANSITION_REQUEST}, ["r.json", "qf"]),
 ]
 
 

@@ -28,6 +28,7 @@
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/stance_reduced_dynamics.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
+#include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 
 using namespace reach_trajopt;
@@ -398,4 +399,34 @@ TEST(TransitionOcp, BadInputThrows) {
   cfg = caseConfig();
   cfg.check_interval = nan;
   EXPECT_THROW(TransitionOcp(m, cfg), ReachError);
+}
+
+// transitionRequestToJson writes what readTransitionRequest reads (walk_experiment
+// --ocp-requests replays through plan_transition).
+TEST(TransitionRequestJson, WriteThenReadGivesTheRequest) {
+  const auto m = biped();
+  TransitionRequest r = stepRequest(0.25);
+  r.relaxation = RelaxationMode::kStrict;
+  ReachableSlice slice;
+  slice.time = 0.1;
+  slice.A.resize(2, 2);
+  slice.A << 1.0, 0.0, 0.0, -1.0;
+  slice.b = Eigen::Vector2d(0.3, 0.2);
+  r.slices.push_back(slice);
+  const nlohmann::json j = transitionRequestToJson(r);
+  const TransitionRequestJson back = readTransitionRequest(JsonReader(j, "written"), m->nq());
+  const TransitionRequest& b = back.request;
+  ASSERT_TRUE(back.has_qf);
+  EXPECT_EQ(b.stance, r.stance);
+  EXPECT_TRUE(b.stance_pose.isApprox(r.stance_pose, 1e-12));
+  EXPECT_TRUE(b.swing_target.isApprox(r.swing_target, 1e-12));
+  EXPECT_EQ(b.horizon, r.horizon);
+  EXPECT_EQ(b.q0, r.q0);
+  EXPECT_EQ(b.qd0, r.qd0);
+  EXPECT_EQ(b.qf, r.qf);
+  EXPECT_EQ(b.qdf, r.qdf);
+  EXPECT_EQ(b.relaxation, RelaxationMode::kStrict);
+  ASSERT_EQ(b.slices.size(), 1u);
+  EXPECT_EQ(b.slices[0].A, slice.A);
+  EXPECT_EQ(b.slices[0].b, slice.b);
 }

@@ -30,4 +30,9 @@ struct TransitionRequestJson {
 /// \throws ReachError naming the source and key path of the first problem.
 TransitionRequestJson readTransitionRequest(const JsonReader& r, int nq);
 
+/// Writes `r` in the format readTransitionRequest reads (for replays, e.g. walk_experiment
+/// --ocp-requests). The stance pose and the swing target are written as flat footholds (position
+/// and yaw): their roll and pitch are dropped. The seed path is not written.
+nlohmann::json transitionRequestToJson(const TransitionRequest& r);
+
 }  // namespace reach_trajopt
