@@ -275,7 +275,7 @@ TEST(BadRequests, CheckFootholdsRejectsNamingTheFieldAndServesOn) {
   // Standing on the left sole; three candidates for the right one around where it stands.
   FootholdCandidates batch;
   batch.stance = Side::kLeft;
-  batch.q_init = standingConfiguration(*model, 0.6, "l_sole");
+  batch.q_init = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
   Workspace ws(*model);
   model->update(ws, batch.q_init, Eigen::VectorXd::Zero(model->nq()));
   batch.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
