@@ -36,7 +36,9 @@
 /// answer; true), ~plan_service (the service's name, relative: remappable; plan_footstep).
 /// ~plan_retries (calls of a step repeated after a failed one, 0.1 s apart; 2). A step whose
 /// calls all fail (the node died or went away) is planned in process instead, with a warning,
-/// and its messages published here: the walk and the bag lose nothing.
+/// and its messages published here: the walk and the bag lose nothing. ~plan_timeout (wall
+/// seconds a call may take; 60): a node that does not answer in time is hung (stopped, not
+/// dead): that step and every later one are planned in process, with a warning.
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
@@ -47,11 +49,13 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/ros/async_service_call.h"
 #include "reach_trajopt/ros/conversions.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/markers.h"
@@ -116,6 +120,9 @@ int main(int argc, char** argv) {
     const std::string plan_service = param<std::string>(pnh, "plan_service", "plan_footstep");
     const int plan_retries = param(pnh, "plan_retries", 2);
     if (plan_retries < 0) throw ConfigError("~plan_retries must be >= 0");
+    const double plan_timeout = param(pnh, "plan_timeout", 60.0);
+    if (!(plan_timeout > 0.0) || plan_timeout > 1e6)
+      throw ConfigError("~plan_timeout must be in (0, 1e6] s");
     if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
       throw ConfigError("~publish_period, ~clock_period and ~marker_period must be > 0");
 
@@ -261,28 +268,41 @@ int main(int argc, char** argv) {
 
     // The walking loop checks a step at the start of a control tick, before that tick's
     // on_tick: its sim time is the last tick's plus one time step.
-    bool planned_here = true;  // the last checked step was planned in this process
+    bool planned_here = true;   // the last checked step was planned in this process
+    bool planner_hung = false;  // a call timed out: the node is not asked again
     if (through_node)
       experiment.setFootstepPlanner([&](const FootstepPlanRequest& request) {
-        reach_trajopt::PlanFootstep srv;
-        srv.request = rb::toPlanFootstepRequestMsg(request, local_planner->config().reach,
-                                                   ros::Time(last_tick_time + setup.sim.time_step));
-        srv.request.marker_id = static_cast<uint32_t>(executed.size() + 1);  // the step index
-        for (int attempt = 0; attempt <= plan_retries; ++attempt) {
+        reach_trajopt::PlanFootstep::Request plan_request =
+            rb::toPlanFootstepRequestMsg(request, local_planner->config().reach,
+                                         ros::Time(last_tick_time + setup.sim.time_step));
+        plan_request.marker_id = static_cast<uint32_t>(executed.size() + 1);  // the step index
+        for (int attempt = 0; attempt <= plan_retries && !planner_hung; ++attempt) {
           if (attempt > 0) {
             ROS_WARN("sim_node: the call of '%s' failed (attempt %d of %d)",
                      plan_client.getService().c_str(), attempt, plan_retries + 1);
             ros::WallDuration(0.1).sleep();
           }
-          if (plan_client.call(srv)) {
+          const auto call = rb::callAsync<reach_trajopt::PlanFootstep>(nh, plan_client.getService(),
+                                                                       plan_request);
+          if (!call->waitUntil(ros::WallTime::now() + ros::WallDuration(plan_timeout))) {
+            planner_hung = true;
+            ROS_WARN(
+                "sim_node: '%s' did not answer within ~plan_timeout = %.1f s: hung; this "
+                "and every later step planned in process",
+                plan_client.getService().c_str(), plan_timeout);
+            break;
+          }
+          std::lock_guard<std::mutex> lock(call->mutex);
+          if (call->ok) {
             // A rejected request is what the in-process planner throws for it.
-            if (!srv.response.success) throw RequestError(srv.response.message);
+            if (!call->response.success) throw RequestError(call->response.message);
             planned_here = false;
-            return rb::fromPlanFootstepResponseMsg(srv.response, request, model);
+            return rb::fromPlanFootstepResponseMsg(call->response, request, model);
           }
         }
-        ROS_WARN("sim_node: the call of '%s' failed %d times; step %zu planned in process",
-                 plan_client.getService().c_str(), plan_retries + 1, executed.size() + 1);
+        if (!planner_hung)
+          ROS_WARN("sim_node: the call of '%s' failed %d times; step %zu planned in process",
+                   plan_client.getService().c_str(), plan_retries + 1, executed.size() + 1);
         planned_here = true;
         return local_planner->plan(request);
       });

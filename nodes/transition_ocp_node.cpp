@@ -212,10 +212,7 @@ class TransitionOcpNode {
         [&](const std::string& reason) {
           res.success = false;
           res.message = reason;
-          res.trajectory.header.stamp = t0;
-          res.trajectory.header.frame_id = rb::kWorldFrame;
-          res.trajectory.status = "error";
-          res.trajectory.message = reason;
+          res.trajectory = rb::errorTrajectoryMsg(reason, t0);
         });
   }
 
@@ -250,10 +247,7 @@ class TransitionOcpNode {
           res = reach_trajopt::PlanFootstep::Response();
           res.success = false;
           res.message = reason;
-          res.trajectory.header.stamp = t0;
-          res.trajectory.header.frame_id = rb::kWorldFrame;
-          res.trajectory.status = "error";
-          res.trajectory.message = reason;
+          res.trajectory = rb::errorTrajectoryMsg(reason, t0);
         });
   }
 

@@ -9,42 +9,13 @@
 
 #include "reach_trajopt/CheckFootholds.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ros/async_service_call.h"
 #include "reach_trajopt/ros/foothold_candidate_msgs.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
 
 namespace {
-
-/// The answer of one call, filled by the thread that makes it.
-struct PendingAnswer {
-  std::mutex mutex;
-  std::condition_variable answered;
-  bool done = false;
-  bool ok = false;  ///< the call returned true
-  reach_trajopt::CheckFootholds::Response response;
-};
-
-/// Calls `service` on its own thread. ros::ServiceClient::call has no timeout: a hung node
-/// keeps the thread blocked (detached, it owns its state) until that node dies; the caller
-/// waits with a deadline instead.
-std::shared_ptr<PendingAnswer> callAsync(const ros::NodeHandle& nh, const std::string& service,
-                                         reach_trajopt::CheckFootholds::Request request) {
-  auto answer = std::make_shared<PendingAnswer>();
-  std::thread([answer, nh, service, request = std::move(request)]() mutable {
-    reach_trajopt::CheckFootholds srv;
-    srv.request = std::move(request);
-    ros::NodeHandle handle = nh;
-    ros::ServiceClient client = handle.serviceClient<reach_trajopt::CheckFootholds>(service);
-    const bool ok = client.call(srv);
-    std::lock_guard<std::mutex> lock(answer->mutex);
-    answer->done = true;
-    answer->ok = ok;
-    answer->response = std::move(srv.response);
-    answer->answered.notify_all();
-  }).detach();
-  return answer;
-}
 
 FootholdCandidates part(const FootholdCandidates& batch, size_t begin, size_t end) {
   FootholdCandidates p = batch;
@@ -91,7 +62,7 @@ bool ReachabilityWorkerPool::sendRound(const FootholdCandidates& batch,
   struct Call {
     size_t chunk, worker;
     uint64_t id;
-    std::shared_ptr<PendingAnswer> answer;
+    std::shared_ptr<PendingCall<reach_trajopt::CheckFootholds>> answer;
   };
   std::vector<Call> calls;
   for (size_t c = 0; c < chunks.size() && calls.size() < available.size(); ++c) {
@@ -104,19 +75,19 @@ bool ReachabilityWorkerPool::sendRound(const FootholdCandidates& batch,
     const size_t w = available[calls.size()];
     calls.push_back(
         {c, w, id,
-         callAsync(nh_, workers_[w].service,
-                   toCheckFootholdsRequestMsg(part(batch, chunks[c].begin, chunks[c].end), id))});
+         callAsync<reach_trajopt::CheckFootholds>(
+             nh_, workers_[w].service,
+             toCheckFootholdsRequestMsg(part(batch, chunks[c].begin, chunks[c].end), id))});
   }
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s_);
   for (const Call& call : calls) {
     Chunk& chunk = chunks[call.chunk];
     std::string failure;
     {
-      std::unique_lock<std::mutex> lock(call.answer->mutex);
-      while (!call.answer->done && ros::WallTime::now() < deadline)
-        call.answer->answered.wait_for(lock, std::chrono::milliseconds(10));
+      const bool answered = call.answer->waitUntil(deadline);
+      std::lock_guard<std::mutex> lock(call.answer->mutex);
       const reach_trajopt::CheckFootholds::Response& r = call.answer->response;
-      if (!call.answer->done) {
+      if (!answered) {
         failure = "no answer within ~worker_timeout = " + std::to_string(timeout_s_) + " s";
       } else if (!call.answer->ok) {
         failure = "the call failed (the node is gone?)";

@@ -144,6 +144,16 @@ reach_trajopt::ReachabilityResult reachabilityVerdictMsg(const std::string& verd
   return m;
 }
 
+reach_trajopt::TransitionTrajectory errorTrajectoryMsg(const std::string& reason,
+                                                       const ros::Time& t0) {
+  reach_trajopt::TransitionTrajectory m;
+  m.header.stamp = t0;
+  m.header.frame_id = kWorldFrame;
+  m.status = "error";
+  m.message = reason;
+  return m;
+}
+
 const std::string& swingFrame(const ContactConfig& contact, Side stance) {
   return stance == Side::kLeft ? contact.right_sole_frame : contact.left_sole_frame;
 }

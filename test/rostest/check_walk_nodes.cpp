@@ -15,7 +15,9 @@
 // reports) once K step reports have arrived: its calls time out, its candidates go to the other
 // worker, and the walk must still equal the in-process one with every step's messages from
 // transition_ocp_node, and worker 1 must have checked whole rings since; worker 0 is continued
-// (SIGCONT) at the end so the launch can stop it.
+// (SIGCONT) at the end so the launch can stop it. With ~hang_planner true (hung_node_walk.test)
+// the checker stops transition_ocp_node (SIGSTOP) instead of killing it: sim_node's call
+// times out (~plan_timeout) and the rest is as when it was killed.
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -58,8 +60,10 @@ struct Received {
 };
 Received g_received;
 std::mutex g_mutex;
-int g_kill_after_steps = 0;  ///< 0: kill nothing
-bool g_killed = false;
+int g_kill_after_steps = 0;         ///< 0: kill nothing
+bool g_killed = false;              ///< killed, or hung with ~hang_planner
+bool g_hang_planner = false;        ///< stop transition_ocp_node instead of killing it
+pid_t g_planner_pid = 0;            ///< read before the walk starts
 int g_hang_worker_after_steps = 0;  ///< 0: hang no worker
 pid_t g_worker0_pid = 0;            ///< read before the walk starts
 bool g_hung = false;
@@ -206,6 +210,11 @@ void onReport(const reach_trajopt::StepReport::ConstPtr& m) {
   if (g_kill_after_steps > 0 && !g_killed &&
       static_cast<int>(g_received.reports.size()) == g_kill_after_steps) {
     g_killed = true;  // mid-walk: the next step's check is already on its way
+    if (g_hang_planner) {
+      if (g_planner_pid <= 0 || ::kill(g_planner_pid, SIGSTOP) != 0)
+        ADD_FAILURE() << "could not stop /transition_ocp_node";
+      return;
+    }
     std::thread([] {
       if (std::system("rosnode kill /transition_ocp_node > /dev/null 2>&1") != 0)
         ADD_FAILURE() << "rosnode kill /transition_ocp_node failed";
@@ -239,6 +248,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh;
   ros::NodeHandle("~").getParam("kill_after_steps", g_kill_after_steps);
   ros::NodeHandle("~").getParam("hang_worker_after_steps", g_hang_worker_after_steps);
+  ros::NodeHandle("~").getParam("hang_planner", g_hang_planner);
   int workers = 0;
   ros::NodeHandle("~").getParam("workers", workers);
   g_worker_checked.assign(std::max(workers, 0), 0);
@@ -255,12 +265,17 @@ int main(int argc, char** argv) {
     ros::service::waitForService("/reachability_worker_0/check_footholds", ros::Duration(60.0));
     g_worker0_pid = nodePid(kHungWorker);
   }
+  if (g_hang_planner) {
+    ros::service::waitForService("/plan_footstep", ros::Duration(60.0));
+    g_planner_pid = nodePid("/transition_ocp_node");
+  }
   // Last: sim_node starts once com_state has this subscriber too (extra_com_subscribers).
   const ros::Subscriber com = nh.subscribe("com_state", 10, onCom);
   ros::AsyncSpinner spinner(1);
   spinner.start();
   const int rc = RUN_ALL_TESTS();
   if (g_hung) ::kill(g_worker0_pid, SIGCONT);  // so that the launch can stop it
+  if (g_hang_planner && g_killed) ::kill(g_planner_pid, SIGCONT);
   spinner.stop();
   return rc;
 }

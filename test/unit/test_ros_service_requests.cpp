@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 
+#include "reach_trajopt/ros/conversions.h"
 #include "reach_trajopt/ros/service_requests.h"
 #include "reach_trajopt/walk/standing_pose.h"
 
@@ -220,4 +221,14 @@ TEST(RosServiceRequests, ReachabilityMessageFromAResultAndAFoothold) {
   EXPECT_EQ(m2.foothold, m.foothold);
   EXPECT_TRUE(m2.slices[1].forward_outputs.empty());
   EXPECT_EQ(m2.slices[1].forward_boundary, m.slices[1].forward_boundary);
+}
+
+TEST(RosServiceRequests, ARejectedRequestGetsAnErrorTrajectoryWithItsReason) {
+  const ros::Time t0(1.5);
+  const reach_trajopt::TransitionTrajectory m = rb::errorTrajectoryMsg("q0: 3 numbers", t0);
+  EXPECT_EQ(m.status, "error");
+  EXPECT_EQ(m.message, "q0: 3 numbers");
+  EXPECT_EQ(m.header.stamp, t0);
+  EXPECT_EQ(m.header.frame_id, std::string(rb::kWorldFrame));
+  EXPECT_TRUE(m.q.empty());
 }

@@ -108,6 +108,10 @@ reach_trajopt::ReachabilityResult reachabilityVerdictMsg(const std::string& verd
 /// when a certificate exists (the bridge or the local solve), its kind and the reason.
 void applyPlannerVerdict(const FootstepTransition& step, reach_trajopt::ReachabilityResult& m);
 
+/// The TransitionTrajectory message of a rejected request: status "error" and the reason.
+reach_trajopt::TransitionTrajectory errorTrajectoryMsg(const std::string& reason,
+                                                       const ros::Time& t0);
+
 /// A TransitionTrajectory message from an OCP result (row-major N x n matrices).
 /// \param lambda_frames  names of the 12 rows of result.lambda in blocks of 6 (left, right)
 reach_trajopt::TransitionTrajectory toTransitionTrajectoryMsg(
