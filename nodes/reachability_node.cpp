@@ -27,6 +27,7 @@
 #include "reach_trajopt/CheckFootholds.h"
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/CheckReachabilityAction.h"
+#include "reach_trajopt/ros/action_goals.h"
 #include "reach_trajopt/ros/foothold_candidate_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
@@ -126,11 +127,7 @@ class ReachabilityNode {
     const ReachProgressCallback progress = [&](const ReachProgress& p) {
       if (action_->isPreemptRequested() || !ros::ok()) return !(cancelled = true);
       reach_trajopt::CheckReachabilityFeedback f;
-      f.direction = p.forward ? "forward" : "backward";
-      f.slices_done = static_cast<uint32_t>(p.slices_done);
-      f.slices_total = static_cast<uint32_t>(p.slices_total);
-      f.samples = static_cast<uint64_t>(p.samples);
-      f.qps = static_cast<uint64_t>(p.qps);
+      rb::fillCheckFeedback(p, f);
       action_->publishFeedback(f);
       return true;
     };
@@ -140,12 +137,7 @@ class ReachabilityNode {
     result.success = res.success;
     result.message = res.message;
     result.result = res.result;
-    if (cancelled)
-      action_->setPreempted(result, res.message);
-    else if (res.success)
-      action_->setSucceeded(result, res.message);
-    else
-      action_->setAborted(result, res.message);
+    rb::finishGoal(*action_, result, cancelled, res.success, res.message);
   }
 
   bool checkFootholds(reach_trajopt::CheckFootholds::Request& req,

@@ -40,6 +40,7 @@
 #include "reach_trajopt/PlanTransitionAction.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
+#include "reach_trajopt/ros/action_goals.h"
 #include "reach_trajopt/ros/conversions.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/markers.h"
@@ -133,11 +134,7 @@ class TransitionOcpNode {
       if (!wanted()) return false;
       reach_trajopt::PlanTransitionFeedback f;
       f.stage = "check";
-      f.direction = p.forward ? "forward" : "backward";
-      f.slices_done = static_cast<uint32_t>(p.slices_done);
-      f.slices_total = static_cast<uint32_t>(p.slices_total);
-      f.samples = static_cast<uint64_t>(p.samples);
-      f.qps = static_cast<uint64_t>(p.qps);
+      rb::fillCheckFeedback(p, f);
       transition_action_->publishFeedback(f);
       return true;
     };
@@ -157,12 +154,7 @@ class TransitionOcpNode {
     result.message = res.message;
     result.reachability = res.reachability;
     result.trajectory = res.trajectory;
-    if (cancelled)
-      transition_action_->setPreempted(result, res.message);
-    else if (res.success)
-      transition_action_->setSucceeded(result, res.message);
-    else
-      transition_action_->setAborted(result, res.message);
+    rb::finishGoal(*transition_action_, result, cancelled, res.success, res.message);
   }
 
   // One plan_transition request, for the service and the action (with its progress).
