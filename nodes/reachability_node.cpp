@@ -9,6 +9,12 @@
 ///   candidate footholds, as a worker of transition_ocp_node's nearest-feasible-foothold search
 ///   (walk.launch workers:=N); publishes footholds_checked (std_msgs/UInt64, latched: the
 ///   candidates checked so far)
+///   service check_footstep (reach_trajopt/CheckFootstep): the kinematic and the reachability
+///   check of one footstep of the walk (step/footstep_check.h) for transition_ocp_node's
+///   plan_footstep (its ~check_service, set by walk.launch): the same FootstepReachability and
+///   configuration as in transition_ocp_node, the answer with what its planner uses and the
+///   ReachabilityResult it publishes; publishes footsteps_checked (std_msgs/UInt64, latched:
+///   the footsteps checked so far)
 /// x_f is the kinematic feasibility solution (Sec. III-B) with the swing sole on the foothold;
 /// an infeasible foothold is answered "unreachable" with the IK's reason. Bad requests (NaN,
 /// wrong sizes, unknown frame, empty contact set, a foothold in the air) get success = false
@@ -23,14 +29,18 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <memory>
+#include <string>
 
 #include "reach_trajopt/CheckFootholds.h"
+#include "reach_trajopt/CheckFootstep.h"
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/CheckReachabilityAction.h"
 #include "reach_trajopt/ros/action_goals.h"
 #include "reach_trajopt/ros/foothold_candidate_msgs.h"
+#include "reach_trajopt/ros/footstep_check_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
+#include "reach_trajopt/ros/proposed_step_msgs.h"
 #include "reach_trajopt/ros/service_requests.h"
 
 using namespace reach_trajopt;
@@ -48,6 +58,9 @@ class ReachabilityNode {
     checked_pub_ = nh.advertise<std_msgs::UInt64>("footholds_checked", 1, true);
     footholds_server_ =
         nh.advertiseService("check_footholds", &ReachabilityNode::checkFootholds, this);
+    footsteps_checked_pub_ = nh.advertise<std_msgs::UInt64>("footsteps_checked", 1, true);
+    footstep_server_ =
+        nh.advertiseService("check_footstep", &ReachabilityNode::checkFootstep, this);
     action_ = std::make_unique<CheckAction>(
         nh, "check_reachability_action",
         [this](const reach_trajopt::CheckReachabilityGoalConstPtr& goal) { execute(goal); }, false);
@@ -160,12 +173,39 @@ class ReachabilityNode {
         });
   }
 
+  // One footstep of the walk, checked as transition_ocp_node's planner checks it in process.
+  bool checkFootstep(reach_trajopt::CheckFootstep::Request& req,
+                     reach_trajopt::CheckFootstep::Response& res) {
+    return rb::answerOrReject(
+        "check_footstep",
+        [&] {
+          const rb::FootstepCheckCall call =
+              rb::fromCheckFootstepRequestMsg(req, s_.model->nq(), s_.reach);
+          const FootstepCheckResult check = reach_trajopt::checkFootstep(
+              s_.planner->footstepReachability(), call.request, call.reach, call.reachability);
+          res = rb::toCheckFootstepResponseMsg(
+              check,
+              rb::checkedFootstepMsg(check.result, rb::swingFrame(s_.contact, call.request.stance),
+                                     call.request.target.position, call.reach.delta,
+                                     req.header.stamp, call.samples));
+          std_msgs::UInt64 count;
+          count.data = ++footsteps_checked_;
+          footsteps_checked_pub_.publish(count);
+        },
+        [&](const std::string& reason) {
+          res = reach_trajopt::CheckFootstep::Response();
+          res.success = false;
+          res.message = reason;
+        });
+  }
+
   using CheckAction = actionlib::SimpleActionServer<reach_trajopt::CheckReachabilityAction>;
   const rb::FootholdServiceSetup s_;
   std::unique_ptr<CheckAction> action_;  ///< its goals run on the action server's thread
-  ros::Publisher result_pub_, marker_pub_, checked_pub_;
-  ros::ServiceServer server_, footholds_server_;
-  uint64_t checked_ = 0;  ///< candidates checked by check_footholds
+  ros::Publisher result_pub_, marker_pub_, checked_pub_, footsteps_checked_pub_;
+  ros::ServiceServer server_, footholds_server_, footstep_server_;
+  uint64_t checked_ = 0;            ///< candidates checked by check_footholds
+  uint64_t footsteps_checked_ = 0;  ///< footsteps checked by check_footstep
 };
 
 }  // namespace

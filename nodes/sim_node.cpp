@@ -39,6 +39,10 @@
 /// and its messages published here: the walk and the bag lose nothing. ~plan_timeout (wall
 /// seconds a call may take; 60): a node that does not answer in time is hung (stopped, not
 /// dead): that step and every later one are planned in process, with a warning.
+/// With ~in_process false every policy's TVR contacts (eq. 11, at lift-off and during the
+/// swing's first part) are proposed by tvr_planner_node's propose_footstep service
+/// (~propose_service, relative: remappable; propose_footstep), with the same retries and
+/// timeout; a proposal whose calls fail is planned here, with a warning.
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <ros/ros.h>
@@ -54,14 +58,16 @@
 #include <vector>
 
 #include "reach_trajopt/PlanFootstep.h"
+#include "reach_trajopt/ProposeFootstep.h"
 #include "reach_trajopt/common/config_yaml.h"
-#include "reach_trajopt/ros/async_service_call.h"
 #include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/fallback_service_call.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/markers.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
 #include "reach_trajopt/ros/service_requests.h"
+#include "reach_trajopt/ros/tvr_proposal_msgs.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
@@ -118,6 +124,8 @@ int main(int argc, char** argv) {
     const bool reachability_samples = param(pnh, "reachability_samples", true);
     const bool in_process = param(pnh, "in_process", true);
     const std::string plan_service = param<std::string>(pnh, "plan_service", "plan_footstep");
+    const std::string propose_service =
+        param<std::string>(pnh, "propose_service", "propose_footstep");
     const int plan_retries = param(pnh, "plan_retries", 2);
     if (plan_retries < 0) throw ConfigError("~plan_retries must be >= 0");
     const double plan_timeout = param(pnh, "plan_timeout", 60.0);
@@ -160,19 +168,23 @@ int main(int argc, char** argv) {
     }
     tf2_ros::TransformBroadcaster tf_broadcaster;
 
-    // The checked footsteps through transition_ocp_node (~in_process false).
+    // The TVR proposals through tvr_planner_node and the checked footsteps through
+    // transition_ocp_node (~in_process false). Not persistent: a connection per call (a
+    // millisecond beside a check of seconds) finds a restarted node.
     const FootstepTransitionPlanner* local_planner = experiment.footstepPlanner();
     const bool through_node = checks_footholds && !in_process;
-    ros::ServiceClient plan_client;
-    if (through_node) {
-      // Not persistent: a connection per call (a millisecond beside a check of seconds) finds
-      // a restarted node.
-      plan_client = nh.serviceClient<reach_trajopt::PlanFootstep>(plan_service);
-      if (!plan_client.waitForExistence(ros::Duration(wait_timeout)))
-        throw ConfigError("~in_process is false but the service '" + plan_client.getService() +
-                          "' (~plan_service) did not appear within ~wait_timeout = " +
-                          std::to_string(wait_timeout) + " s");
-    }
+    auto requireService = [&](const std::string& name, const char* param_name) {
+      if (!ros::service::waitForService(nh.resolveName(name), ros::Duration(wait_timeout)))
+        throw ConfigError(
+            "~in_process is false but the service '" + nh.resolveName(name) + "' (" + param_name +
+            ") did not appear within ~wait_timeout = " + std::to_string(wait_timeout) + " s");
+    };
+    if (!in_process) requireService(propose_service, "~propose_service");
+    if (through_node) requireService(plan_service, "~plan_service");
+    rb::FallbackServiceCall<reach_trajopt::PlanFootstep> plan_call(nh, plan_service, plan_retries,
+                                                                   plan_timeout, "sim_node");
+    rb::FallbackServiceCall<reach_trajopt::ProposeFootstep> propose_call(
+        nh, propose_service, plan_retries, plan_timeout, "sim_node");
 
     if (wait_for_subscribers > 0 || wait_for_com_subscribers > 0) {
       const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_timeout);
@@ -268,43 +280,41 @@ int main(int argc, char** argv) {
 
     // The walking loop checks a step at the start of a control tick, before that tick's
     // on_tick: its sim time is the last tick's plus one time step.
-    bool planned_here = true;   // the last checked step was planned in this process
-    bool planner_hung = false;  // a call timed out: the node is not asked again
+    bool planned_here = true;  // the last checked step was planned in this process
     if (through_node)
       experiment.setFootstepPlanner([&](const FootstepPlanRequest& request) {
         reach_trajopt::PlanFootstep::Request plan_request =
             rb::toPlanFootstepRequestMsg(request, local_planner->config().reach,
                                          ros::Time(last_tick_time + setup.sim.time_step));
         plan_request.marker_id = static_cast<uint32_t>(executed.size() + 1);  // the step index
-        for (int attempt = 0; attempt <= plan_retries && !planner_hung; ++attempt) {
-          if (attempt > 0) {
-            ROS_WARN("sim_node: the call of '%s' failed (attempt %d of %d)",
-                     plan_client.getService().c_str(), attempt, plan_retries + 1);
-            ros::WallDuration(0.1).sleep();
-          }
-          const auto call = rb::callAsync<reach_trajopt::PlanFootstep>(nh, plan_client.getService(),
-                                                                       plan_request);
-          if (!call->waitUntil(ros::WallTime::now() + ros::WallDuration(plan_timeout))) {
-            planner_hung = true;
-            ROS_WARN(
-                "sim_node: '%s' did not answer within ~plan_timeout = %.1f s: hung; this "
-                "and every later step planned in process",
-                plan_client.getService().c_str(), plan_timeout);
-            break;
-          }
-          std::lock_guard<std::mutex> lock(call->mutex);
-          if (call->ok) {
-            // A rejected request is what the in-process planner throws for it.
-            if (!call->response.success) throw RequestError(call->response.message);
-            planned_here = false;
-            return rb::fromPlanFootstepResponseMsg(call->response, request, model);
-          }
+        const auto answer =
+            plan_call.call(plan_request, "step " + std::to_string(executed.size() + 1));
+        if (answer) {
+          // A rejected request is what the in-process planner throws for it.
+          if (!answer->success) throw RequestError(answer->message);
+          planned_here = false;
+          return rb::fromPlanFootstepResponseMsg(*answer, request, model);
         }
-        if (!planner_hung)
-          ROS_WARN("sim_node: the call of '%s' failed %d times; step %zu planned in process",
-                   plan_client.getService().c_str(), plan_retries + 1, executed.size() + 1);
         planned_here = true;
         return local_planner->plan(request);
+      });
+    if (!in_process)
+      experiment.setTvrProposer([&](const TvrProposalRequest& request) {
+        const auto answer =
+            propose_call.call(rb::toProposeFootstepRequestMsg(
+                                  request, ros::Time(last_tick_time + setup.sim.time_step)),
+                              "the TVR proposal of step " + std::to_string(executed.size() + 1));
+        if (answer) {
+          // A rejected request is what the in-process planner throws for it.
+          if (!answer->success) throw RequestError(answer->message);
+          try {
+            return rb::fromProposeFootstepResponseMsg(*answer, request);
+          } catch (const ReachError& e) {
+            ROS_WARN("sim_node: malformed answer of '%s' (%s); proposed in process",
+                     propose_call.service().c_str(), e.what());
+          }
+        }
+        return proposeFootstep(setup.tvr, request);
       });
 
     // The check's messages of a step planned here (transition_ocp_node publishes those it

@@ -26,6 +26,12 @@
 /// longest wait for a worker's answer and, at start, for its service; 10], ~worker_retry_period
 /// [s wall, how long a worker that failed or timed out is left out; 30]. A worker's failure
 /// sends its candidates to another worker or checks them here: the plans do not change.
+/// The footstep check of plan_footstep (walk.launch): ~check_service (reachability_node's
+/// check_footstep, relative, remappable; "": in this process; ""), ~check_timeout [s wall, the
+/// longest wait for its answer and, at start, for the service; 60]. plan_footstep's planner then
+/// sends the kinematic and the reachability check of each step there and optimizes with the
+/// answer; a failed or malformed call is checked here, a timed-out one too and every later one
+/// (the plans do not change). plan_transition keeps checking in this process (with progress).
 /// The robot is read from the `robot_description` parameter (URDF text).
 
 #include <actionlib/server/simple_action_server.h>
@@ -47,6 +53,7 @@
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/proposed_step_msgs.h"
 #include "reach_trajopt/ros/reachability_workers.h"
+#include "reach_trajopt/ros/remote_footstep_check.h"
 #include "reach_trajopt/ros/service_requests.h"
 
 using namespace reach_trajopt;
@@ -60,6 +67,7 @@ class TransitionOcpNode {
       : s_(rb::FootholdServiceSetup::load(nh, pnh)), default_horizon_(s_.reach.horizon) {
     pnh.getParam("default_horizon", default_horizon_);
     pnh.getParam("reachability_samples", reachability_samples_);
+    startFootstepCheck(nh, pnh);
     startWorkers(nh, pnh);
     // Queues for a recorder of a walk (one message of each per step).
     traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
@@ -102,10 +110,40 @@ class TransitionOcpNode {
         [&kinematics](const FootholdCandidates& b) {
           return checkFootholdCandidates(kinematics, b, false);
         });
-    s_.planner->setCandidateCheck(
-        [pool = workers_.get()](const FootholdCandidates& b) { return pool->check(b); });
+    const CandidateCheck check = [pool = workers_.get()](const FootholdCandidates& b) {
+      return pool->check(b);
+    };
+    s_.planner->setCandidateCheck(check);
+    if (footstep_planner_) footstep_planner_->setCandidateCheck(check);
     ROS_INFO("transition_ocp_node: %d reachability workers (%s0..%d)", workers, prefix.c_str(),
              workers - 1);
+  }
+
+  // plan_footstep's own planner, whose footstep check is reachability_node's (~check_service),
+  // before serving.
+  void startFootstepCheck(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
+    std::string service;
+    double timeout = 60.0;
+    pnh.getParam("check_service", service);
+    pnh.getParam("check_timeout", timeout);
+    if (service.empty()) return;
+    if (!(timeout > 0.0) || timeout > 1e6)
+      throw ConfigError("~check_timeout must be in (0, 1e6] s");
+    if (!ros::service::waitForService(nh.resolveName(service), ros::Duration(timeout)))
+      ROS_WARN(
+          "transition_ocp_node: '%s' (~check_service) not up within ~check_timeout; the "
+          "footsteps are checked here until it is",
+          nh.resolveName(service).c_str());
+    footstep_planner_ =
+        std::make_shared<FootstepTransitionPlanner>(s_.model, s_.contact, s_.planner->config());
+    remote_check_ = std::make_unique<rb::RemoteFootstepCheck>(nh, service, timeout, s_.planner,
+                                                              s_.contact, reachability_samples_);
+    footstep_planner_->setFootstepCheck(
+        [check = remote_check_.get()](const FootstepRequest& r, const ReachConfig& c, bool reach) {
+          return check->check(r, c, reach);
+        });
+    ROS_INFO("transition_ocp_node: plan_footstep checks its footsteps on '%s'",
+             nh.resolveName(service).c_str());
   }
 
   bool plan(reach_trajopt::PlanTransition::Request& req,
@@ -218,15 +256,21 @@ class TransitionOcpNode {
         [&] {
           const FootstepPlanRequest request =
               rb::fromPlanFootstepRequestMsg(req, s_.model->nq(), s_.reach);
-          const FootstepTransition step = s_.planner->plan(request);
+          if (remote_check_) remote_check_->beginStep(t0);
+          const FootstepTransition step =
+              (footstep_planner_ ? *footstep_planner_ : *s_.planner).plan(request);
           res = rb::toPlanFootstepResponseMsg(step, *s_.model, s_.contact, t0);
           // The four check topics of every planned step, as sim_node publishes them when it
-          // plans in process (also for a kinematic-only check).
+          // plans in process (also for a kinematic-only check); the check's result as built
+          // where it ran.
           StepRecord record;  // what the messages need of the walk's record: the swing side
           record.swing = opposite(request.stance);
           const rb::ProposedStepMsgs msgs =
-              rb::toProposedStepMsgs(*s_.model, s_.contact, record, step, request.target,
-                                     request.reach->delta, t0, reachability_samples_);
+              remote_check_
+                  ? rb::toProposedStepMsgs(*s_.model, s_.contact, step,
+                                           remote_check_->checkedMessage(), t0)
+                  : rb::toProposedStepMsgs(*s_.model, s_.contact, record, step, request.target,
+                                           request.reach->delta, t0, reachability_samples_);
           reach_pub_.publish(msgs.reachability);
           reach_marker_pub_.publish(msgs.markers);
           traj_pub_.publish(msgs.trajectory);
@@ -249,6 +293,10 @@ class TransitionOcpNode {
   double default_horizon_;
   bool reachability_samples_ = true;
   std::unique_ptr<rb::ReachabilityWorkerPool> workers_;  ///< none: ~workers 0
+  /// plan_footstep's planner and its footstep check on reachability_node; none: ~check_service
+  /// empty (s_.planner plans).
+  std::shared_ptr<FootstepTransitionPlanner> footstep_planner_;
+  std::unique_ptr<rb::RemoteFootstepCheck> remote_check_;
   ros::Publisher traj_pub_, reach_pub_, reach_marker_pub_, marker_pub_;
   ros::ServiceServer server_, footstep_server_;
 };

@@ -5,6 +5,11 @@
 /// published on `contact_plan`.
 ///   subscribes: com_state (CenterOfMassState), contact_state (ContactState: sole poses)
 ///   publishes:  contact_plan (ContactPlan)
+/// The walking loop's proposals (sim_node ~in_process false): the stateless service
+/// propose_footstep (reach_trajopt/ProposeFootstep, planner/tvr_proposal.h), eq. (11) from the
+/// request's measured CoM state with the request's LIPM height and bounds switch and ~config's
+/// planner section (the same bits as the loop's own planner); publishes footsteps_proposed
+/// (std_msgs/UInt64, latched: the proposals answered so far).
 /// Parameters (private): ~config (YAML with sections planner and walk; default
 /// config/biped.yaml of the package), ~policy (a walking policy, walk/walking_policy.h: its bounds
 /// part switches the heuristic bounds), ~forward_speed [m/s] (desired CoM speed along x, drives
@@ -13,12 +18,17 @@
 
 #include <ros/package.h>
 #include <ros/ros.h>
+#include <std_msgs/UInt64.h>
 
 #include <memory>
 #include <string>
 
+#include "reach_trajopt/ProposeFootstep.h"
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/planner/tvr_proposal.h"
 #include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/node_setup.h"
+#include "reach_trajopt/ros/tvr_proposal_msgs.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
 using namespace reach_trajopt;
@@ -30,13 +40,35 @@ namespace {
 class TvrPlannerNode {
  public:
   TvrPlannerNode(ros::NodeHandle& nh, const TvrConfig& tvr, const WalkConfig& walk)
-      : tvr_(tvr), walk_(walk) {
+      : tvr_(tvr), proposal_config_(tvr), walk_(walk) {
     plan_pub_ = nh.advertise<reach_trajopt::ContactPlan>("contact_plan", 10);
+    proposed_pub_ = nh.advertise<std_msgs::UInt64>("footsteps_proposed", 1, true);
+    propose_server_ =
+        nh.advertiseService("propose_footstep", &TvrPlannerNode::proposeFootstep, this);
     contact_sub_ = nh.subscribe("contact_state", 10, &TvrPlannerNode::onContact, this);
     com_sub_ = nh.subscribe("com_state", 10, &TvrPlannerNode::onCom, this);
   }
 
  private:
+  // One proposal of the walking loop, from the request alone.
+  bool proposeFootstep(reach_trajopt::ProposeFootstep::Request& req,
+                       reach_trajopt::ProposeFootstep::Response& res) {
+    return rb::answerOrReject(
+        "propose_footstep",
+        [&] {
+          res = rb::toProposeFootstepResponseMsg(reach_trajopt::proposeFootstep(
+              proposal_config_, rb::fromProposeFootstepRequestMsg(req)));
+          std_msgs::UInt64 count;
+          count.data = ++proposed_;
+          proposed_pub_.publish(count);
+        },
+        [&](const std::string& reason) {
+          res = reach_trajopt::ProposeFootstep::Response();
+          res.success = false;
+          res.message = reason;
+        });
+  }
+
   void onContact(const reach_trajopt::ContactState::ConstPtr& msg) { contact_ = msg; }
 
   void onCom(const reach_trajopt::CenterOfMassState::ConstPtr& msg) {
@@ -77,13 +109,16 @@ class TvrPlannerNode {
   }
 
   TvrConfig tvr_;
+  const TvrConfig proposal_config_;  ///< ~config's planner section (propose_footstep)
   WalkConfig walk_;
+  uint64_t proposed_ = 0;  ///< proposals answered by propose_footstep
   std::unique_ptr<TvrPlanner> planner_;
   ContactMode last_mode_ = ContactMode::doubleSupport();
   double com0_x_ = 0.0, start_time_ = 0.0;
   reach_trajopt::ContactState::ConstPtr contact_;
-  ros::Publisher plan_pub_;
+  ros::Publisher plan_pub_, proposed_pub_;
   ros::Subscriber contact_sub_, com_sub_;
+  ros::ServiceServer propose_server_;
 };
 
 }  // namespace

@@ -4,20 +4,16 @@
 # written by `walk_experiment --push 0,0.4 --plan-requests`), a grid of N x N footholds within
 # +-0.15 m of each planned one, each checked by the planner (verdict, certificate re-checked
 # independently) and by the strict OCP seeded without the witness. Prints `BENCH reach.verdict`.
-# Then the same grid with config/reach_fast.yaml's smaller sample budget, every foothold also
-# checked with config/reach_reference.yaml's: `BENCH reach.verdict_fast ref=reference
-# agreement=..` (and that budget's own reach.verdict line, as reach.verdict_budget_fast).
+# The shipped configuration plans each step with the quick pass first (reach.quick_pass); every
+# foothold is also checked with config/reach_reference.yaml's (the full budget only):
+# `BENCH reach.verdict_fast ref=reference agreement=..` from the same run.
 # Last, TALOS legs: `BENCH reach.verdict_talos` (the same oracle on another robot).
 #   scripts/bench_verdict.sh [grid N = 7]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 cd "$REPO"
 "$BIN/verdict_grid" --bench-case --requests test/fixtures/pushed_walk_requests.jsonl \
-  --grid "${1:-7}" --half-width 0.15
-"$BIN/verdict_grid" --bench-case --requests test/fixtures/pushed_walk_requests.jsonl \
-  --grid "${1:-7}" --half-width 0.15 --reach-config config/reach_fast.yaml \
-  --reference-config config/reach_reference.yaml |
-  sed 's/^BENCH reach.verdict /BENCH reach.verdict_budget_fast /'
+  --grid "${1:-7}" --half-width 0.15 --reference-config config/reach_reference.yaml
 # TALOS legs (config/talos.yaml): 3 footsteps of its pushed proposed walk
 # (test/fixtures/talos_walk_requests.jsonl, `walk_experiment --config config/talos.yaml
 # --policy proposed --steps 3 --push 0,0.3 --plan-requests`), 3 x 3 footholds within +-0.1 m.

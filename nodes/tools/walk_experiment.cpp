@@ -137,15 +137,16 @@ int main(int argc, char** argv) {
           std::printf(
               "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
               "executed=(%.3f, %.3f) err=%.4f m verdict=%s certificate=%s witness_violation=%.3g "
-              "junction_gap=%.3g/%.3g x_f_gap=%.3g/%.3g d_H=%.4g check_s=%.3f ocp_s=%.3f "
-              "ocp=%s%s%s\n",
+              "junction_gap=%.3g/%.3g x_f_gap=%.3g/%.3g d_H=%.4g check_s=%.3f passes=%d "
+              "ocp_s=%.3f ocp=%s%s%s\n",
               s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
               s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
               s.executed.y(), s.touchdown_error, s.verdict.c_str(),
               s.certificate.empty() ? "none" : s.certificate.c_str(), s.witness_violation,
               s.junction_position_gap, s.junction_velocity_gap, s.terminal_position_gap,
-              s.terminal_velocity_gap, s.hausdorff_distance, s.check_time_s, s.ocp_time_s,
-              s.ocp_status.c_str(), s.reason.empty() ? "" : " reason: ", s.reason.c_str());
+              s.terminal_velocity_gap, s.hausdorff_distance, s.check_time_s, s.check_passes,
+              s.ocp_time_s, s.ocp_status.c_str(),
+              s.reason.empty() ? "" : " reason: ", s.reason.c_str());
           std::fflush(stdout);
         },
         on_check);

@@ -123,6 +123,30 @@ void ReachConfig::validate() const {
   requirePositive("contact_tolerance", contact_tolerance);
   requirePositive("contact_velocity_tolerance", contact_velocity_tolerance);
   requireNonNegative("limit_tolerance", limit_tolerance);
+  if (quick_pass) {
+    try {
+      quickPassConfig().validate();
+    } catch (const ConfigError& e) {
+      // Name the quick_ key: "ReachConfig: initial_samples ..." -> "ReachConfig: quick_...".
+      std::string what = e.what();
+      const std::string prefix = "ReachConfig: ";
+      if (what.rfind(prefix, 0) == 0) what.insert(prefix.size(), "quick_");
+      throw ConfigError(what);
+    }
+  }
+}
+
+ReachConfig ReachConfig::quickPassConfig() const {
+  ReachConfig c = *this;
+  c.quick_pass = false;
+  c.initial_samples = quick_initial_samples;
+  c.children_per_parent = quick_children_per_parent;
+  c.backward_children_per_parent = quick_backward_children_per_parent;
+  c.max_boundary = quick_max_boundary;
+  c.interior_samples = quick_interior_samples;
+  c.certificate_candidates = quick_certificate_candidates;
+  c.constraint_margin = quick_constraint_margin;
+  return c;
 }
 
 double ReachConfig::estimatedQps() const {
@@ -221,7 +245,23 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
           .add("contact_velocity_tolerance", &C::contact_velocity_tolerance, "m/s, rad/s",
                "|J qd| allowed at x_0 and x_f")
           .add("limit_tolerance", &C::limit_tolerance, "",
-               "slack on the position / velocity / torque limits");
+               "slack on the position / velocity / torque limits")
+          .add("quick_pass", &C::quick_pass, "",
+               "the step planner tries the quick_ budget first, the budget above only when "
+               "it certifies nothing")
+          .add("quick_initial_samples", &C::quick_initial_samples, "",
+               "initial_samples of the quick pass")
+          .add("quick_children_per_parent", &C::quick_children_per_parent, "",
+               "children_per_parent of the quick pass")
+          .add("quick_backward_children_per_parent", &C::quick_backward_children_per_parent, "",
+               "backward_children_per_parent of the quick pass")
+          .add("quick_max_boundary", &C::quick_max_boundary, "", "max_boundary of the quick pass")
+          .add("quick_interior_samples", &C::quick_interior_samples, "",
+               "interior_samples of the quick pass")
+          .add("quick_certificate_candidates", &C::quick_certificate_candidates, "",
+               "certificate_candidates of the quick pass")
+          .add("quick_constraint_margin", &C::quick_constraint_margin, "m",
+               "constraint_margin of the quick pass (its sparser hulls grow more)");
   return f;
 }
 

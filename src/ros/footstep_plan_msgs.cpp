@@ -167,6 +167,7 @@ reach_trajopt::PlanFootstep::Response toPlanFootstepResponseMsg(const FootstepTr
   m.hausdorff_distance = step.hausdorff_distance;
   m.check_time = step.check_time_s;
   m.ocp_time = step.ocp_time_s;
+  m.check_passes = static_cast<std::uint32_t>(step.check_passes);
   m.foothold = toPointMsg(step.foothold);
   m.step_horizon = step.horizon;
   const WitnessPath& w = step.check.reach.witness;
@@ -205,6 +206,7 @@ FootstepTransition fromPlanFootstepResponseMsg(const reach_trajopt::PlanFootstep
   s.hausdorff_distance = m.hausdorff_distance;
   s.check_time_s = m.check_time;
   s.ocp_time_s = m.ocp_time;
+  s.check_passes = static_cast<int>(m.check_passes);
   s.foothold = fromPointMsg(m.foothold);
   s.horizon = m.step_horizon;
   WitnessPath& w = s.check.reach.witness;

@@ -11,7 +11,6 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
 #include "reach_trajopt/step/contact_consistent_state.h"
-#include "reach_trajopt/step/reachable_set_constraint.h"
 
 namespace reach_trajopt {
 namespace {
@@ -83,14 +82,40 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
     requireFinite("FootstepTransitionPlanner: touchdown CoM velocity", r.touchdown_com->pd);
   }
   const ReachConfig& reach = r.reach ? *r.reach : config_.reach;
+  if (!r.check_reachability || !reach.quick_pass) return planWith(r, reach, progress);
+  // The quick pass first. It is final when it certified the step and (when asked for) its
+  // strict OCP converged: the sparser forward set's hulls (eq. 23) can leave a certified step
+  // without a trajectory. A kinematically infeasible foothold is decided before any sample is
+  // drawn: its quick pass is final too.
+  FootstepTransition quick = planWith(r, reach.quickPassConfig(), progress);
+  const bool has_trajectory = !r.solve_ocp || (quick.trajectory.status == OcpStatus::kConverged &&
+                                               !quick.trajectory.relaxed);
+  if (!quick.kinematically_feasible || (quick.reachable && has_trajectory)) return quick;
+  FootstepTransition full = planWith(r, reach, progress);
+  // A certificate is never given up: when only the quick pass found one, its plan stands.
+  FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;
+  const char* why = quick.reachable ? "the quick pass's certified step has no strict trajectory"
+                                    : "the quick pass certified nothing";
+  kept.check_passes = 2;
+  kept.check_time_s = quick.check_time_s + full.check_time_s;
+  kept.ocp_time_s = quick.ocp_time_s + full.ocp_time_s;
+  kept.reason =
+      std::string(why) + (&kept == &full ? ", the full budget: " : ", kept: ") + kept.reason;
+  return kept;
+}
+
+FootstepTransition FootstepTransitionPlanner::planWith(const FootstepPlanRequest& r,
+                                                       const ReachConfig& reach,
+                                                       const FootstepPlanProgress& progress) const {
   FootstepTransition out;
   out.request = r;
   out.stance = r.stance;
   out.horizon = r.horizon > 0.0 ? r.horizon : reach.horizon;
   const Eigen::Isometry3d held = initialState(r, out);
   const Touchdown touchdown = predictTouchdown(r, out);
-  checkFoothold(r, reach, touchdown, progress.check, out);
-  solveTransition(r, held, touchdown, progress.ocp, out);
+  std::vector<ReachableSlice> set_constraint =
+      checkFoothold(r, reach, touchdown, progress.check, out);
+  solveTransition(r, held, touchdown, std::move(set_constraint), progress.ocp, out);
   return out;
 }
 
@@ -138,10 +163,9 @@ FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown
   return td;
 }
 
-void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
-                                              const ReachConfig& reach, const Touchdown& td,
-                                              const ReachProgressCallback& progress,
-                                              FootstepTransition& out) const {
+std::vector<ReachableSlice> FootstepTransitionPlanner::checkFoothold(
+    const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
+    const ReachProgressCallback& progress, FootstepTransition& out) const {
   const auto check_start = std::chrono::steady_clock::now();
   FootstepRequest request;
   request.stance = r.stance;
@@ -152,11 +176,10 @@ void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
   if (!r.touchdown_com) request.qdf = Eigen::VectorXd::Zero(model_->nq());  // x_f at rest
   request.touchdown_com_velocity = td.com_velocity.head<2>();
   request.touchdown_pelvis_position = td.pelvis;
-  if (r.check_reachability) {
-    out.check = footsteps_.check(request, reach, progress);
-  } else {
-    out.check = footsteps_.kinematicStage(request);
-  }
+  FootstepCheckResult checked =
+      footstep_check_ ? footstep_check_(request, reach, r.check_reachability)
+                      : checkFootstep(footsteps_, request, reach, r.check_reachability, progress);
+  out.check = std::move(checked.result);
   const FootstepResult& check = out.check;
   out.check_time_s = secondsSince(check_start);
   out.kinematically_feasible = check.kinematically_feasible;
@@ -167,10 +190,12 @@ void FootstepTransitionPlanner::checkFoothold(const FootstepPlanRequest& r,
     out.hausdorff_distance = out.hausdorff_distance < 0.0
                                  ? c.distance.hausdorff
                                  : std::min(out.hausdorff_distance, c.distance.hausdorff);
+  return std::move(checked.set_constraint);
 }
 
 void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
                                                 const Eigen::Isometry3d& held, const Touchdown& td,
+                                                std::vector<ReachableSlice> set_constraint,
                                                 const OcpProgressCallback& progress,
                                                 FootstepTransition& out) const {
   const RobotModel& m = *model_;
@@ -189,10 +214,7 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     ocp.qf = check.kinematics.q_f;
     ocp.qdf = check.qdf;
     ocp.relaxation = relaxationFor(r.ocp_policy, check.reachable);
-    if (r.check_reachability) {
-      const ReachConfig& reach = r.reach ? *r.reach : config_.reach;
-      ocp.slices = reachableSetConstraint(check.reach, reach.output_axes, reach.constraint_margin);
-    }
+    if (r.check_reachability) ocp.slices = std::move(set_constraint);
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kReject) {
     throw RequestError("kinematically infeasible foothold (" + check.kinematics.reason + ")");
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kNoFallback) {

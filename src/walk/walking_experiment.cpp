@@ -153,6 +153,7 @@ std::string WalkResult::summaryLine() const {
 struct WalkingExperiment::Impl {
   std::unique_ptr<FootstepTransitionPlanner> footsteps;  ///< policies with a check
   FootstepPlanFunction plan_footstep;  ///< who plans the checked steps (empty: footsteps)
+  TvrProposalFunction propose;         ///< who proposes the contacts (empty: the loop)
   WalkConfig walk;
   TvrConfig tvr_config;
   ContactConfig contact;
@@ -204,6 +205,10 @@ WalkingExperiment::~WalkingExperiment() = default;
 
 void WalkingExperiment::setFootstepPlanner(FootstepPlanFunction plan) {
   impl_->plan_footstep = std::move(plan);
+}
+
+void WalkingExperiment::setTvrProposer(TvrProposalFunction propose) {
+  impl_->propose = std::move(propose);
 }
 
 const FootstepTransitionPlanner* WalkingExperiment::footstepPlanner() const {
@@ -425,14 +430,29 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
   current_.com_at_plan.pd = xy(vcom_);
   current_.plan_time = t;
   const double remaining = std::max(0.0, wc_.single_support_duration - time_in_swing);
-  TvrInput in;
-  const TvrStep step =
-      planner_.planFromMeasured(current_.com_at_plan, current_.stance, current_.swing, t, remaining,
-                                com0_.x(), wc_.forward_speed, feet_mid_.y(), &in);
-  current_.com_predicted = in.com;
-  current_.planned_tvr = step.alpha_tvr;
-  current_.planned = step.alpha;
-  current_.offset_clipped = step.offset_clipped;
+  TvrProposal proposal;
+  if (impl_.propose) {
+    TvrProposalRequest request;
+    request.measured = current_.com_at_plan;
+    request.stance = current_.stance;
+    request.swing = current_.swing;
+    request.time = t;
+    request.remaining = remaining;
+    request.x_start = com0_.x();
+    request.forward_speed = wc_.forward_speed;
+    request.y_mid = feet_mid_.y();
+    request.com_height = planner_.config().com_height;
+    request.heuristic_bounds = planner_.config().heuristic_bounds;
+    proposal = impl_.propose(request);
+  } else {
+    proposal.step = planner_.planFromMeasured(current_.com_at_plan, current_.stance, current_.swing,
+                                              t, remaining, com0_.x(), wc_.forward_speed,
+                                              feet_mid_.y(), &proposal.input);
+  }
+  current_.com_predicted = proposal.input.com;
+  current_.planned_tvr = proposal.step.alpha_tvr;
+  current_.planned = proposal.step.alpha;
+  current_.offset_clipped = proposal.step.offset_clipped;
 }
 
 // The policy's footstep check (in process or through setFootstepPlanner's function); the
@@ -524,6 +544,7 @@ void WalkingExperiment::Loop::recordCheck(const FootstepTransition& step) {
   }
   current_.check_time_s = step.check_time_s;
   current_.ocp_time_s = step.ocp_time_s;
+  current_.check_passes = step.check_passes;
   current_.ocp_status = wc_.policy.solvesOcp() ? ocpStatusName(step.trajectory.status) : "none";
   current_.reason = step.reason;
 }

@@ -3,7 +3,8 @@
 // a reason) without the node growing (resident memory read from /proc/<pid>/status) or
 // stopping, and then a valid request must still be answered. Prints the BENCH line. The
 // walking loop's plan_footstep gets malformed requests too, each rejected naming its field,
-// then a valid one; so does a reachability worker's check_footholds (the request id echoed).
+// then a valid one; so does a reachability worker's check_footholds (the request id echoed),
+// reachability_node's check_footstep and tvr_planner_node's propose_footstep.
 
 #include <dirent.h>
 #include <gtest/gtest.h>
@@ -20,12 +21,16 @@
 #include <vector>
 
 #include "reach_trajopt/CheckFootholds.h"
+#include "reach_trajopt/CheckFootstep.h"
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
+#include "reach_trajopt/ProposeFootstep.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ros/foothold_candidate_msgs.h"
+#include "reach_trajopt/ros/footstep_check_msgs.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
+#include "reach_trajopt/ros/tvr_proposal_msgs.h"
 #include "reach_trajopt/walk/standing_pose.h"
 
 namespace {
@@ -316,13 +321,113 @@ TEST(BadRequests, CheckFootholdsRejectsNamingTheFieldAndServesOn) {
   EXPECT_EQ(ros_bridge::fromCheckFootholdsResponseMsg(srv.response, 3, model->nq()).size(), 3u);
 }
 
+// check_footstep (reachability_node's check of one walk footstep): each malformed request is
+// rejected naming its field; the node then answers a valid one.
+TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
+  using namespace reach_trajopt;
+  ros::NodeHandle nh;
+  std::string urdf;
+  ASSERT_TRUE(nh.getParam("robot_description", urdf));
+  const auto model = RobotModel::fromUrdfString(urdf, {}, "robot_description");
+  // Standing on the left sole, the right one to land where it stands (kinematic check only).
+  FootstepRequest request;
+  request.stance = Side::kLeft;
+  request.q0 = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
+  request.qd0 = Eigen::VectorXd::Zero(model->nq());
+  Workspace ws(*model);
+  model->update(ws, request.q0, request.qd0);
+  request.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
+  request.target.position = model->framePose(ws, model->frameId("r_sole")).translation();
+  const reach_trajopt::CheckFootstep::Request valid =
+      ros_bridge::toCheckFootstepRequestMsg(request, ReachConfig(), false, false, ros::Time(0));
+  const std::vector<
+      std::pair<std::string, std::function<void(reach_trajopt::CheckFootstep::Request&)>>>
+      kinds = {
+          {"header.frame_id", [](auto& r) { r.header.frame_id = "map"; }},
+          {"stance", [](auto& r) { r.stance = "SS-L"; }},
+          {"stance_foothold", [](auto& r) { r.stance_foothold.assign(3, 0.0); }},
+          {"target", [](auto& r) { r.target[0] = kNaN; }},
+          {"q0", [](auto& r) { r.q0.assign(200000, 0.0); }},
+          {"qd0", [](auto& r) { r.qd0[0] = kNaN; }},
+          {"qdf", [](auto& r) { r.qdf = {1.0}; }},
+          {"touchdown_com_velocity",
+           [](auto& r) {
+             r.touchdown_com_velocity = {kInf, 0.0};
+           }},
+          {"touchdown_pelvis_position", [](auto& r) { r.touchdown_pelvis_position = {1.0}; }},
+          {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
+          {"seed", [](auto& r) { r.seed = -5; }},
+      };
+  for (const auto& [field, edit] : kinds) {
+    reach_trajopt::CheckFootstep srv;
+    srv.request = valid;
+    edit(srv.request);
+    ASSERT_TRUE(ros::service::call("check_footstep", srv)) << "stopped serving at " << field;
+    EXPECT_FALSE(srv.response.success) << field;
+    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
+        << field << ": " << srv.response.message;
+  }
+  reach_trajopt::CheckFootstep srv;
+  srv.request = valid;
+  ASSERT_TRUE(ros::service::call("check_footstep", srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(srv.response.q_f.size(), static_cast<size_t>(model->nq()));
+  ros_bridge::fromCheckFootstepResponseMsg(srv.response, model->nq());  // well formed
+}
+
+// propose_footstep (tvr_planner_node's stateless TVR proposal): each malformed request is
+// rejected naming its field; the node then answers a valid one.
+TEST(BadRequests, ProposeFootstepRejectsNamingTheFieldAndServesOn) {
+  using namespace reach_trajopt;
+  TvrProposalRequest request;
+  request.measured.p = Eigen::Vector2d(0.0, 0.02);
+  request.measured.pd = Eigen::Vector2d(0.0, 0.3);
+  request.stance = Eigen::Vector2d(0.0, 0.1);
+  request.swing = Side::kRight;
+  request.time = 0.2;
+  request.remaining = 0.22;
+  request.com_height = 0.9;
+  const reach_trajopt::ProposeFootstep::Request valid =
+      ros_bridge::toProposeFootstepRequestMsg(request, ros::Time(0));
+  const std::vector<
+      std::pair<std::string, std::function<void(reach_trajopt::ProposeFootstep::Request&)>>>
+      kinds = {
+          {"com", [](auto& r) { r.com = {1.0}; }},
+          {"stance", [](auto& r) { r.stance[0] = kNaN; }},
+          {"swing", [](auto& r) { r.swing = "up"; }},
+          {"time", [](auto& r) { r.time = kInf; }},
+          {"remaining", [](auto& r) { r.remaining = -1.0; }},
+          {"x_start", [](auto& r) { r.x_start = kNaN; }},
+          {"forward_speed", [](auto& r) { r.forward_speed = kNaN; }},
+          {"y_mid", [](auto& r) { r.y_mid = kInf; }},
+          {"com_height", [](auto& r) { r.com_height = 0.0; }},
+      };
+  for (const auto& [field, edit] : kinds) {
+    reach_trajopt::ProposeFootstep srv;
+    srv.request = valid;
+    edit(srv.request);
+    ASSERT_TRUE(ros::service::call("propose_footstep", srv)) << "stopped serving at " << field;
+    EXPECT_FALSE(srv.response.success) << field;
+    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
+        << field << ": " << srv.response.message;
+  }
+  reach_trajopt::ProposeFootstep srv;
+  srv.request = valid;
+  ASSERT_TRUE(ros::service::call("propose_footstep", srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  const TvrProposal p = ros_bridge::fromProposeFootstepResponseMsg(srv.response, request);
+  EXPECT_TRUE(p.step.alpha.allFinite());
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "check_bad_requests");
   if (!ros::service::waitForService("check_reachability", ros::Duration(120)) ||
       !ros::service::waitForService("plan_transition", ros::Duration(120)) ||
       !ros::service::waitForService("plan_footstep", ros::Duration(120)) ||
-      !ros::service::waitForService("check_footholds", ros::Duration(120))) {
+      !ros::service::waitForService("check_footholds", ros::Duration(120)) ||
+      !ros::service::waitForService("check_footstep", ros::Duration(120)) ||
+      !ros::service::waitForService("propose_footstep", ros::Duration(120))) {
     std::fprintf(stderr, "the services did not come up\n");
     return 1;
   }

@@ -1,10 +1,14 @@
 // rostest checker of walk_nodes.test and killed_node_walk.test (a gtest executable run by
-// rostest): the walk of walk.launch with ~in_process false (every checked footstep planned by
-// transition_ocp_node's plan_footstep) gives the same WALK line and the same step records, byte
-// for byte, as the same scenario run in process here, and every checked step's messages
-// (reachability_result, transition_trajectory) arrive. The two differ only in wall times
-// (wall_s of the WALK line, check_time and ocp_time).
-// Without ~kill_after_steps every check's messages come from transition_ocp_node; with it, the
+// rostest): the walk of walk.launch with ~in_process false (every contact proposed by
+// tvr_planner_node's propose_footstep, every checked footstep planned by transition_ocp_node's
+// plan_footstep, which checks it on reachability_node's check_footstep) gives the same WALK line
+// and the same step records, byte for byte, as the same scenario run in process here, and every
+// checked step's messages (reachability_result, transition_trajectory) arrive. The two differ
+// only in wall times (wall_s of the WALK line, check_time and ocp_time).
+// Without ~kill_after_steps every check's messages come from transition_ocp_node, every check
+// was answered by /reachability_node (its latched footsteps_checked counts one per checked step)
+// and every proposal by /tvr_planner_node (its footsteps_proposed: one per step at least, exactly
+// one without replanning during the swing); with it, the
 // checker kills transition_ocp_node (rosnode kill) when that many step reports have arrived:
 // the walk must still equal the in-process one (sim_node plans the rest itself), the steps
 // before come from transition_ocp_node, the last from sim_node, no step without its messages.
@@ -25,6 +29,7 @@
 #include <std_msgs/String.h>
 #include <std_msgs/UInt64.h>
 #include <sys/types.h>
+#include <xmlrpcpp/XmlRpcValue.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -71,6 +76,27 @@ bool g_hung = false;
 /// worker 0 was hung.
 std::vector<uint64_t> g_worker_checked;
 uint64_t g_worker1_checked_at_hang = 0;
+/// The latest latched count of a node's answers.
+struct Count {
+  uint64_t value = 0;
+};
+
+// The publishers of `topic` as the master lists them (getSystemState).
+std::vector<std::string> publishersOf(const std::string& topic) {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  std::vector<std::string> out;
+  if (!ros::master::execute("getSystemState", args, result, payload, true)) return out;
+  XmlRpc::XmlRpcValue& publishers = payload[0];
+  for (int i = 0; i < publishers.size(); ++i) {
+    if (static_cast<std::string>(publishers[i][0]) != topic) continue;
+    for (int j = 0; j < publishers[i][1].size(); ++j)
+      out.push_back(static_cast<std::string>(publishers[i][1][j]));
+  }
+  return out;
+}
+Count g_footsteps_checked;   ///< reachability_node's check_footstep answers
+Count g_footsteps_proposed;  ///< tvr_planner_node's propose_footstep answers
 
 const char* kHungWorker = "/reachability_worker_0/reachability_node";
 
@@ -182,6 +208,15 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
       EXPECT_EQ(got.check_publishers[i], "/transition_ocp_node");
       EXPECT_EQ(got.trajectory_publishers[i], "/transition_ocp_node");
     }
+    // The checks were answered by reachability_node, the proposals by tvr_planner_node.
+    std::lock_guard<std::mutex> lock(g_mutex);
+    EXPECT_EQ(g_footsteps_checked.value, checked) << "checks answered by reachability_node";
+    EXPECT_EQ(publishersOf("/footsteps_checked"), std::vector<std::string>{"/reachability_node"});
+    EXPECT_GE(g_footsteps_proposed.value, in_process.records.size())
+        << "proposals answered by tvr_planner_node";
+    if (setup.walk.replan_fraction == 0.0)
+      EXPECT_EQ(g_footsteps_proposed.value, in_process.records.size());
+    EXPECT_EQ(publishersOf("/footsteps_proposed"), std::vector<std::string>{"/tvr_planner_node"});
     return;
   }
   // Killed after kill_after_steps reports: those steps from the node, the last from sim_node,
@@ -234,6 +269,10 @@ void onResult(const std_msgs::String::ConstPtr& m) {
   std::lock_guard<std::mutex> lock(g_mutex);
   g_received.walk_line = m->data;
 }
+void onCount(Count& count, const ros::MessageEvent<const std_msgs::UInt64>& e) {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  count.value = e.getMessage()->data;
+}
 void onCom(const reach_trajopt::CenterOfMassState::ConstPtr&) {}
 void onWorkerChecked(size_t worker, const std_msgs::UInt64::ConstPtr& m) {
   std::lock_guard<std::mutex> lock(g_mutex);
@@ -261,6 +300,12 @@ int main(int argc, char** argv) {
   const ros::Subscriber checks = nh.subscribe("reachability_result", 100, onCheck);
   const ros::Subscriber trajectories = nh.subscribe("transition_trajectory", 100, onTrajectory);
   const ros::Subscriber result = nh.subscribe("walk_result", 1, onResult);
+  const ros::Subscriber footsteps_checked = nh.subscribe<std_msgs::UInt64>(
+      "footsteps_checked", 10,
+      [](const ros::MessageEvent<const std_msgs::UInt64>& e) { onCount(g_footsteps_checked, e); });
+  const ros::Subscriber footsteps_proposed = nh.subscribe<std_msgs::UInt64>(
+      "footsteps_proposed", 10,
+      [](const ros::MessageEvent<const std_msgs::UInt64>& e) { onCount(g_footsteps_proposed, e); });
   if (g_hang_worker_after_steps > 0) {  // before the walk starts: rosnode info takes a while
     ros::service::waitForService("/reachability_worker_0/check_footholds", ros::Duration(60.0));
     g_worker0_pid = nodePid(kHungWorker);

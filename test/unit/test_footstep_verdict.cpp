@@ -153,3 +153,43 @@ TEST(FootstepVerdict, BenchCaseSoleCannotStopInTime) {
   EXPECT_TRUE(step.certificate.empty());
   EXPECT_NE(step.trajectory.status, OcpStatus::kConverged);
 }
+
+TEST(FootstepVerdict, QuickPassKeepsTheFullBudgetsVerdictWhereItCertifiesNothing) {
+  // reach.quick_pass: where the quick pass certifies nothing (the bench case), the step is
+  // planned again with the full budget, and that pass is the planner without the quick pass:
+  // the same verdict, witness attempt and OCP outcome. Where the quick pass certifies (the
+  // walk's step 5), its certificate passes the same re-check as the full budget's.
+  const Pipeline& p = pipeline();
+  auto withQuickPass = [&](FootstepPlanRequest r, bool quick) {
+    ReachConfig c = r.reach ? *r.reach : p.config.reach;
+    c.quick_pass = quick;
+    r.reach = c;
+    return planStrict(r);
+  };
+  const FootstepPlanRequest bench = benchSwingCase(p.model, p.config, p.contact);
+  const FootstepTransition quick = withQuickPass(bench, true);
+  const FootstepTransition full = withQuickPass(bench, false);
+  EXPECT_EQ(quick.check_passes, 2);
+  EXPECT_EQ(full.check_passes, 1);
+  EXPECT_EQ(quick.verdict, full.verdict);
+  EXPECT_EQ(quick.certificate, full.certificate);
+  EXPECT_EQ(quick.check.reach.witness.terminal_position_gap,
+            full.check.reach.witness.terminal_position_gap);
+  EXPECT_EQ(quick.trajectory.status, full.trajectory.status);
+  EXPECT_EQ(quick.trajectory.cost, full.trajectory.cost);
+  const std::string& tail = full.reason;
+  ASSERT_GE(quick.reason.size(), tail.size());
+  EXPECT_EQ(quick.reason.substr(quick.reason.size() - tail.size()), tail) << quick.reason;
+
+  const FootstepTransition step5 = withQuickPass(walkRequests()[2], true);
+  EXPECT_EQ(step5.verdict, "reachable") << step5.reason;
+  EXPECT_EQ(step5.trajectory.status, OcpStatus::kConverged) << step5.reason;
+  if (step5.certificate == "bridge") {
+    const WitnessRecheck r = recheck(step5);
+    const ReachConfig& reach = *step5.request.reach;
+    EXPECT_LE(r.dynamics, 1e-6);
+    EXPECT_LE(r.sole, reach.contact_tolerance);
+    EXPECT_LE(r.end_q, reach.terminal_position_tolerance);
+    EXPECT_LE(r.end_qd, reach.terminal_velocity_tolerance);
+  }
+}

@@ -122,6 +122,26 @@ struct ReachConfig {
   double contact_tolerance = 1e-4;           ///< |phi| allowed at x_0 and x_f [m, rad]
   double contact_velocity_tolerance = 1e-3;  ///< |J qd| allowed at x_0 and x_f [m/s, rad/s]
   double limit_tolerance = 1e-9;             ///< slack on position / velocity / torque limits
+  // ---- the quick pass (issue 16; step/footstep_transition_planner.h) ----------------------
+  /// FootstepTransitionPlanner first plans the step with the smaller sample budget below
+  /// (quickPassConfig()); only when that pass certifies nothing (neither the bridge nor the
+  /// local solve), or certifies the step but its strict OCP fails, does it plan again with
+  /// the budget above (a quick certificate is kept if the full pass finds none). Every certificate
+  /// is the same full-model re-check whichever budget found it, so the quick pass can add
+  /// "reachable" verdicts the full budget misses but never removes one (the full pass is the same
+  /// computation as without it). ReachabilityAnalyzer::check itself runs one budget only.
+  bool quick_pass = true;
+  int quick_initial_samples = 1000;             ///< initial_samples of the quick pass
+  int quick_children_per_parent = 4;            ///< children_per_parent of the quick pass
+  int quick_backward_children_per_parent = 12;  ///< backward_children_per_parent of it
+  int quick_max_boundary = 24;                  ///< max_boundary of the quick pass
+  int quick_interior_samples = 8;               ///< interior_samples of the quick pass
+  int quick_certificate_candidates = 4;         ///< certificate_candidates of the quick pass
+  /// constraint_margin of the quick pass [m]: the hull of its 32 kept samples per slice
+  /// covers less of the forward set than the full budget's 128, so eq. (23)'s rows grow more
+  /// (bench/README.md: with 0.01 m 4 of the walk's 14 quick certificates got no strict OCP,
+  /// with 0.02 m 2 of 13, with 0.03 m none, but a forward walk then fell by leg collision).
+  double quick_constraint_margin = 0.02;
 
   /// Throws ReachError naming a bad field, also for values over ReachLimits and threads over
   /// the hardware threads of this machine.
@@ -142,6 +162,8 @@ struct ReachConfig {
   /// Same on top of the defaults.
   static ReachConfig fromYaml(const YamlSection& section);
   bool semiImplicit() const { return forward_integrator == "semi_implicit"; }
+  /// This configuration with the quick pass's sample budget (quick_*) and quick_pass false.
+  ReachConfig quickPassConfig() const;
 };
 
 }  // namespace reach_trajopt

@@ -10,6 +10,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <Eigen/Core>
+#include <string>
 
 #include "reach_trajopt/ReachabilityResult.h"
 #include "reach_trajopt/TransitionTrajectory.h"
@@ -37,6 +38,23 @@ struct ProposedStepMsgs {
 /// without heuristic bounds; record.planned already holds where the swing will land after the
 /// check) on the ground at the stance sole's height `ground_z` [m].
 Eigen::Vector3d checkedFoothold(const StepRecord& record, double ground_z);
+
+/// The check's ReachabilityResult before the OCP's verdict, as reachability_node's
+/// check_footstep answers it: for a kinematically infeasible foothold infeasibleFootholdMsg,
+/// else toReachabilityResultMsg of check.reach (its verdict the check's), stamped t0.
+/// \param swing_frame  the swing sole's frame (the output's)
+reach_trajopt::ReachabilityResult checkedFootstepMsg(const FootstepResult& check,
+                                                     const std::string& swing_frame,
+                                                     const Eigen::Vector3d& foothold, double delta,
+                                                     const ros::Time& t0, bool samples,
+                                                     int max_points = 500);
+
+/// The messages of one proposed step from its check's message `checked` (checkedFootstepMsg,
+/// e.g. built by reachability_node): the planner's verdict applied to it (a kinematically
+/// feasible foothold), its markers and the OCP's trajectory, stamped t0.
+ProposedStepMsgs toProposedStepMsgs(const RobotModel& model, const ContactConfig& contact,
+                                    const FootstepTransition& step,
+                                    reach_trajopt::ReachabilityResult checked, const ros::Time& t0);
 
 /// @brief The messages of one proposed step, all stamped `t0` (the sim time of the check, x_0)
 /// in frame "world".

@@ -13,12 +13,17 @@
 ///      x_f), then relaxed (to the closest reachable foothold) when it fails;
 ///   5. the fallback of a kinematically infeasible foothold: the nearest feasible one
 ///      (planner/nearest_feasible_foothold.h), the relaxed OCP toward the target, or an error.
+/// With ReachConfig::quick_pass, steps 1-5 run first with the quick pass's smaller sample
+/// budget and again with the full one only when the quick pass certified nothing or its
+/// certified step got no strict trajectory (a quick certificate is kept when the full pass
+/// finds none; issue 16: most of the walk's steps end after the quick pass; bench/README.md).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/ocp/ocp_config.h"
@@ -28,6 +33,7 @@
 #include "reach_trajopt/planner/nearest_feasible_foothold.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reach_config.h"
+#include "reach_trajopt/step/footstep_check.h"
 
 namespace reach_trajopt {
 
@@ -107,7 +113,10 @@ struct FootstepTransition {
   double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed
   double check_time_s = 0.0;         ///< kinematic + reachability check wall time
   double ocp_time_s = 0.0;           ///< OCP wall time
-  TransitionResult trajectory;       ///< converged, relaxed or failed
+  /// 1, or 2 when the quick pass (ReachConfig::quick_pass) was not final and the full budget
+  /// planned the step again; the times above are then the sums of both passes.
+  int check_passes = 1;
+  TransitionResult trajectory;  ///< converged, relaxed or failed
   /// The full check (kinematics, reachable sets, witness) for recorders and the ROS layer.
   FootstepResult check;
   Side stance = Side::kLeft;
@@ -150,11 +159,20 @@ class FootstepTransitionPlanner {
   /// plan() runs, not while it runs.
   void setCandidateCheck(CandidateCheck check) { candidate_check_ = std::move(check); }
 
+  /// Where steps 2-3 (the kinematic and the reachability check of the foothold) run, e.g.
+  /// reachability_node's check_footstep; empty (the default): in this process, with the
+  /// check's progress reports (a check elsewhere reports none). It must check as
+  /// footstepReachability() does (same configuration) for the plans not to change. Set it
+  /// before plan() runs, not while it runs.
+  void setFootstepCheck(FootstepCheck check) { footstep_check_ = std::move(check); }
+
   /// Time from the check to touchdown [s] (the reachability horizon t_f - t_0).
   double horizon() const { return config_.reach.horizon; }
   const FootstepPlannerConfig& config() const { return config_; }
   const KinematicFeasibility& kinematics() const { return *kinematics_; }
   const ReachabilityAnalyzer& analyzer() const { return footsteps_.analyzer(); }
+  /// The in-process footstep check of steps 2-3.
+  const FootstepReachability& footstepReachability() const { return footsteps_; }
 
  private:
   /// The LIPM's prediction at touchdown: pelvis position to hold [m], CoM velocity [m/s].
@@ -162,16 +180,22 @@ class FootstepTransitionPlanner {
     std::optional<Eigen::Vector3d> pelvis;
     Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
   };
+  /// Steps 1-5 with the check's configuration `reach` (one pass of plan()).
+  FootstepTransition planWith(const FootstepPlanRequest& r, const ReachConfig& reach,
+                              const FootstepPlanProgress& progress) const;
   /// Step 1: x_0 into `out`; returns the held stance sole pose.
   Eigen::Isometry3d initialState(const FootstepPlanRequest& r, FootstepTransition& out) const;
   Touchdown predictTouchdown(const FootstepPlanRequest& r, const FootstepTransition& out) const;
-  /// Steps 2-3 into out.check and the verdict fields.
-  void checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
-                     const ReachProgressCallback& progress, FootstepTransition& out) const;
-  /// Steps 4-5 into out.trajectory and out.foothold.
+  /// Steps 2-3 into out.check and the verdict fields; returns the OCP's slices of the
+  /// check's forward set (eq. 23; empty without a reachability check).
+  std::vector<ReachableSlice> checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach,
+                                            const Touchdown& td,
+                                            const ReachProgressCallback& progress,
+                                            FootstepTransition& out) const;
+  /// Steps 4-5 into out.trajectory and out.foothold, held in `set_constraint`.
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
-                       const Touchdown& td, const OcpProgressCallback& progress,
-                       FootstepTransition& out) const;
+                       const Touchdown& td, std::vector<ReachableSlice> set_constraint,
+                       const OcpProgressCallback& progress, FootstepTransition& out) const;
   /// The verdict of a checked, kinematically feasible step from its witness and its OCP.
   void certify(FootstepTransition& out) const;
 
@@ -182,6 +206,7 @@ class FootstepTransitionPlanner {
   FootstepReachability footsteps_;
   NearestFeasibleFoothold nearest_;
   CandidateCheck candidate_check_;
+  FootstepCheck footstep_check_;
   TransitionOcp ocp_;
 };
 

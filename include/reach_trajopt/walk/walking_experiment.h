@@ -21,6 +21,7 @@
 #include "reach_trajopt/contact/contact_mode.h"
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/planner/tvr_planner.h"
+#include "reach_trajopt/planner/tvr_proposal.h"
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/sim/sim_config.h"
 #include "reach_trajopt/sim/whole_body_controller.h"
@@ -99,8 +100,10 @@ struct StepRecord {
   double witness_violation = -1.0;
   double junction_position_gap = -1.0, junction_velocity_gap = -1.0;
   double terminal_position_gap = -1.0, terminal_velocity_gap = -1.0;
-  double check_time_s = 0.0;        ///< reachability check wall time
-  double ocp_time_s = 0.0;          ///< OCP wall time
+  double check_time_s = 0.0;  ///< reachability check wall time
+  double ocp_time_s = 0.0;    ///< OCP wall time
+  int check_passes =
+      0;  ///< 0: no check; 1; 2: the quick pass certified nothing (see FootstepTransition)
   std::string ocp_status = "none";  ///< "converged", "relaxed", "failed"; "none": not solved
   std::string reason;               ///< the check's and the OCP's explanations
 };
@@ -164,6 +167,15 @@ class WalkingExperiment {
   /// empty (the default). The simulation waits (in sim time) for it either way. It must plan
   /// as footstepPlanner() does (same configuration) for the walk to match the in-process one.
   void setFootstepPlanner(FootstepPlanFunction plan);
+  /// Proposes the next contact of eq. (11) for the loop, at lift-off and during the swing's
+  /// first part (WalkConfig::replan_fraction); it throws ReachError for a request it rejects,
+  /// as the in-process planner does.
+  using TvrProposalFunction = std::function<TvrProposal(const TvrProposalRequest&)>;
+  /// Who proposes the contacts of the next runs: `propose` (e.g. a ROS node), or the loop's own
+  /// TvrPlanner when empty (the default). The request carries the loop's LIPM height and
+  /// bounds switch; `propose` must use the TvrConfig the experiment was built with (its gains
+  /// and bounds) for the walk to match the in-process one (proposeFootstep() does).
+  void setTvrProposer(TvrProposalFunction propose);
   /// The in-process planner of the policies with a check (its configuration: the walk's
   /// check_horizon and seed in reach); null for the policies without one.
   const FootstepTransitionPlanner* footstepPlanner() const;

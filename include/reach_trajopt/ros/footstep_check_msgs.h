@@ -1,0 +1,52 @@
+#pragma once
+/// \file footstep_check_msgs.h
+/// Pure conversions (no node, no master) of the planner's footstep check through
+/// reachability_node's check_footstep service (reach_trajopt/CheckFootstep,
+/// step/footstep_check.h): the request to the message and back (validated, each rejection naming
+/// its field), the check to the response and back. The response carries what the planner and
+/// the walk read of a FootstepResult (the IK, qd_f, the verdict, the window's distances, the
+/// witness) and the OCP's slices of the forward set instead of the sets; every number as
+/// float64, so the plan is the in-process plan bit for bit. Frame "world", SI units.
+
+#include <ros/time.h>
+
+#include "reach_trajopt/CheckFootstep.h"
+#include "reach_trajopt/reach/reach_config.h"
+#include "reach_trajopt/step/footstep_check.h"
+
+namespace reach_trajopt {
+namespace ros_bridge {
+
+/// What a check_footstep request asks.
+struct FootstepCheckCall {
+  FootstepRequest request;
+  ReachConfig reach;         ///< the node's with the request's horizon and seed
+  bool reachability = true;  ///< false: the kinematic stage only
+  bool samples = true;       ///< the published result carries the output samples
+};
+
+/// The request of a check of `request` with the reachability settings `reach` (its horizon and
+/// seed are sent; the rest must be the node's), stamped t0.
+reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRequest& request,
+                                                                const ReachConfig& reach,
+                                                                bool reachability, bool samples,
+                                                                const ros::Time& t0);
+
+/// The call of a request message for a model with `nq` coordinates; its reachability settings
+/// are `base` with the message's reach_horizon and seed (when given).
+/// \throws RequestError naming the field: an unknown side or frame, wrong sizes, non-finite
+///     numbers, a horizon outside [0, kMaxTransitionHorizon], a negative seed other than -1.
+FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep::Request& m,
+                                              int nq, const ReachConfig& base);
+
+/// The response of a check (success = true) with the ReachabilityResult to publish.
+reach_trajopt::CheckFootstep::Response toCheckFootstepResponseMsg(
+    const FootstepCheckResult& check, const reach_trajopt::ReachabilityResult& published);
+
+/// The check of a successful response for a model with `nq` coordinates.
+/// \throws ReachError naming the field of a malformed response (sizes).
+FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFootstep::Response& m,
+                                                 int nq);
+
+}  // namespace ros_bridge
+}  // namespace reach_trajopt

@@ -1,0 +1,42 @@
+#pragma once
+/// \file footstep_check.h
+/// Steps 2-3 of the per-step pipeline (footstep_transition_planner.h) as one call the planner
+/// can hand elsewhere (e.g. reachability_node's check_footstep): the kinematic check of the
+/// foothold (Sec. III-B) and, when asked, the reachability check (13)-(21), together with what
+/// the OCP takes from the check's forward set, its swing sole hulls (eq. 23,
+/// reachable_set_constraint.h). With the hulls computed where the sets are, the sets
+/// themselves need not travel.
+
+#include <functional>
+#include <vector>
+
+#include "reach_trajopt/ocp/transition_request.h"
+#include "reach_trajopt/reach/footstep_reachability.h"
+#include "reach_trajopt/reach/reach_config.h"
+
+namespace reach_trajopt {
+
+/// The check of one footstep as the planner uses it.
+struct FootstepCheckResult {
+  /// The check. From another process `result.reach` holds the verdict, the window's times,
+  /// distances and overlaps and the witness path (time, q, gaps, violations), not the sets.
+  FootstepResult result;
+  /// reachableSetConstraint(result.reach, config.output_axes, config.constraint_margin) of a
+  /// kinematically feasible foothold whose reachability was checked; empty otherwise.
+  std::vector<ReachableSlice> set_constraint;
+};
+
+/// Where the planner checks its footsteps: (request, reachability settings, run the
+/// reachability check or the kinematic stage only). It throws ReachError for a request it
+/// rejects, as the in-process check does.
+using FootstepCheck =
+    std::function<FootstepCheckResult(const FootstepRequest&, const ReachConfig&, bool)>;
+
+/// @brief The in-process check: `footsteps.check(request, config, progress)`, or its
+/// kinematicStage(request) when `reachability` is false, and the OCP's slices of its forward
+/// set. \throws ReachError as FootstepReachability::check does.
+FootstepCheckResult checkFootstep(const FootstepReachability& footsteps,
+                                  const FootstepRequest& request, const ReachConfig& config,
+                                  bool reachability, const ReachProgressCallback& progress = {});
+
+}  // namespace reach_trajopt

@@ -1,0 +1,258 @@
+/// \file footstep_check_msgs.cpp
+/// The check_footstep service's conversions (see the header).
+
+#include "reach_trajopt/ros/footstep_check_msgs.h"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ocp/transition_request.h"
+#include "reach_trajopt/ros/conversions.h"
+#include "reach_trajopt/ros/footstep_plan_msgs.h"
+
+namespace reach_trajopt {
+namespace ros_bridge {
+
+namespace {
+
+std::vector<double> flatContact(const FlatContact& c) {
+  return {c.position.x(), c.position.y(), c.position.z(), c.yaw};
+}
+
+FlatContact flatContact(const std::vector<double>& v, const std::string& field) {
+  const Eigen::VectorXd x = finiteVector(v, 4, field);
+  FlatContact c;
+  c.position = x.head<3>();
+  c.yaw = x[3];
+  return c;
+}
+
+// A response field of `size` entries (a malformed answer, not a request).
+template <typename T>
+void requireEntries(const std::vector<T>& v, size_t size, const char* field) {
+  if (v.size() != size)
+    throw ReachError(std::string("check_footstep response: ") + field + ": expected " +
+                     std::to_string(size) + " entries, got " + std::to_string(v.size()));
+}
+
+Eigen::VectorXd responseVector(const std::vector<double>& v, size_t size, const char* field) {
+  requireEntries(v, size, field);
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+}  // namespace
+
+reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRequest& r,
+                                                                const ReachConfig& reach,
+                                                                bool reachability, bool samples,
+                                                                const ros::Time& t0) {
+  reach_trajopt::CheckFootstep::Request m;
+  m.header.stamp = t0;
+  m.header.frame_id = kWorldFrame;
+  m.stance = r.stance == Side::kLeft ? "left" : "right";
+  m.stance_foothold = flatContact(r.stance_foothold);
+  m.target = flatContact(r.target);
+  m.q0 = asVector(r.q0);
+  m.qd0 = asVector(r.qd0);
+  m.qdf = asVector(r.qdf);
+  m.touchdown_com_velocity = {r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y()};
+  if (r.touchdown_pelvis_position)
+    m.touchdown_pelvis_position = asVector(*r.touchdown_pelvis_position);
+  m.check_reachability = reachability;
+  m.reach_horizon = reach.horizon;
+  m.seed = static_cast<int64_t>(reach.seed);
+  m.sample_budget = {
+      reach.initial_samples, reach.children_per_parent, reach.backward_children_per_parent,
+      reach.max_boundary,    reach.interior_samples,    reach.certificate_candidates};
+  m.return_samples = samples;
+  return m;
+}
+
+FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep::Request& m,
+                                              int nq, const ReachConfig& base) {
+  if (!m.header.frame_id.empty() && m.header.frame_id != kWorldFrame)
+    throw RequestError("header.frame_id: unknown frame '" + m.header.frame_id +
+                       "': positions must be in 'world'");
+  FootstepCheckCall c;
+  FootstepRequest& r = c.request;
+  if (m.stance != "left" && m.stance != "right")
+    throw RequestError("stance: expected 'left' or 'right', got '" + m.stance + "'");
+  r.stance = m.stance == "left" ? Side::kLeft : Side::kRight;
+  r.stance_foothold = flatContact(m.stance_foothold, "stance_foothold");
+  r.target = flatContact(m.target, "target");
+  r.q0 = finiteVector(m.q0, static_cast<size_t>(nq), "q0");
+  r.qd0 = finiteVector(m.qd0, static_cast<size_t>(nq), "qd0");
+  if (!m.qdf.empty()) r.qdf = finiteVector(m.qdf, static_cast<size_t>(nq), "qdf");
+  r.touchdown_com_velocity = finiteVector(m.touchdown_com_velocity, 2, "touchdown_com_velocity");
+  if (!m.touchdown_pelvis_position.empty())
+    r.touchdown_pelvis_position =
+        finiteVector(m.touchdown_pelvis_position, 3, "touchdown_pelvis_position");
+  c.reachability = m.check_reachability;
+  c.samples = m.return_samples;
+  c.reach = base;
+  if (!std::isfinite(m.reach_horizon) || m.reach_horizon < 0.0 ||
+      m.reach_horizon > kMaxTransitionHorizon) {
+    std::ostringstream os;
+    os << "reach_horizon: expected 0 (the default) or a horizon in (0, " << kMaxTransitionHorizon
+       << "] s, got " << m.reach_horizon;
+    throw RequestError(os.str());
+  }
+  if (m.reach_horizon > 0.0) c.reach.horizon = m.reach_horizon;
+  if (m.seed < -1) throw RequestError("seed: expected -1 (the node's) or >= 0");
+  if (m.seed >= 0) c.reach.seed = static_cast<std::uint64_t>(m.seed);
+  if (!m.sample_budget.empty()) {
+    if (m.sample_budget.size() != 6)
+      throw RequestError("sample_budget: expected 0 or 6 values, got " +
+                         std::to_string(m.sample_budget.size()));
+    c.reach.initial_samples = m.sample_budget[0];
+    c.reach.children_per_parent = m.sample_budget[1];
+    c.reach.backward_children_per_parent = m.sample_budget[2];
+    c.reach.max_boundary = m.sample_budget[3];
+    c.reach.interior_samples = m.sample_budget[4];
+    c.reach.certificate_candidates = m.sample_budget[5];
+  }
+  try {
+    c.reach.validate();
+    c.reach.requireResourcesWithinLimits(nq);
+  } catch (const ReachError& e) {
+    throw RequestError(std::string("reach_horizon/seed/sample_budget: ") + e.what());
+  }
+  return c;
+}
+
+reach_trajopt::CheckFootstep::Response toCheckFootstepResponseMsg(
+    const FootstepCheckResult& check, const reach_trajopt::ReachabilityResult& published) {
+  reach_trajopt::CheckFootstep::Response m;
+  const FootstepResult& f = check.result;
+  m.success = true;
+  m.kinematically_feasible = f.kinematically_feasible;
+  m.reachable = f.reachable;
+  m.reason = f.reason;
+  const KinematicFeasibilityResult& k = f.kinematics;
+  m.kinematics_reason = k.reason;
+  m.position_residual = k.position_residual;
+  m.orientation_residual = k.orientation_residual;
+  m.iterations = k.iterations;
+  m.q_f = asVector(k.q_f);
+  m.qd_f = asVector(k.qd_f);
+  m.qdf = asVector(f.qdf);
+  const ReachResult& reach = f.reach;
+  m.reach_reachable = reach.reachable;
+  m.reach_reason = reach.reason;
+  for (const SliceComparison& c : reach.window) {
+    m.window_time.push_back(c.time);
+    m.window_hausdorff.push_back(c.distance.hausdorff);
+    m.window_overlap.push_back(c.overlap);
+  }
+  const WitnessPath& w = reach.witness;
+  m.witness_valid = w.valid;
+  m.witness_certified = w.certified;
+  m.witness_junction = w.junction;
+  m.witness_bridge_start = w.bridge_start;
+  m.witness_time = w.time;
+  m.witness_q.assign(w.q.data(), w.q.data() + w.q.size());
+  if (w.valid) {
+    const PathViolation& v = w.violation;
+    m.witness_violation = {v.dynamics,         v.cone,           v.torque,
+                           v.position_limit,   v.velocity_limit, v.contact,
+                           v.contact_velocity, v.integration,    v.ground};
+  }
+  m.witness_output_gap = w.output_gap;
+  m.witness_position_gap = w.position_gap;
+  m.witness_velocity_gap = w.velocity_gap;
+  m.witness_terminal_position_gap = w.terminal_position_gap;
+  m.witness_terminal_velocity_gap = w.terminal_velocity_gap;
+  m.witness_terminal_output_gap = w.terminal_output_gap;
+  for (const ReachableSlice& s : check.set_constraint) {
+    m.constraint_time.push_back(s.time);
+    m.constraint_rows.push_back(static_cast<uint32_t>(s.A.rows()));
+    for (Eigen::Index i = 0; i < s.A.rows(); ++i) {
+      m.constraint_normals.push_back(s.A(i, 0));
+      m.constraint_normals.push_back(s.A(i, 1));
+      m.constraint_offsets.push_back(s.b[i]);
+    }
+  }
+  m.reachability = published;
+  return m;
+}
+
+FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFootstep::Response& m,
+                                                 int nq) {
+  const size_t n = static_cast<size_t>(nq);
+  FootstepCheckResult out;
+  FootstepResult& f = out.result;
+  f.kinematically_feasible = m.kinematically_feasible;
+  f.reachable = m.reachable;
+  f.reason = m.reason;
+  KinematicFeasibilityResult& k = f.kinematics;
+  k.feasible = m.kinematically_feasible;
+  k.reason = m.kinematics_reason;
+  k.position_residual = m.position_residual;
+  k.orientation_residual = m.orientation_residual;
+  k.iterations = m.iterations;
+  if (!m.q_f.empty()) k.q_f = responseVector(m.q_f, n, "q_f");
+  if (!m.qd_f.empty()) k.qd_f = responseVector(m.qd_f, n, "qd_f");
+  if (m.kinematically_feasible || !m.qdf.empty()) f.qdf = responseVector(m.qdf, n, "qdf");
+  ReachResult& reach = f.reach;
+  reach.reachable = m.reach_reachable;
+  reach.reason = m.reach_reason;
+  requireEntries(m.window_hausdorff, m.window_time.size(), "window_hausdorff");
+  requireEntries(m.window_overlap, m.window_time.size(), "window_overlap");
+  for (size_t i = 0; i < m.window_time.size(); ++i) {
+    SliceComparison c;
+    c.time = m.window_time[i];
+    c.distance.hausdorff = m.window_hausdorff[i];
+    c.overlap = m.window_overlap[i] != 0;
+    reach.window.push_back(c);
+  }
+  WitnessPath& w = reach.witness;
+  w.valid = m.witness_valid;
+  w.certified = m.witness_certified;
+  w.junction = m.witness_junction;
+  w.bridge_start = m.witness_bridge_start;
+  w.time = m.witness_time;
+  if (!m.witness_q.empty()) {
+    requireEntries(m.witness_q, n * m.witness_time.size(), "witness_q");
+    w.q = Eigen::Map<const Eigen::MatrixXd>(m.witness_q.data(), nq,
+                                            static_cast<Eigen::Index>(m.witness_time.size()));
+  }
+  if (w.bridge_start >= static_cast<int>(w.time.size()))
+    throw ReachError("check_footstep response: witness_bridge_start: beyond witness_time");
+  if (w.valid) {
+    requireEntries(m.witness_violation, 9, "witness_violation");
+    const std::vector<double>& v = m.witness_violation;
+    w.violation = PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+  }
+  w.output_gap = m.witness_output_gap;
+  w.position_gap = m.witness_position_gap;
+  w.velocity_gap = m.witness_velocity_gap;
+  w.terminal_position_gap = m.witness_terminal_position_gap;
+  w.terminal_velocity_gap = m.witness_terminal_velocity_gap;
+  w.terminal_output_gap = m.witness_terminal_output_gap;
+  requireEntries(m.constraint_rows, m.constraint_time.size(), "constraint_rows");
+  size_t rows = 0;
+  for (uint32_t r : m.constraint_rows) rows += r;
+  requireEntries(m.constraint_normals, 2 * rows, "constraint_normals");
+  requireEntries(m.constraint_offsets, rows, "constraint_offsets");
+  size_t row = 0;
+  for (size_t i = 0; i < m.constraint_time.size(); ++i) {
+    ReachableSlice s;
+    s.time = m.constraint_time[i];
+    const Eigen::Index k_rows = static_cast<Eigen::Index>(m.constraint_rows[i]);
+    s.A.resize(k_rows, 2);
+    s.b.resize(k_rows);
+    for (Eigen::Index j = 0; j < k_rows; ++j, ++row) {
+      s.A(j, 0) = m.constraint_normals[2 * row];
+      s.A(j, 1) = m.constraint_normals[2 * row + 1];
+      s.b[j] = m.constraint_offsets[row];
+    }
+    out.set_constraint.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace ros_bridge
+}  // namespace reach_trajopt

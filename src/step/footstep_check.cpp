@@ -1,0 +1,25 @@
+/// \file footstep_check.cpp
+/// The in-process footstep check and its OCP slices (see the header).
+
+#include "reach_trajopt/step/footstep_check.h"
+
+#include "reach_trajopt/step/reachable_set_constraint.h"
+
+namespace reach_trajopt {
+
+FootstepCheckResult checkFootstep(const FootstepReachability& footsteps,
+                                  const FootstepRequest& request, const ReachConfig& config,
+                                  bool reachability, const ReachProgressCallback& progress) {
+  FootstepCheckResult out;
+  if (!reachability) {
+    out.result = footsteps.kinematicStage(request);
+    return out;
+  }
+  out.result = footsteps.check(request, config, progress);
+  if (out.result.kinematically_feasible)
+    out.set_constraint =
+        reachableSetConstraint(out.result.reach, config.output_axes, config.constraint_margin);
+  return out;
+}
+
+}  // namespace reach_trajopt
