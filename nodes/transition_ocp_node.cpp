@@ -168,10 +168,13 @@ class TransitionOcpNode {
       return !(cancelled = transition_action_->isPreemptRequested() || !ros::ok());
     };
     FootstepPlanProgress progress;
+    uint32_t pass = 1;
+    progress.pass = [&](int p) { pass = static_cast<uint32_t>(p); };
     progress.check = [&](const ReachProgress& p) {
       if (!wanted()) return false;
       reach_trajopt::PlanTransitionFeedback f;
       f.stage = "check";
+      f.check_pass = pass;
       rb::fillCheckFeedback(p, f);
       transition_action_->publishFeedback(f);
       return true;
@@ -180,6 +183,7 @@ class TransitionOcpNode {
       if (!wanted()) return false;
       reach_trajopt::PlanTransitionFeedback f;
       f.stage = "ocp";
+      f.check_pass = pass;
       f.relaxed = p.relaxed;
       f.ocp_evaluations = static_cast<uint32_t>(p.evaluations);
       transition_action_->publishFeedback(f);

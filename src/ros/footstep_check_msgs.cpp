@@ -67,6 +67,7 @@ reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRe
   m.sample_budget = {
       reach.initial_samples, reach.children_per_parent, reach.backward_children_per_parent,
       reach.max_boundary,    reach.interior_samples,    reach.certificate_candidates};
+  m.constraint_margin = {reach.constraint_margin};
   m.return_samples = samples;
   return m;
 }
@@ -114,11 +115,14 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
     c.reach.interior_samples = m.sample_budget[4];
     c.reach.certificate_candidates = m.sample_budget[5];
   }
+  if (!m.constraint_margin.empty())
+    c.reach.constraint_margin = finiteVector(m.constraint_margin, 1, "constraint_margin")[0];
   try {
     c.reach.validate();
     c.reach.requireResourcesWithinLimits(nq);
   } catch (const ReachError& e) {
-    throw RequestError(std::string("reach_horizon/seed/sample_budget: ") + e.what());
+    throw RequestError(std::string("reach_horizon/seed/sample_budget/constraint_margin: ") +
+                       e.what());
   }
   return c;
 }

@@ -82,6 +82,7 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
     requireFinite("FootstepTransitionPlanner: touchdown CoM velocity", r.touchdown_com->pd);
   }
   const ReachConfig& reach = r.reach ? *r.reach : config_.reach;
+  if (progress.pass) progress.pass(1);
   if (!r.check_reachability || !reach.quick_pass) return planWith(r, reach, progress);
   // The quick pass first. It is final when it certified the step and (when asked for) its
   // strict OCP converged: the sparser forward set's hulls (eq. 23) can leave a certified step
@@ -91,6 +92,7 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
   const bool has_trajectory = !r.solve_ocp || (quick.trajectory.status == OcpStatus::kConverged &&
                                                !quick.trajectory.relaxed);
   if (!quick.kinematically_feasible || (quick.reachable && has_trajectory)) return quick;
+  if (progress.pass) progress.pass(2);
   FootstepTransition full = planWith(r, reach, progress);
   // A certificate is never given up: when only the quick pass found one, its plan stands.
   FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;

@@ -25,15 +25,17 @@ struct FootstepCheckCall {
   bool samples = true;       ///< the published result carries the output samples
 };
 
-/// The request of a check of `request` with the reachability settings `reach` (its horizon and
-/// seed are sent; the rest must be the node's), stamped t0.
+/// The request of a check of `request` with the reachability settings `reach` (its horizon,
+/// seed, sample budget and eq. (23) hull margin are sent, so one pass of the step planner is
+/// checked as in process; the rest must be the node's), stamped t0.
 reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRequest& request,
                                                                 const ReachConfig& reach,
                                                                 bool reachability, bool samples,
                                                                 const ros::Time& t0);
 
 /// The call of a request message for a model with `nq` coordinates; its reachability settings
-/// are `base` with the message's reach_horizon and seed (when given).
+/// are `base` with the message's reach_horizon, seed, sample_budget and constraint_margin (each
+/// when given).
 /// \throws RequestError naming the field: an unknown side or frame, wrong sizes, non-finite
 ///     numbers, a horizon outside [0, kMaxTransitionHorizon], a negative seed other than -1.
 FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep::Request& m,

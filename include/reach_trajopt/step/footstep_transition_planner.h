@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -131,12 +132,15 @@ struct FootstepTransition {
   bool usable() const { return trajectory.status != OcpStatus::kFailed; }
 };
 
-/// Progress callbacks of FootstepTransitionPlanner::plan (either may be empty): the
+/// Progress callbacks of FootstepTransitionPlanner::plan (any may be empty): the
 /// reachability check's after each slice, the OCP's after each gradient evaluation. Either
-/// returning false cancels the plan (ReachCancelled, common/cancelled.h).
+/// returning false cancels the plan (ReachCancelled, common/cancelled.h). `pass` is told the
+/// number of the pass that starts (1: the quick pass or the only one; 2: the full budget after
+/// a quick pass, reach.quick_pass): the check and the OCP report again in the second pass.
 struct FootstepPlanProgress {
   ReachProgressCallback check;
   OcpProgressCallback ocp;
+  std::function<void(int)> pass;
 };
 
 /// @brief Kinematic check + reachability check + transition OCP of one footstep (Sec. III).

@@ -1,0 +1,268 @@
+// ROS layer, the check_footstep service's conversions (no master): a step of the demo's pushed
+// walk (test/fixtures/pushed_walk_requests.jsonl) planned with its footstep check sent through
+// the request and answered through the response is the step the in-process planner plans, bit
+// for bit (verdict, passes, witness, eq. 23's hulls, the OCP's trajectory), as reachability_node
+// and transition_ocp_node need; the request carries the pass's sample budget and hull margin
+// (the quick pass's differ from the node's); malformed
+// requests are rejected naming the field, malformed answers are errors naming it.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/json_reader.h"
+#include "reach_trajopt/ros/footstep_check_msgs.h"
+#include "reach_trajopt/step/footstep_plan_request_json.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
+
+using namespace reach_trajopt;
+namespace rb = reach_trajopt::ros_bridge;
+
+namespace {
+
+const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
+
+struct Pipeline {
+  std::shared_ptr<const RobotModel> model;
+  ContactConfig contact;
+  FootstepPlannerConfig config;
+  Pipeline() {
+    const YamlSection file = YamlSection::loadFile(kRepo + "/config/biped.yaml");
+    contact = ContactConfig::fromYaml(file.section("contact"));
+    config = FootstepPlannerConfig::fromYaml(file);
+    model = RobotModel::fromUrdfFile(kRepo + "/urdf/biped.urdf");
+  }
+  std::unique_ptr<FootstepTransitionPlanner> planner() const {
+    return std::make_unique<FootstepTransitionPlanner>(model, contact, config);
+  }
+};
+
+const Pipeline& pipeline() {
+  static const Pipeline p;
+  return p;
+}
+
+// The `index`-th footstep of the pushed walk fixture.
+FootstepPlanRequest walkRequest(size_t index) {
+  std::ifstream in(kRepo + "/test/fixtures/pushed_walk_requests.jsonl");
+  std::string line;
+  for (size_t i = 0; std::getline(in, line); ++i) {
+    if (i != index) continue;
+    const nlohmann::json j = JsonReader::parse(line, "fixture");
+    return readFootstepPlanRequest(JsonReader(j, "fixture"), pipeline().model->nq(),
+                                   pipeline().config.reach);
+  }
+  throw std::runtime_error("fixture: no request " + std::to_string(index));
+}
+
+bool sameBits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::equal(a.data(), a.data() + a.size(), b.data());
+}
+
+void expectRejected(const std::function<void()>& f, const std::string& field) {
+  try {
+    f();
+    ADD_FAILURE() << "accepted; expected a rejection naming " << field;
+  } catch (const RequestError& e) {
+    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+  }
+}
+
+// The footstep check the planner makes of the fixture's step `index` (x_0 made contact
+// consistent by the planner's step 1, the foothold flat in the stance heading).
+FootstepRequest footstepRequest(size_t index) {
+  FootstepPlanRequest plan = walkRequest(index);
+  plan.check_reachability = false;
+  plan.solve_ocp = false;
+  const FootstepTransition kinematic = pipeline().planner()->plan(plan);
+  FootstepRequest r;
+  r.stance = kinematic.stance;
+  r.stance_foothold = kinematic.stance_contact;
+  r.target = kinematic.target;
+  r.q0 = kinematic.q0;
+  r.qd0 = kinematic.qd0;
+  if (plan.touchdown_com) r.touchdown_com_velocity = plan.touchdown_com->pd;
+  return r;
+}
+
+}  // namespace
+
+TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
+  const Pipeline& p = pipeline();
+  const auto here = p.planner();
+  // What reachability_node does with each request, and transition_ocp_node with the answer.
+  const auto node = p.planner();
+  auto there = p.planner();
+  int calls = 0;
+  there->setFootstepCheck([&](const FootstepRequest& request, const ReachConfig& reach,
+                              bool reachability) {
+    ++calls;
+    const auto request_msg =
+        rb::toCheckFootstepRequestMsg(request, reach, reachability, false, ros::Time(2.0));
+    const rb::FootstepCheckCall call =
+        rb::fromCheckFootstepRequestMsg(request_msg, p.model->nq(), p.config.reach);
+    const FootstepCheckResult checked =
+        checkFootstep(node->footstepReachability(), call.request, call.reach, call.reachability);
+    const auto response = rb::toCheckFootstepResponseMsg(checked, ReachabilityResult());
+    return rb::fromCheckFootstepResponseMsg(response, p.model->nq());
+  });
+  for (size_t index : {0u, 1u}) {
+    SCOPED_TRACE("fixture step " + std::to_string(index));
+    const FootstepPlanRequest request = walkRequest(index);
+    const FootstepTransition a = here->plan(request);
+    const FootstepTransition b = there->plan(request);
+    EXPECT_EQ(b.verdict, a.verdict);
+    EXPECT_EQ(b.certificate, a.certificate);
+    EXPECT_EQ(b.check_passes, a.check_passes);
+    EXPECT_EQ(b.reason, a.reason);
+    EXPECT_EQ(b.kinematically_feasible, a.kinematically_feasible);
+    EXPECT_EQ(b.check.reachable, a.check.reachable);
+    EXPECT_TRUE(sameBits(b.check.kinematics.q_f, a.check.kinematics.q_f));
+    EXPECT_TRUE(sameBits(b.check.reach.witness.q, a.check.reach.witness.q));
+    EXPECT_EQ(b.check.reach.witness.time, a.check.reach.witness.time);
+    EXPECT_EQ(b.trajectory.status, a.trajectory.status);
+    EXPECT_TRUE(sameBits(b.trajectory.q, a.trajectory.q));
+    EXPECT_TRUE(sameBits(b.trajectory.u, a.trajectory.u));
+    EXPECT_TRUE(sameBits(b.foothold, a.foothold));
+  }
+  EXPECT_GT(calls, 0);
+}
+
+TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
+  const Pipeline& p = pipeline();
+  FootstepRequest r = footstepRequest(1);
+  r.touchdown_pelvis_position = Eigen::Vector3d(0.01, -0.02, 0.9);
+  ReachConfig quick = p.config.reach;
+  quick.horizon = 0.17;
+  quick.seed = 11;
+  quick.initial_samples = 900;
+  quick.children_per_parent = 3;
+  quick.backward_children_per_parent = 7;
+  quick.max_boundary = 21;
+  quick.interior_samples = 5;
+  quick.certificate_candidates = 2;
+  quick.constraint_margin = 0.023;
+  const auto m = rb::toCheckFootstepRequestMsg(r, quick, true, true, ros::Time(1.25));
+  EXPECT_EQ(m.header.frame_id, "world");
+  EXPECT_EQ(m.header.stamp, ros::Time(1.25));
+  const rb::FootstepCheckCall c = rb::fromCheckFootstepRequestMsg(m, p.model->nq(), p.config.reach);
+  EXPECT_TRUE(c.reachability);
+  EXPECT_TRUE(c.samples);
+  EXPECT_EQ(c.request.stance, r.stance);
+  EXPECT_TRUE(sameBits(c.request.q0, r.q0));
+  EXPECT_TRUE(sameBits(c.request.qd0, r.qd0));
+  EXPECT_TRUE(sameBits(c.request.target.position, r.target.position));
+  EXPECT_EQ(c.request.target.yaw, r.target.yaw);
+  EXPECT_TRUE(sameBits(c.request.stance_foothold.position, r.stance_foothold.position));
+  EXPECT_TRUE(sameBits(c.request.touchdown_com_velocity, r.touchdown_com_velocity));
+  ASSERT_TRUE(c.request.touchdown_pelvis_position.has_value());
+  EXPECT_TRUE(sameBits(*c.request.touchdown_pelvis_position, *r.touchdown_pelvis_position));
+  EXPECT_TRUE(c.request.qdf.size() == 0);
+  EXPECT_EQ(c.reach.horizon, 0.17);
+  EXPECT_EQ(c.reach.seed, 11u);
+  EXPECT_EQ(c.reach.initial_samples, 900);
+  EXPECT_EQ(c.reach.children_per_parent, 3);
+  EXPECT_EQ(c.reach.backward_children_per_parent, 7);
+  EXPECT_EQ(c.reach.max_boundary, 21);
+  EXPECT_EQ(c.reach.interior_samples, 5);
+  EXPECT_EQ(c.reach.certificate_candidates, 2);
+  EXPECT_EQ(c.reach.constraint_margin, 0.023);
+  // The rest is the node's: here its delta, not one sent.
+  EXPECT_EQ(c.reach.delta, p.config.reach.delta);
+
+  // Empty budget, horizon 0 and seed -1: the node's own.
+  auto defaults = m;
+  defaults.sample_budget.clear();
+  defaults.reach_horizon = 0.0;
+  defaults.seed = -1;
+  defaults.constraint_margin.clear();
+  const rb::FootstepCheckCall d =
+      rb::fromCheckFootstepRequestMsg(defaults, p.model->nq(), p.config.reach);
+  EXPECT_EQ(d.reach.horizon, p.config.reach.horizon);
+  EXPECT_EQ(d.reach.seed, p.config.reach.seed);
+  EXPECT_EQ(d.reach.initial_samples, p.config.reach.initial_samples);
+  EXPECT_EQ(d.reach.constraint_margin, p.config.reach.constraint_margin);
+}
+
+TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
+  const Pipeline& p = pipeline();
+  const int nq = p.model->nq();
+  const auto good =
+      rb::toCheckFootstepRequestMsg(footstepRequest(1), p.config.reach, true, false, ros::Time(1));
+  EXPECT_NO_THROW(rb::fromCheckFootstepRequestMsg(good, nq, p.config.reach));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto reject = [&](const std::function<void(reach_trajopt::CheckFootstep::Request&)>& edit,
+                    const std::string& field) {
+    auto m = good;
+    edit(m);
+    expectRejected([&] { rb::fromCheckFootstepRequestMsg(m, nq, p.config.reach); }, field);
+  };
+  reject([](auto& m) { m.header.frame_id = "map"; }, "header.frame_id");
+  reject([](auto& m) { m.stance = "both"; }, "stance");
+  reject([](auto& m) { m.stance_foothold.resize(3); }, "stance_foothold");
+  reject([&](auto& m) { m.target[1] = nan; }, "target");
+  reject([](auto& m) { m.q0.pop_back(); }, "q0");
+  reject([&](auto& m) { m.qd0[0] = std::numeric_limits<double>::infinity(); }, "qd0");
+  reject([](auto& m) { m.qdf = {0.0, 1.0}; }, "qdf");
+  reject([](auto& m) { m.touchdown_com_velocity.clear(); }, "touchdown_com_velocity");
+  reject([](auto& m) { m.touchdown_pelvis_position = {0.0}; }, "touchdown_pelvis_position");
+  reject([](auto& m) { m.reach_horizon = -0.1; }, "reach_horizon");
+  reject([&](auto& m) { m.reach_horizon = nan; }, "reach_horizon");
+  reject([](auto& m) { m.reach_horizon = 1e9; }, "reach_horizon");
+  reject([](auto& m) { m.seed = -2; }, "seed");
+  reject([](auto& m) { m.sample_budget = {1000, 4, 12, 24, 8}; }, "sample_budget");
+  reject([](auto& m) { m.sample_budget = {0, 4, 12, 24, 8, 4}; }, "sample_budget");
+  reject([](auto& m) { m.sample_budget = {-5, 4, 12, 24, 8, 4}; }, "sample_budget");
+  reject([](auto& m) { m.constraint_margin = {0.01, 0.02}; }, "constraint_margin");
+  reject([&](auto& m) { m.constraint_margin = {nan}; }, "constraint_margin");
+  reject([](auto& m) { m.constraint_margin = {-0.01}; }, "constraint_margin");
+  // A budget beyond the memory limit (an unbounded allocation) is refused before any sampling.
+  reject([](auto& m) { m.sample_budget = {2000000000, 1000, 1000, 24, 8, 4}; }, "sample_budget");
+}
+
+TEST(RosFootstepCheckMsgs, MalformedAnswersAreErrorsNamingTheField) {
+  const Pipeline& p = pipeline();
+  const int nq = p.model->nq();
+  // A well-formed answer of a real check (the quick budget keeps it short).
+  const auto node = p.planner();
+  ReachConfig quick = p.config.reach;
+  quick.initial_samples = p.config.reach.quick_initial_samples;
+  quick.children_per_parent = p.config.reach.quick_children_per_parent;
+  quick.backward_children_per_parent = p.config.reach.quick_backward_children_per_parent;
+  const FootstepCheckResult checked =
+      checkFootstep(node->footstepReachability(), footstepRequest(1), quick, true);
+  ASSERT_TRUE(checked.result.kinematically_feasible) << checked.result.reason;
+  const auto good = rb::toCheckFootstepResponseMsg(checked, ReachabilityResult());
+  ASSERT_NO_THROW(rb::fromCheckFootstepResponseMsg(good, nq));
+  ASSERT_FALSE(good.window_time.empty());
+  ASSERT_FALSE(good.constraint_time.empty());
+  auto malformed = [&](const std::function<void(reach_trajopt::CheckFootstep::Response&)>& edit,
+                       const std::string& field) {
+    auto m = good;
+    edit(m);
+    try {
+      rb::fromCheckFootstepResponseMsg(m, nq);
+      ADD_FAILURE() << field << ": accepted";
+    } catch (const ReachError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  if (good.kinematically_feasible) malformed([](auto& m) { m.qdf.pop_back(); }, "qdf");
+  malformed([](auto& m) { m.q_f.push_back(0.0); }, "q_f");
+  malformed([](auto& m) { m.window_hausdorff.pop_back(); }, "window_hausdorff");
+  malformed([](auto& m) { m.window_overlap.push_back(true); }, "window_overlap");
+  malformed([](auto& m) { m.witness_q = {1.0, 2.0, 3.0}; }, "witness_q");
+  malformed([](auto& m) { m.witness_bridge_start = 1 << 20; }, "witness_bridge_start");
+  malformed([](auto& m) { m.constraint_rows.push_back(3); }, "constraint_rows");
+  malformed([](auto& m) { m.constraint_rows[0] += 1; }, "constraint_normals");
+  malformed([](auto& m) { m.constraint_offsets.pop_back(); }, "constraint_offsets");
+  if (good.witness_valid)
+    malformed([](auto& m) { m.witness_violation.resize(8); }, "witness_violation");
+}
