@@ -158,12 +158,7 @@ reach_trajopt::CheckFootstep::Response toCheckFootstepResponseMsg(
   m.witness_bridge_start = w.bridge_start;
   m.witness_time = w.time;
   m.witness_q.assign(w.q.data(), w.q.data() + w.q.size());
-  if (w.valid) {
-    const PathViolation& v = w.violation;
-    m.witness_violation = {v.dynamics,         v.cone,           v.torque,
-                           v.position_limit,   v.velocity_limit, v.contact,
-                           v.contact_velocity, v.integration,    v.ground};
-  }
+  if (w.valid) m.witness_violation = pathViolationVector(w.violation);
   m.witness_output_gap = w.output_gap;
   m.witness_position_gap = w.position_gap;
   m.witness_velocity_gap = w.velocity_gap;
@@ -226,9 +221,7 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
   if (w.bridge_start >= static_cast<int>(w.time.size()))
     throw ReachError("check_footstep response: witness_bridge_start: beyond witness_time");
   if (w.valid) {
-    requireEntries(m.witness_violation, 9, "witness_violation");
-    const std::vector<double>& v = m.witness_violation;
-    w.violation = PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+    w.violation = pathViolationFromVector(m.witness_violation, "check_footstep");
   }
   w.output_gap = m.witness_output_gap;
   w.position_gap = m.witness_position_gap;

@@ -53,6 +53,19 @@ std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
+std::vector<double> pathViolationVector(const PathViolation& v) {
+  return {v.dynamics,         v.cone,           v.torque,
+          v.position_limit,   v.velocity_limit, v.contact,
+          v.contact_velocity, v.integration,    v.ground};
+}
+
+PathViolation pathViolationFromVector(const std::vector<double>& v, const std::string& service) {
+  if (v.size() != 9)
+    throw ReachError(service + " response: witness_violation: expected 9 numbers, got " +
+                     std::to_string(v.size()));
+  return PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+}
+
 const char* ocpPolicyName(OcpPolicy p) {
   for (const auto& [value, name] : kOcpPolicies)
     if (value == p) return name;
@@ -172,12 +185,7 @@ reach_trajopt::PlanFootstep::Response toPlanFootstepResponseMsg(const FootstepTr
   m.step_horizon = step.horizon;
   const WitnessPath& w = step.check.reach.witness;
   m.witness_valid = w.valid;
-  if (w.valid) {
-    const PathViolation& v = w.violation;
-    m.witness_violation = {v.dynamics,         v.cone,           v.torque,
-                           v.position_limit,   v.velocity_limit, v.contact,
-                           v.contact_velocity, v.integration,    v.ground};
-  }
+  if (w.valid) m.witness_violation = pathViolationVector(w.violation);
   m.witness_position_gap = w.position_gap;
   m.witness_velocity_gap = w.velocity_gap;
   m.witness_terminal_position_gap = w.terminal_position_gap;
@@ -212,11 +220,7 @@ FootstepTransition fromPlanFootstepResponseMsg(const reach_trajopt::PlanFootstep
   WitnessPath& w = s.check.reach.witness;
   w.valid = m.witness_valid;
   if (w.valid) {
-    if (m.witness_violation.size() != 9)
-      throw ReachError("plan_footstep response: witness_violation has " +
-                       std::to_string(m.witness_violation.size()) + " numbers, expected 9");
-    const std::vector<double>& v = m.witness_violation;
-    w.violation = PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+    w.violation = pathViolationFromVector(m.witness_violation, "plan_footstep");
   }
   w.position_gap = m.witness_position_gap;
   w.velocity_gap = m.witness_velocity_gap;

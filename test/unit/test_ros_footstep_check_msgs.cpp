@@ -20,9 +20,12 @@
 #include "reach_trajopt/ros/footstep_check_msgs.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "ros_message_checks.h"
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
+using reach_trajopt::test::expectRejected;
+using reach_trajopt::test::sameBits;
 
 namespace {
 
@@ -59,20 +62,6 @@ FootstepPlanRequest walkRequest(size_t index) {
                                    pipeline().config.reach);
   }
   throw std::runtime_error("fixture: no request " + std::to_string(index));
-}
-
-bool sameBits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
-         std::equal(a.data(), a.data() + a.size(), b.data());
-}
-
-void expectRejected(const std::function<void()>& f, const std::string& field) {
-  try {
-    f();
-    ADD_FAILURE() << "accepted; expected a rejection naming " << field;
-  } catch (const RequestError& e) {
-    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-  }
 }
 
 // The footstep check the planner makes of the fixture's step `index` (x_0 made contact

@@ -13,9 +13,12 @@
 
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/service_requests.h"
+#include "ros_message_checks.h"
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
+using reach_trajopt::test::expectRejected;
+using reach_trajopt::test::sameBits;
 
 namespace {
 
@@ -28,11 +31,6 @@ Eigen::VectorXd awkward(int n, unsigned seed) {
   Eigen::VectorXd v(n);
   for (int i = 0; i < n; ++i) v[i] = u(rng) / 3.0;
   return v;
-}
-
-bool sameBits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
-         std::equal(a.data(), a.data() + a.size(), b.data());
 }
 
 FootstepPlanRequest makeRequest(int nq) {
@@ -54,15 +52,6 @@ FootstepPlanRequest makeRequest(int nq) {
   r.ocp_policy = OcpPolicy::kAuto;
   r.on_infeasible = InfeasibleFootholdPolicy::kRelaxTowardTarget;
   return r;
-}
-
-void expectRejected(const std::function<void()>& f, const std::string& field) {
-  try {
-    f();
-    ADD_FAILURE() << "accepted; expected a rejection naming " << field;
-  } catch (const RequestError& e) {
-    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-  }
 }
 
 }  // namespace

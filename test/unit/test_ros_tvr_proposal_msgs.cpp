@@ -14,9 +14,12 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ros/tvr_proposal_msgs.h"
+#include "ros_message_checks.h"
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
+using reach_trajopt::test::expectRejected;
+using reach_trajopt::test::sameBits;
 
 namespace {
 
@@ -44,19 +47,6 @@ TvrProposalRequest randomRequest(unsigned seed) {
   r.com_height = 0.8 + 0.1 * u(rng);
   r.heuristic_bounds = seed % 3 == 0;
   return r;
-}
-
-bool sameBits(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() == b.x() && a.y() == b.y();
-}
-
-void expectRejected(const std::function<void()>& f, const std::string& field) {
-  try {
-    f();
-    ADD_FAILURE() << "accepted; expected a rejection naming " << field;
-  } catch (const RequestError& e) {
-    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-  }
 }
 
 }  // namespace

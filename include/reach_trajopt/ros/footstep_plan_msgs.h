@@ -29,6 +29,12 @@ namespace ros_bridge {
 Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const std::string& field);
 /// The float64[] of a message field.
 std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v);
+/// A witness's PathViolation as the services' 9 witness_violation numbers
+/// (reach/witness_path.h order: dynamics, cone, torque, position and velocity limits, contact,
+/// contact velocity, integration, ground) and back.
+std::vector<double> pathViolationVector(const PathViolation& v);
+/// \throws ReachError "<service> response: witness_violation: ..." unless `v` has 9 numbers.
+PathViolation pathViolationFromVector(const std::vector<double>& v, const std::string& service);
 
 /// The names of the messages: "by_verdict" | "strict" | "auto".
 const char* ocpPolicyName(OcpPolicy p);
