@@ -164,6 +164,18 @@ bool YamlSection::read(const std::string& key, int& value) const {
   return true;
 }
 
+bool YamlSection::read(const std::string& key, long long& value) const {
+  const YAML::Node n = impl_->node[key];
+  if (!n) return false;
+  try {
+    if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
+    value = n.as<long long>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(where(key) + ": expected an integer, got " + describe(n));
+  }
+  return true;
+}
+
 bool YamlSection::read(const std::string& key, bool& value) const {
   const YAML::Node n = impl_->node[key];
   if (!n) return false;

@@ -68,6 +68,7 @@ reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRe
       reach.initial_samples, reach.children_per_parent, reach.backward_children_per_parent,
       reach.max_boundary,    reach.interior_samples,    reach.certificate_candidates};
   m.constraint_margin = {reach.constraint_margin};
+  m.reach_config = reachConfigText(reach);
   m.return_samples = samples;
   return m;
 }
@@ -93,7 +94,7 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
         finiteVector(m.touchdown_pelvis_position, 3, "touchdown_pelvis_position");
   c.reachability = m.check_reachability;
   c.samples = m.return_samples;
-  c.reach = base;
+  c.reach = reachConfigFromText(m.reach_config, base);
   if (!std::isfinite(m.reach_horizon) || m.reach_horizon < 0.0 ||
       m.reach_horizon > kMaxTransitionHorizon) {
     std::ostringstream os;
@@ -121,8 +122,9 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
     c.reach.validate();
     c.reach.requireResourcesWithinLimits(nq);
   } catch (const ReachError& e) {
-    throw RequestError(std::string("reach_horizon/seed/sample_budget/constraint_margin: ") +
-                       e.what());
+    throw RequestError(
+        std::string("reach_config/reach_horizon/seed/sample_budget/constraint_margin: ") +
+        e.what());
   }
   return c;
 }

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "reach_trajopt/common/config_fields.h"
+#include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ocp/transition_request.h"
 #include "reach_trajopt/ros/conversions.h"
@@ -47,6 +49,20 @@ Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const st
   for (double x : v)
     if (!std::isfinite(x)) throw RequestError(field + ": a number is not finite");
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+std::string reachConfigText(const ReachConfig& reach) { return ReachConfig::fields().yaml(reach); }
+
+ReachConfig reachConfigFromText(const std::string& text, const ReachConfig& base) {
+  ReachConfig reach = base;
+  if (text.empty()) return reach;
+  try {
+    ReachConfig::fields().readInto(YamlSection::loadString(text, "reach_config"), reach);
+  } catch (const ReachError& e) {
+    throw RequestError(e.what());  // "reach_config: <key>: ..." (the YAML's source name)
+  }
+  reach.threads = base.threads;
+  return reach;
 }
 
 std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
@@ -103,6 +119,7 @@ reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlan
   const ReachConfig& used = r.reach ? *r.reach : reach;
   m.reach_horizon = used.horizon;
   m.seed = static_cast<int64_t>(used.seed);
+  m.reach_config = reachConfigText(used);
   m.ocp_policy = ocpPolicyName(r.ocp_policy);
   m.on_infeasible = infeasibleFootholdPolicyName(r.on_infeasible);
   return m;
@@ -149,14 +166,15 @@ FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep
     return h;
   };
   r.horizon = horizon("horizon", m.horizon);
-  ReachConfig reach = base;
+  ReachConfig reach = reachConfigFromText(m.reach_config, base);
   if (horizon("reach_horizon", m.reach_horizon) > 0.0) reach.horizon = m.reach_horizon;
   if (m.seed < -1) throw RequestError("seed: expected -1 (the node's) or >= 0");
   if (m.seed >= 0) reach.seed = static_cast<std::uint64_t>(m.seed);
   try {
     reach.validate();
+    reach.requireResourcesWithinLimits(nq);
   } catch (const ReachError& e) {
-    throw RequestError(std::string("reach_horizon/seed: ") + e.what());
+    throw RequestError(std::string("reach_config/reach_horizon/seed: ") + e.what());
   }
   r.reach = reach;
   r.ocp_policy = parseName(kOcpPolicies, "ocp_policy", m.ocp_policy);

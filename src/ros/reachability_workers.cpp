@@ -37,7 +37,10 @@ ReachabilityWorkerPool::ReachabilityWorkerPool(const ros::NodeHandle& nh,
   if (!(timeout_s > 0.0)) throw ConfigError("~worker_timeout must be > 0 s");
   if (!(retry_period_s >= 0.0)) throw ConfigError("~worker_retry_period must be >= 0 s");
   if (!in_process_) throw ConfigError("ReachabilityWorkerPool: no in-process check");
-  for (const std::string& s : services) workers_.push_back({s, ros::WallTime()});
+  for (const std::string& s : services)
+    workers_.push_back(
+        {std::make_shared<ServiceConnection<reach_trajopt::CheckFootholds>>(nh_, s),
+         ros::WallTime()});
   counts_.answered.assign(workers_.size(), 0);
 }
 
@@ -75,8 +78,7 @@ bool ReachabilityWorkerPool::sendRound(const FootholdCandidates& batch,
     const size_t w = available[calls.size()];
     calls.push_back(
         {c, w, id,
-         callAsync<reach_trajopt::CheckFootholds>(
-             nh_, workers_[w].service,
+         workers_[w].connection->callAsync(
              toCheckFootholdsRequestMsg(part(batch, chunks[c].begin, chunks[c].end), id))});
   }
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s_);
@@ -112,11 +114,12 @@ bool ReachabilityWorkerPool::sendRound(const FootholdCandidates& batch,
       continue;
     }
     ++counts_.failed;
+    worker.connection->drop();  // a restarted worker is found again, a hung one not queued on
     worker.out_until = ros::WallTime::now() + ros::WallDuration(retry_period_s_);
     ROS_WARN(
         "reachability worker '%s' (request %lu): %s; left out for %.1f s, its %zu "
         "candidates go to another worker or this process",
-        nh_.resolveName(worker.service).c_str(), static_cast<unsigned long>(call.id),
+        nh_.resolveName(worker.connection->service()).c_str(), static_cast<unsigned long>(call.id),
         failure.c_str(), retry_period_s_, chunk.end - chunk.begin);
   }
   return true;

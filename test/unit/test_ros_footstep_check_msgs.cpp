@@ -12,8 +12,10 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
@@ -172,12 +174,73 @@ TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
   defaults.reach_horizon = 0.0;
   defaults.seed = -1;
   defaults.constraint_margin.clear();
+  defaults.reach_config.clear();
   const rb::FootstepCheckCall d =
       rb::fromCheckFootstepRequestMsg(defaults, p.model->nq(), p.config.reach);
   EXPECT_EQ(d.reach.horizon, p.config.reach.horizon);
   EXPECT_EQ(d.reach.seed, p.config.reach.seed);
   EXPECT_EQ(d.reach.initial_samples, p.config.reach.initial_samples);
   EXPECT_EQ(d.reach.constraint_margin, p.config.reach.constraint_margin);
+}
+
+// The check runs the sender's whole reach section, not a hand-picked part of it: a field that
+// a pass changes and the message did not carry would be lost silently (the quick pass's hull
+// margin once was). Every row of the table, fields the 4 explicit ones do not name included.
+TEST(RosFootstepCheckMsgs, RequestCarriesTheWholeReachSection) {
+  const Pipeline& p = pipeline();
+  ReachConfig sent = p.config.reach;
+  sent.horizon = 0.12;
+  sent.window_start = 0.02;
+  sent.window_end = 0.06;
+  sent.seed = 4000000000u;  // above INT_MAX: the walk's --seed range
+  sent.angular_bins = 11;
+  sent.boundary_lookahead = {0.0, 0.003};
+  sent.vertex_fraction = 0.3;
+  sent.forward_integrator = "explicit";
+  sent.w_qdd = 2.5e-4;
+  sent.delta = 3e-5;
+  sent.overlap_gap_max = 0.004;
+  sent.certificate_tolerance = 2e-4;
+  sent.terminal_velocity_tolerance = 0.02;
+  sent.output_axes = "xy";
+  sent.swing_ground_margin = 0.001;
+  sent.quick_pass = !sent.quick_pass;
+  sent.quick_initial_samples = 700;
+  sent.quick_constraint_margin = 0.017;
+  sent.threads = 1;
+  ReachConfig node = p.config.reach;
+  node.threads = 2;
+  for (const ReachConfig& pass : {sent, sent.quickPassConfig()}) {
+    const auto m =
+        rb::toCheckFootstepRequestMsg(footstepRequest(1), pass, true, false, ros::Time(1));
+    const rb::FootstepCheckCall c = rb::fromCheckFootstepRequestMsg(m, p.model->nq(), node);
+    const auto want = ReachConfig::fields().rows(pass);
+    const auto got = ReachConfig::fields().rows(c.reach);
+    ASSERT_EQ(got.size(), want.size());
+    for (size_t i = 0; i < want.size(); ++i) {
+      if (want[i].key == "threads") {
+        EXPECT_EQ(c.reach.threads, node.threads) << "threads stays the receiving node's";
+        continue;
+      }
+      EXPECT_EQ(got[i].value, want[i].value) << "reach." << want[i].key << " was not carried";
+    }
+  }
+  // Bad sections are rejected naming the field and the key.
+  auto m = rb::toCheckFootstepRequestMsg(footstepRequest(1), sent, true, false, ros::Time(1));
+  m.sample_budget.clear();  // the explicit fields would replace the section's budget
+  m.constraint_margin.clear();
+  for (const auto& [text, key] : std::vector<std::pair<std::string, std::string>>{
+           {"initial_samples: many", "initial_samples"},
+           {"no_such_key: 1", "no_such_key"},
+           {"seed: -3", "seed"},
+           {"dt: [1, 2", "reach_config"},
+           {"initial_samples: 0", "initial_samples"},
+           {"initial_samples: 2000000000\nchildren_per_parent: 1000", "reach_config"}}) {
+    m.reach_config = text;
+    expectRejected([&] { rb::fromCheckFootstepRequestMsg(m, p.model->nq(), node); },
+                   "reach_config");
+    expectRejected([&] { rb::fromCheckFootstepRequestMsg(m, p.model->nq(), node); }, key);
+  }
 }
 
 TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {

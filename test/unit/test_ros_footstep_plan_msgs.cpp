@@ -89,6 +89,13 @@ TEST(RosFootstepPlanMsgs, RequestRoundTripIsExact) {
   EXPECT_EQ(back.reach->horizon, 0.2);
   EXPECT_EQ(back.reach->seed, 7u);
   EXPECT_EQ(back.reach->initial_samples, base.initial_samples);
+  // The sender's whole section travels (reach_config): a field besides horizon and seed too.
+  reach.certificate_candidates = base.certificate_candidates + 3;
+  const FootstepPlanRequest sent =
+      rb::fromPlanFootstepRequestMsg(rb::toPlanFootstepRequestMsg(r, reach, ros::Time(0)),
+                                     model->nq(), base);
+  EXPECT_EQ(sent.reach->certificate_candidates, base.certificate_candidates + 3);
+  EXPECT_EQ(sent.reach->threads, base.threads);
 
   // No yaw, no touchdown CoM, the node's seed and horizon: all stay unset.
   FootstepPlanRequest plain = r;
@@ -97,6 +104,7 @@ TEST(RosFootstepPlanMsgs, RequestRoundTripIsExact) {
   auto pm = rb::toPlanFootstepRequestMsg(plain, reach, ros::Time(0));
   pm.seed = -1;
   pm.reach_horizon = 0.0;
+  pm.reach_config.clear();
   const FootstepPlanRequest pb = rb::fromPlanFootstepRequestMsg(pm, model->nq(), base);
   EXPECT_FALSE(pb.target_yaw.has_value());
   EXPECT_FALSE(pb.touchdown_com.has_value());

@@ -41,6 +41,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -80,6 +81,9 @@ struct ParameterTable {
 std::string parameterText(double v);
 std::string parameterText(const std::vector<double>& v);
 
+/// `text` as a double-quoted YAML scalar (backslash, quote and control characters escaped).
+std::string quotedYaml(const std::string& text);
+
 /// The Markdown of docs/parameters.md for these tables (one section each).
 std::string parameterTableMarkdown(const std::vector<ParameterTable>& tables);
 
@@ -101,14 +105,17 @@ struct Value<int> {
   static bool read(const YamlSection& s, const std::string& k, int& v) { return s.read(k, v); }
   static std::string text(int v) { return std::to_string(v); }
 };
-/// Seeds: read as an int, a negative value is an error ("<where>: must be >= 0").
+/// Seeds: an integer, a negative value or one above the type's range is an error
+/// ("<where>: must be >= 0").
 template <typename U>
 struct Value<U, std::enable_if_t<std::is_same_v<U, unsigned> || std::is_same_v<U, std::uint64_t>>> {
   static const char* type() { return "integer >= 0"; }
   static bool read(const YamlSection& s, const std::string& k, U& v) {
-    int i = static_cast<int>(v);
+    long long i = 0;
     if (!s.read(k, i)) return false;
     if (i < 0) throw ConfigError(s.where(k) + ": must be >= 0");
+    if (static_cast<unsigned long long>(i) > std::numeric_limits<U>::max())
+      throw ConfigError(s.where(k) + ": must be <= " + std::to_string(std::numeric_limits<U>::max()));
     v = static_cast<U>(i);
     return true;
   }
@@ -270,6 +277,20 @@ class ConfigFields {
     for (const Field& f : fields_) {
       out.push_back(f.row);
       out.back().value = f.text(config);
+    }
+    return out;
+  }
+
+  /// The section as YAML text with the values of `config`, one "key: value" line per field
+  /// (strings quoted, numbers in their round-trip form): read() of it gives `config` back. How a
+  /// whole section travels in a message (CheckFootstep.srv reach_config). A custom() field's
+  /// text must be YAML its read accepts.
+  std::string yaml(const Config& config) const {
+    std::string out;
+    for (const Field& f : fields_) {
+      std::string value = f.text(config);
+      if (f.row.type == config_detail::Value<std::string>::type()) value = quotedYaml(value);
+      out += f.row.key + ": " + value + "\n";
     }
     return out;
   }

@@ -43,6 +43,7 @@ class YamlSection {
   /// key is present with the wrong type. Returns whether the key was present.
   bool read(const std::string& key, double& value) const;
   bool read(const std::string& key, int& value) const;
+  bool read(const std::string& key, long long& value) const;
   bool read(const std::string& key, bool& value) const;
   bool read(const std::string& key, std::string& value) const;
   bool read(const std::string& key, std::vector<double>& value) const;

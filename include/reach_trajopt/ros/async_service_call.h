@@ -4,6 +4,12 @@
 /// (stopped, deadlocked, not dead) blocks its caller for ever. callAsync() makes the call on a
 /// thread of its own (detached, it owns its state: it stays blocked until that node dies) and
 /// the caller waits with a deadline instead (PendingCall::waitUntil).
+///
+/// ServiceConnection keeps one persistent connection per service: a non-persistent
+/// ros::ServiceClient asks the master for the service and opens a TCP connection on every call
+/// (3-4 calls per walking step); a persistent one does that once. A connection whose call
+/// failed or timed out is dropped, so a restarted or replaced node is found again on the next
+/// call, and a hung one never blocks a later call behind its stuck one.
 
 #include <ros/ros.h>
 
@@ -36,26 +42,71 @@ struct PendingCall {
   }
 };
 
-/// Calls `service` with `request` on its own thread; wait on the returned PendingCall.
+/// The thread of one call: `client->call(request)`, its answer into `answer`.
 template <class Service>
-std::shared_ptr<PendingCall<Service>> callAsync(const ros::NodeHandle& nh,
-                                                const std::string& service,
-                                                typename Service::Request request) {
-  auto answer = std::make_shared<PendingCall<Service>>();
-  std::thread([answer, nh, service, request = std::move(request)]() mutable {
+void startCall(std::shared_ptr<ros::ServiceClient> client,
+               std::shared_ptr<PendingCall<Service>> answer, typename Service::Request request) {
+  std::thread([answer, client = std::move(client), request = std::move(request)]() mutable {
     Service srv;
     srv.request = std::move(request);
-    ros::NodeHandle handle = nh;
-    ros::ServiceClient client = handle.serviceClient<Service>(service);
-    const bool ok = client.call(srv);
+    const bool ok = client->call(srv);
     std::lock_guard<std::mutex> lock(answer->mutex);
     answer->done = true;
     answer->ok = ok;
     answer->response = std::move(srv.response);
     answer->answered.notify_all();
   }).detach();
+}
+
+/// Calls `service` with `request` on its own thread, on a new non-persistent connection; wait
+/// on the returned PendingCall.
+template <class Service>
+std::shared_ptr<PendingCall<Service>> callAsync(const ros::NodeHandle& nh,
+                                                const std::string& service,
+                                                typename Service::Request request) {
+  ros::NodeHandle handle = nh;
+  auto client = std::make_shared<ros::ServiceClient>(handle.serviceClient<Service>(service));
+  auto answer = std::make_shared<PendingCall<Service>>();
+  startCall<Service>(std::move(client), answer, std::move(request));
   return answer;
 }
+
+/// @brief A persistent connection to one service, opened on the first call and after drop().
+/// Thread-safe; calls made while another is pending queue behind it on the same connection
+/// (roscpp serializes a persistent link's calls).
+template <class Service>
+class ServiceConnection {
+ public:
+  /// \param service  resolved in `nh` (relative names are remappable)
+  ServiceConnection(const ros::NodeHandle& nh, const std::string& service)
+      : nh_(nh), service_(service) {}
+
+  /// Calls the service on its own thread with `request`; wait on the returned PendingCall.
+  std::shared_ptr<PendingCall<Service>> callAsync(typename Service::Request request) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!client_)
+      client_ = std::make_shared<ros::ServiceClient>(
+          nh_.serviceClient<Service>(service_, /*persistent=*/true));
+    auto answer = std::make_shared<PendingCall<Service>>();
+    startCall<Service>(client_, answer, std::move(request));
+    return answer;
+  }
+
+  /// Forgets the connection (its call failed or timed out): the next call opens a new one. A
+  /// thread still blocked on it keeps its own reference.
+  void drop() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    client_.reset();
+  }
+
+  const std::string& service() const { return service_; }
+
+ private:
+  ros::NodeHandle nh_;
+  std::string service_;
+  std::mutex mutex_;  ///< guards client_
+  std::shared_ptr<ros::ServiceClient> client_;
+};
 
 }  // namespace ros_bridge
 }  // namespace reach_trajopt

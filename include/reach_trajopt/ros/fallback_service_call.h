@@ -6,7 +6,8 @@
 /// answered within `timeout` wall seconds means the node is hung (stopped, not dead; a
 /// ros::ServiceClient::call would block for ever, async_service_call.h), and the service is not
 /// asked again. Either way the caller gets no answer and does the work in process; each case
-/// is logged as a warning.
+/// is logged as a warning. The calls share one persistent connection (ServiceConnection),
+/// reopened after a failed call.
 
 #include <ros/ros.h>
 
@@ -27,8 +28,7 @@ class FallbackServiceCall {
   /// \param caller   names the caller in the warnings (e.g. "sim_node")
   FallbackServiceCall(const ros::NodeHandle& nh, const std::string& service, int retries,
                       double timeout, std::string caller)
-      : nh_(nh),
-        service_(nh.resolveName(service)),
+      : connection_(nh, nh.resolveName(service)),
         retries_(retries),
         timeout_(timeout),
         caller_(std::move(caller)) {}
@@ -41,34 +41,35 @@ class FallbackServiceCall {
     for (int attempt = 0; attempt <= retries_ && !hung_; ++attempt) {
       if (attempt > 0) {
         ROS_WARN("%s: the call of '%s' failed (attempt %d of %d)", caller_.c_str(),
-                 service_.c_str(), attempt, retries_ + 1);
+                 service().c_str(), attempt, retries_ + 1);
         ros::WallDuration(0.1).sleep();
       }
-      const auto pending = callAsync<Service>(nh_, service_, request);
+      const auto pending = connection_.callAsync(request);
       if (!pending->waitUntil(ros::WallTime::now() + ros::WallDuration(timeout_))) {
         hung_ = true;
+        connection_.drop();
         ROS_WARN(
             "%s: '%s' did not answer within %.1f s: hung; %s and everything later done in "
             "process",
-            caller_.c_str(), service_.c_str(), timeout_, what.c_str());
+            caller_.c_str(), service().c_str(), timeout_, what.c_str());
         return std::nullopt;
       }
       std::lock_guard<std::mutex> lock(pending->mutex);
       if (pending->ok) return std::move(pending->response);
+      connection_.drop();  // the node died or went away: a new connection finds its successor
     }
     if (!hung_)
       ROS_WARN("%s: the call of '%s' failed %d times; %s done in process", caller_.c_str(),
-               service_.c_str(), retries_ + 1, what.c_str());
+               service().c_str(), retries_ + 1, what.c_str());
     return std::nullopt;
   }
 
   /// A call timed out: the service is not asked again.
   bool hung() const { return hung_; }
-  const std::string& service() const { return service_; }
+  const std::string& service() const { return connection_.service(); }
 
  private:
-  ros::NodeHandle nh_;
-  std::string service_;
+  ServiceConnection<Service> connection_;
   int retries_;
   double timeout_;
   std::string caller_;

@@ -36,6 +36,17 @@ std::vector<double> pathViolationVector(const PathViolation& v);
 /// \throws ReachError "<service> response: witness_violation: ..." unless `v` has 9 numbers.
 PathViolation pathViolationFromVector(const std::vector<double>& v, const std::string& service);
 
+/// The `reach_config` field of check_footstep and plan_footstep: the whole reach section of
+/// the pass to run, as YAML (ReachConfig::fields().yaml(): every key of docs/parameters.md's
+/// reach table), so the node runs exactly the sender's pass whatever the pass changed
+/// (quickPassConfig() and the next one), not a hand-picked part of it.
+std::string reachConfigText(const ReachConfig& reach);
+/// `text` read over `base` (empty text: `base`), `threads` kept from `base` (a resource of the
+/// machine that runs the check; the results do not depend on it). Not validated: the caller
+/// validates after its other fields. \throws RequestError "reach_config: <key>: ..." on YAML
+/// that does not parse, an unknown key or a value of the wrong type.
+ReachConfig reachConfigFromText(const std::string& text, const ReachConfig& base);
+
 /// The names of the messages: "by_verdict" | "strict" | "auto".
 const char* ocpPolicyName(OcpPolicy p);
 /// "nearest_feasible" | "relax_toward_target" | "reject" | "no_fallback".

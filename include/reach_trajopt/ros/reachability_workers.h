@@ -13,11 +13,14 @@
 #include <ros/ros.h>
 
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/CheckFootholds.h"
 #include "reach_trajopt/planner/nearest_feasible_foothold.h"
+#include "reach_trajopt/ros/async_service_call.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
@@ -47,7 +50,7 @@ class ReachabilityWorkerPool {
 
  private:
   struct Worker {
-    std::string service;
+    std::shared_ptr<ServiceConnection<reach_trajopt::CheckFootholds>> connection;
     ros::WallTime out_until;  ///< left out before this time (after a failure)
   };
   struct Chunk {
