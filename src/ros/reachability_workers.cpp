@@ -38,9 +38,8 @@ ReachabilityWorkerPool::ReachabilityWorkerPool(const ros::NodeHandle& nh,
   if (!(retry_period_s >= 0.0)) throw ConfigError("~worker_retry_period must be >= 0 s");
   if (!in_process_) throw ConfigError("ReachabilityWorkerPool: no in-process check");
   for (const std::string& s : services)
-    workers_.push_back(
-        {std::make_shared<ServiceConnection<reach_trajopt::CheckFootholds>>(nh_, s),
-         ros::WallTime()});
+    workers_.push_back({std::make_shared<ServiceConnection<reach_trajopt::CheckFootholds>>(nh_, s),
+                        ros::WallTime()});
   counts_.answered.assign(workers_.size(), 0);
 }
 
@@ -76,10 +75,9 @@ bool ReachabilityWorkerPool::sendRound(const FootholdCandidates& batch,
       id = next_id_++;
     }
     const size_t w = available[calls.size()];
-    calls.push_back(
-        {c, w, id,
-         workers_[w].connection->callAsync(
-             toCheckFootholdsRequestMsg(part(batch, chunks[c].begin, chunks[c].end), id))});
+    calls.push_back({c, w, id,
+                     workers_[w].connection->callAsync(toCheckFootholdsRequestMsg(
+                         part(batch, chunks[c].begin, chunks[c].end), id))});
   }
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s_);
   for (const Call& call : calls) {

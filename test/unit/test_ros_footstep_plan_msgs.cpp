@@ -91,9 +91,8 @@ TEST(RosFootstepPlanMsgs, RequestRoundTripIsExact) {
   EXPECT_EQ(back.reach->initial_samples, base.initial_samples);
   // The sender's whole section travels (reach_config): a field besides horizon and seed too.
   reach.certificate_candidates = base.certificate_candidates + 3;
-  const FootstepPlanRequest sent =
-      rb::fromPlanFootstepRequestMsg(rb::toPlanFootstepRequestMsg(r, reach, ros::Time(0)),
-                                     model->nq(), base);
+  const FootstepPlanRequest sent = rb::fromPlanFootstepRequestMsg(
+      rb::toPlanFootstepRequestMsg(r, reach, ros::Time(0)), model->nq(), base);
   EXPECT_EQ(sent.reach->certificate_candidates, base.certificate_candidates + 3);
   EXPECT_EQ(sent.reach->threads, base.threads);
 

@@ -115,7 +115,8 @@ struct Value<U, std::enable_if_t<std::is_same_v<U, unsigned> || std::is_same_v<U
     if (!s.read(k, i)) return false;
     if (i < 0) throw ConfigError(s.where(k) + ": must be >= 0");
     if (static_cast<unsigned long long>(i) > std::numeric_limits<U>::max())
-      throw ConfigError(s.where(k) + ": must be <= " + std::to_string(std::numeric_limits<U>::max()));
+      throw ConfigError(s.where(k) +
+                        ": must be <= " + std::to_string(std::numeric_limits<U>::max()));
     v = static_cast<U>(i);
     return true;
   }
