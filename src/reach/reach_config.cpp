@@ -136,6 +136,14 @@ void ReachConfig::validate() const {
   }
 }
 
+ReachConfig ReachConfig::hullPassConfig() const {
+  ReachConfig c = *this;
+  c.quick_pass = false;
+  c.hull_pass = false;
+  c.forward_set_only = true;
+  return c;
+}
+
 ReachConfig ReachConfig::quickPassConfig() const {
   ReachConfig c = *this;
   c.quick_pass = false;
@@ -261,7 +269,12 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
           .add("quick_certificate_candidates", &C::quick_certificate_candidates, "",
                "certificate_candidates of the quick pass")
           .add("quick_constraint_margin", &C::quick_constraint_margin, "m",
-               "constraint_margin of the quick pass (its sparser hulls grow more)");
+               "constraint_margin of the quick pass (its sparser hulls grow more)")
+          .add("hull_pass", &C::hull_pass, "",
+               "when the quick pass's strict OCP fails, solve it again in the hulls of the full "
+               "budget's forward set alone before the full pass")
+          .add("forward_set_only", &C::forward_set_only, "",
+               "the forward set alone (no backward set, no verdict): the hull pass's check");
   return f;
 }
 

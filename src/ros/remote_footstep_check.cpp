@@ -38,7 +38,8 @@ FootstepCheckResult RemoteFootstepCheck::check(const FootstepRequest& request,
     if (!answer->success) throw RequestError(answer->message);
     try {
       FootstepCheckResult result = fromCheckFootstepResponseMsg(*answer, nq_);
-      checked_ = answer->reachability;
+      // The hull pass's forward set alone has no verdict: the step's check is the one before.
+      if (!config.forward_set_only) checked_ = answer->reachability;
       ++remote_checks_;
       return result;
     } catch (const ReachError& e) {
@@ -53,6 +54,7 @@ FootstepCheckResult RemoteFootstepCheck::checkHere(const FootstepRequest& reques
                                                    const ReachConfig& config, bool reachability) {
   FootstepCheckResult result =
       checkFootstep(local_->footstepReachability(), request, config, reachability);
+  if (config.forward_set_only) return result;  // no verdict: the step's check is the one before
   checked_ = checkedFootstepMsg(result.result, swingFrame(contact_, request.stance),
                                 request.target.position, config.delta, stamp_, samples_);
   return result;

@@ -11,6 +11,7 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
 #include "reach_trajopt/step/contact_consistent_state.h"
+#include "reach_trajopt/step/reachable_set_constraint.h"
 
 namespace reach_trajopt {
 namespace {
@@ -89,21 +90,71 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
   // without a trajectory. A kinematically infeasible foothold is decided before any sample is
   // drawn: its quick pass is final too.
   FootstepTransition quick = planWith(r, reach.quickPassConfig(), progress);
-  const bool has_trajectory = !r.solve_ocp || (quick.trajectory.status == OcpStatus::kConverged &&
-                                               !quick.trajectory.relaxed);
-  if (!quick.kinematically_feasible || (quick.reachable && has_trajectory)) return quick;
-  if (progress.pass) progress.pass(2);
+  if (!quick.kinematically_feasible || (quick.reachable && hasStrictTrajectory(r, quick)))
+    return quick;
+  int passes = 1;
+  double check_time_s = quick.check_time_s, ocp_time_s = quick.ocp_time_s;
+  // The hull pass: the quick pass's OCP again, in the full budget's forward hulls.
+  if (reach.hull_pass && r.solve_ocp && quick.check.reach.witness.valid) {
+    ++passes;
+    if (progress.pass) progress.pass(passes);
+    FootstepTransition hull = solveInFullHulls(r, reach, quick, progress);
+    check_time_s += hull.check_time_s;
+    ocp_time_s += hull.ocp_time_s;
+    if (hull.reachable && hasStrictTrajectory(r, hull)) {
+      hull.check_passes = passes;
+      hull.check_time_s = check_time_s;
+      hull.ocp_time_s = ocp_time_s;
+      hull.reason =
+          "the quick pass's strict OCP failed in its hulls, solved in the full budget's forward "
+          "set's: " +
+          hull.reason;
+      return hull;
+    }
+  }
+  ++passes;
+  if (progress.pass) progress.pass(passes);
   FootstepTransition full = planWith(r, reach, progress);
   // A certificate is never given up: when only the quick pass found one, its plan stands.
   FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;
   const char* why = quick.reachable ? "the quick pass's certified step has no strict trajectory"
                                     : "the quick pass certified nothing";
-  kept.check_passes = 2;
-  kept.check_time_s = quick.check_time_s + full.check_time_s;
-  kept.ocp_time_s = quick.ocp_time_s + full.ocp_time_s;
+  kept.check_passes = passes;
+  kept.check_time_s = check_time_s + full.check_time_s;
+  kept.ocp_time_s = ocp_time_s + full.ocp_time_s;
   kept.reason =
       std::string(why) + (&kept == &full ? ", the full budget: " : ", kept: ") + kept.reason;
   return kept;
+}
+
+bool FootstepTransitionPlanner::hasStrictTrajectory(const FootstepPlanRequest& r,
+                                                    const FootstepTransition& step) {
+  return !r.solve_ocp ||
+         (step.trajectory.status == OcpStatus::kConverged && !step.trajectory.relaxed);
+}
+
+FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
+    const FootstepPlanRequest& r, const ReachConfig& reach, const FootstepTransition& quick,
+    const FootstepPlanProgress& progress) const {
+  FootstepTransition out;
+  out.request = r;
+  out.stance = r.stance;
+  out.horizon = quick.horizon;
+  const Eigen::Isometry3d held = initialState(r, out);
+  const Touchdown touchdown = predictTouchdown(r, out);
+  // The full budget's forward set alone (the full pass's, bit for bit: same seed and budget).
+  FootstepTransition forward = out;
+  std::vector<ReachableSlice> hulls =
+      checkFoothold(r, reach.hullPassConfig(), touchdown, progress.check, forward);
+  // The quick pass's check stands (verdict, IK, witness): only the OCP's hulls change, cut
+  // where its witness leaves the sampled sets.
+  recordCheck(quick.check, true, out);
+  out.check_time_s = forward.check_time_s;
+  if (!forward.kinematically_feasible) return out;  // not the quick pass's IK: no retry
+  solveTransition(r, held, touchdown,
+                  slicesUpToJunction(std::move(hulls), quick.check.reach.witness), progress.ocp,
+                  out);
+  return out;
 }
 
 FootstepTransition FootstepTransitionPlanner::planWith(const FootstepPlanRequest& r,
@@ -181,18 +232,24 @@ std::vector<ReachableSlice> FootstepTransitionPlanner::checkFoothold(
   FootstepCheckResult checked =
       footstep_check_ ? footstep_check_(request, reach, r.check_reachability)
                       : checkFootstep(footsteps_, request, reach, r.check_reachability, progress);
-  out.check = std::move(checked.result);
-  const FootstepResult& check = out.check;
+  recordCheck(std::move(checked.result), r.check_reachability, out);
   out.check_time_s = secondsSince(check_start);
-  out.kinematically_feasible = check.kinematically_feasible;
-  out.reachable = check.reachable;
-  out.verdict = verdictOf(check, r.check_reachability);
-  out.reason = check.reason;
-  for (const SliceComparison& c : check.reach.window)
-    out.hausdorff_distance = out.hausdorff_distance < 0.0
-                                 ? c.distance.hausdorff
-                                 : std::min(out.hausdorff_distance, c.distance.hausdorff);
   return std::move(checked.set_constraint);
+}
+
+void FootstepTransitionPlanner::recordCheck(FootstepResult check, bool checked,
+                                            FootstepTransition& out) {
+  out.check = std::move(check);
+  const FootstepResult& c = out.check;
+  out.kinematically_feasible = c.kinematically_feasible;
+  out.reachable = c.reachable;
+  out.verdict = verdictOf(c, checked);
+  out.reason = c.reason;
+  out.hausdorff_distance = -1.0;
+  for (const SliceComparison& w : c.reach.window)
+    out.hausdorff_distance = out.hausdorff_distance < 0.0
+                                 ? w.distance.hausdorff
+                                 : std::min(out.hausdorff_distance, w.distance.hausdorff);
 }
 
 void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,

@@ -3,19 +3,40 @@
 
 #include "reach_trajopt/step/reachable_set_constraint.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "reach_trajopt/reach/output_hull.h"
 
 namespace reach_trajopt {
+
+namespace {
+
+/// The last time [s] of the slices the witness passes through (its bridge start); +inf without
+/// a valid witness.
+double junctionTime(const WitnessPath& w) {
+  return w.valid && w.bridge_start >= 0 ? w.time[w.bridge_start] + 1e-12 : HUGE_VAL;
+}
+
+}  // namespace
+
+std::vector<ReachableSlice> slicesUpToJunction(std::vector<ReachableSlice> slices,
+                                               const WitnessPath& witness) {
+  const double until = junctionTime(witness);
+  slices.erase(std::remove_if(slices.begin(), slices.end(),
+                              [until](const ReachableSlice& s) { return s.time > until; }),
+               slices.end());
+  return slices;
+}
 
 std::vector<ReachableSlice> reachableSetConstraint(const ReachResult& result,
                                                    const std::string& output_axes, double margin) {
   std::vector<ReachableSlice> out;
   const auto ix = output_axes.find('x'), iy = output_axes.find('y');
   if (ix == std::string::npos || iy == std::string::npos) return out;
-  const WitnessPath& w = result.witness;
-  const double until = w.valid && w.bridge_start >= 0 ? w.time[w.bridge_start] : HUGE_VAL;
+  const double until = junctionTime(result.witness);
   for (const SampleSlice& s : result.forward) {
-    if (s.time <= 0.0 || s.time > until + 1e-12 || s.size() < 3) continue;
+    if (s.time <= 0.0 || s.time > until || s.size() < 3) continue;
     Eigen::MatrixXd xy(2, s.size());
     xy.row(0) = s.output.row(static_cast<Eigen::Index>(ix));
     xy.row(1) = s.output.row(static_cast<Eigen::Index>(iy));

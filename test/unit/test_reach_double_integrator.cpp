@@ -271,6 +271,30 @@ TEST(ReachDoubleIntegrator, OneAndTwoThreadsGiveIdenticalResults) {
   EXPECT_EQ(a.reason, b.reason);
 }
 
+TEST(ReachDoubleIntegrator, ForwardSetOnlyIsTheCheckForwardSetAlone) {
+  // reach.forward_set_only (the step planner's hull pass): the forward set of the whole check, bit
+  // for bit, no backward set and no verdict.
+  ReachConfig c = diConfig();
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
+  const ReachResult whole = an.check(diProblem(), c);
+  c.forward_set_only = true;
+  const ReachResult fwd = an.check(diProblem(), c);
+  ASSERT_EQ(fwd.forward.size(), whole.forward.size());
+  for (std::size_t j = 0; j < whole.forward.size(); ++j) {
+    EXPECT_EQ(fwd.forward[j].parent, whole.forward[j].parent);
+    EXPECT_TRUE(fwd.forward[j].q_kept == whole.forward[j].q_kept);
+    EXPECT_EQ(fwd.forward[j].boundary, whole.forward[j].boundary);
+    EXPECT_TRUE(fwd.forward[j].qd == whole.forward[j].qd);
+    EXPECT_TRUE(fwd.forward[j].output == whole.forward[j].output);
+  }
+  EXPECT_EQ(fwd.counts.forward_qps, whole.counts.forward_qps);
+  EXPECT_TRUE(fwd.backward.empty());
+  EXPECT_EQ(fwd.counts.backward_qps, 0);
+  EXPECT_FALSE(fwd.reachable);
+  EXPECT_FALSE(fwd.witness.valid);
+  EXPECT_NE(fwd.reason.find("forward_set_only"), std::string::npos) << fwd.reason;
+}
+
 TEST(ReachDoubleIntegrator, ProgressReportsEverySliceAndCancels) {
   const ReachConfig c = diConfig();
   const ReachabilityAnalyzer an(slider(), ContactConfig(), c);

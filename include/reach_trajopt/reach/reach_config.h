@@ -142,6 +142,19 @@ struct ReachConfig {
   /// (bench/README.md: with 0.01 m 4 of the walk's 14 quick certificates got no strict OCP,
   /// with 0.02 m 2 of 13, with 0.03 m none, but a forward walk then fell by leg collision).
   double quick_constraint_margin = 0.02;
+  /// When the quick pass's strict OCP fails (its certified step has no trajectory, or its local
+  /// solve does not converge), FootstepTransitionPlanner first solves that OCP again, seeded
+  /// as before, in the eq. (23) hulls of the full budget's forward set alone (hullPassConfig():
+  /// the same forward set as the full pass's, without the backward set, about a third of a full
+  /// check at the walk's horizon), and plans the full pass only when that fails too. In all the
+  /// full passes of the walks measured, the quick pass's own sparser hulls were what stopped the
+  /// OCP (bench/README.md, "Why steps need the full pass").
+  bool hull_pass = true;
+  /// Propagate the forward set alone, to window_end: no backward set, window test or witness;
+  /// the verdict is "not shown reachable". What the hull pass checks (its forward set's hulls
+  /// are all it uses); set by hullPassConfig(). In a config file it makes every verdict "not
+  /// shown reachable".
+  bool forward_set_only = false;
 
   /// Throws ReachError naming a bad field, also for values over ReachLimits and threads over
   /// the hardware threads of this machine.
@@ -164,6 +177,9 @@ struct ReachConfig {
   bool semiImplicit() const { return forward_integrator == "semi_implicit"; }
   /// This configuration with the quick pass's sample budget (quick_*) and quick_pass false.
   ReachConfig quickPassConfig() const;
+  /// This configuration (the full budget) with forward_set_only true and quick_pass and hull_pass
+  /// false: the hull pass's check.
+  ReachConfig hullPassConfig() const;
 };
 
 }  // namespace reach_trajopt

@@ -17,6 +17,8 @@
 /// budget and again with the full one only when the quick pass certified nothing or its
 /// certified step got no strict trajectory (a quick certificate is kept when the full pass
 /// finds none; issue 16: most of the walk's steps end after the quick pass; bench/README.md).
+/// With ReachConfig::hull_pass, between the two, the quick pass's OCP is solved again in the
+/// eq. (23) hulls of the full budget's forward set alone, its check and witness kept.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -114,8 +116,10 @@ struct FootstepTransition {
   double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed
   double check_time_s = 0.0;         ///< kinematic + reachability check wall time
   double ocp_time_s = 0.0;           ///< OCP wall time
-  /// 1, or 2 when the quick pass (ReachConfig::quick_pass) was not final and the full budget
-  /// planned the step again; the times above are then the sums of both passes.
+  /// The passes that planned the step: 1; 2 when the quick pass (ReachConfig::quick_pass) was
+  /// not final and the hull pass (ReachConfig::hull_pass) or the full budget planned it again;
+  /// 3 when the hull pass did not end it either and the full budget followed. The times above
+  /// are then the sums of every pass.
   int check_passes = 1;
   TransitionResult trajectory;  ///< converged, relaxed or failed
   /// The full check (kinematics, reachable sets, witness) for recorders and the ROS layer.
@@ -135,8 +139,9 @@ struct FootstepTransition {
 /// Progress callbacks of FootstepTransitionPlanner::plan (any may be empty): the
 /// reachability check's after each slice, the OCP's after each gradient evaluation. Either
 /// returning false cancels the plan (ReachCancelled, common/cancelled.h). `pass` is told the
-/// number of the pass that starts (1: the quick pass or the only one; 2: the full budget after
-/// a quick pass, reach.quick_pass): the check and the OCP report again in the second pass.
+/// number of the pass that starts (1: the quick pass or the only one; then the hull pass,
+/// reach.hull_pass, and the full budget, each when the one before was not final): the check and
+/// the OCP report again in each pass.
 struct FootstepPlanProgress {
   ReachProgressCallback check;
   OcpProgressCallback ocp;
@@ -196,6 +201,16 @@ class FootstepTransitionPlanner {
                                             const Touchdown& td,
                                             const ReachProgressCallback& progress,
                                             FootstepTransition& out) const;
+  /// The check's fields of `out` (check, verdict, reason, d_H) from `check`; `checked`: the
+  /// reachability check ran.
+  static void recordCheck(FootstepResult check, bool checked, FootstepTransition& out);
+  /// The OCP of a pass ended as asked: not asked for, or strict and converged.
+  static bool hasStrictTrajectory(const FootstepPlanRequest& r, const FootstepTransition& step);
+  /// The hull pass (ReachConfig::hull_pass): the quick pass's check and seed, its OCP solved
+  /// again in the hulls of the full budget's forward set alone (reach.hullPassConfig()).
+  FootstepTransition solveInFullHulls(const FootstepPlanRequest& r, const ReachConfig& reach,
+                                      const FootstepTransition& quick,
+                                      const FootstepPlanProgress& progress) const;
   /// Steps 4-5 into out.trajectory and out.foothold, held in `set_constraint`.
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
                        const Touchdown& td, std::vector<ReachableSlice> set_constraint,

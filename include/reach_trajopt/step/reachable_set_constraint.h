@@ -20,4 +20,10 @@ namespace reach_trajopt {
 std::vector<ReachableSlice> reachableSetConstraint(const ReachResult& result,
                                                    const std::string& output_axes, double margin);
 
+/// The slices of `slices` at times t <= t_junction of `witness` (all of them without a valid
+/// witness): another check's hulls cut where this witness leaves the sampled sets (the step
+/// planner's hull pass: the full budget's forward set, the quick pass's witness).
+std::vector<ReachableSlice> slicesUpToJunction(std::vector<ReachableSlice> slices,
+                                               const WitnessPath& witness);
+
 }  // namespace reach_trajopt
