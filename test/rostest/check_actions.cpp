@@ -220,8 +220,9 @@ TEST(Actions, PlanTransitionReportsTheCheckThenTheOcpAndCancels) {
   ros::WallDuration(0.2).sleep();
   {
     std::lock_guard<std::mutex> lock(mutex);
-    // Each pass (1, then 2 when the quick pass did not end the step) reports its check, then
-    // its OCP's.
+    // Each pass (1; then 2, the hull pass or the full budget, when the quick pass did not end
+    // the step; 3, the full budget after a hull pass that did not end it) reports its check,
+    // then its OCP's.
     size_t checks = 0, ocps = 0, pass_ocps = 0;
     uint32_t pass = 1;
     for (const auto& f : seen) {
@@ -239,7 +240,7 @@ TEST(Actions, PlanTransitionReportsTheCheckThenTheOcpAndCancels) {
         ++pass_ocps;
       }
     }
-    EXPECT_LE(pass, 2u);
+    EXPECT_LE(pass, 3u);
     EXPECT_GT(checks, 0u);
     EXPECT_GT(ocps, 0u);
     seen.clear();

@@ -199,12 +199,13 @@ TEST(FootstepVerdict, QuickPassKeepsTheFullBudgetsVerdictWhereItCertifiesNothing
 }
 
 TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHulls) {
-  // reach.hull_pass on the steps 9 and 13 of the walk pushed at (0, 0.25) m/s
-  // (test/fixtures/hull_pass_requests.jsonl, `walk_experiment --push 0,0.25 --plan-requests`):
-  // the quick pass alone certifies the step but its strict OCP fails in its sparse hulls; the
-  // hull pass keeps the quick pass's check and witness and solves the OCP in the full budget's
-  // forward hulls, converged and strict, without the full pass. Its certificate passes the same
-  // model re-check as every other.
+  // reach.hull_pass on step 13 of the walk pushed at (0, 0.25) m/s and step 11 of the unpushed
+  // one (test/fixtures/hull_pass_requests.jsonl, `walk_experiment --push 0,0.25|0,0
+  // --plan-requests`): the quick pass's strict OCP fails in its sparse hulls (seeded with its
+  // bridge's witness in the first, with its closest bridged path, the local solve, in the
+  // second); the hull pass keeps the quick pass's check and witness and solves the OCP in the
+  // full budget's forward hulls, converged and strict, without the full pass. A bridge's
+  // certificate passes the same model re-check as every other.
   const Pipeline& p = pipeline();
   const std::vector<FootstepPlanRequest> requests = requestsOf("hull_pass_requests.jsonl");
   ASSERT_EQ(requests.size(), 2u);
