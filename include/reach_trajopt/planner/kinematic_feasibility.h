@@ -40,7 +40,7 @@ struct KinematicFeasibilityConfig {
   int max_iterations = 100;             ///< Newton iterations
   double damping = 1e-8;                ///< DLS damping lambda^2 (> 0) [m^2]
   double max_joint_step = 0.3;          ///< largest joint update per iteration [rad or m]
-  double sole_clearance = 0.01;         ///< minimal gap between the two sole rectangles [m]
+  double sole_clearance = 0.03;         ///< minimal gap between the two sole rectangles [m]
   double min_lateral_offset = 0.0;      ///< swing sole centre towards the swing side of the
                                         ///< stance sole centre, at least this [m]
   double workspace_radius = 3.0;        ///< requests with soles farther apart horizontally
