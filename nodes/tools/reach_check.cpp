@@ -181,6 +181,7 @@ int main(int argc, char** argv) {
                      {"backward_qps", r.counts.backward_qps},
                      {"forward_rejected", r.counts.forward_rejected},
                      {"backward_rejected", r.counts.backward_rejected},
+                     {"backward_prefiltered", r.counts.backward_prefiltered},
                      {"threads", r.counts.threads}};
     out["timings"] = {{"forward_s", r.timings.forward},   {"backward_s", r.timings.backward},
                       {"boundary_s", r.timings.boundary}, {"hausdorff_s", r.timings.hausdorff},

@@ -12,6 +12,12 @@ namespace reach_trajopt {
 namespace {
 /// Rows of (19): the cone and the two torque bounds.
 int inequalityRows(const ReachContext& c) { return ContactWrenchCone::kRows * c.nc + 2 * c.nu; }
+
+/// The prefilter rejects a draw whose linearized slack is below minus this share of the row's
+/// range over the draw box. The linearization error is O(|qd| dt) of that range (under 1e-2
+/// in the walks measured, test_reach_biped): a tenth leaves a wide safety factor and still
+/// rejects most of the draws (19) rejects.
+constexpr double kPrefilterRangeShare = 0.1;
 }  // namespace
 
 BackwardStep::BackwardStep(const ReachContext& context)
@@ -60,11 +66,20 @@ BackwardStep::BackwardStep(const ReachContext& context)
   }
   if (m_ > 0) factor_.compute(Eigen::MatrixXd::Identity(m_, m_));  // cost |lambda|^2 (19)
   warm_.reserve(rows_);
+  T_.resize(n_, n_);
+  lambda_d_.resize(m_, n_);
+  slack_d_.resize(rows_, n_);
+  qd_center_.resize(n_);
+  tau_center_.resize(n_);
+  slack_0_.resize(rows_);
+  prefilter_margin_.resize(rows_);
+  slack_lin_.resize(rows_);
 }
 
 bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
                              const Eigen::Ref<const Eigen::VectorXd>& qd) {
   parent_ok_ = false;
+  prefilter_ = false;
   warm_.clear();
   const RobotModel& model = *ctx_.model;
   const double dt = ctx_.config.dt;
@@ -114,6 +129,7 @@ bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
       const auto pivots = lu_b_.matrixLU().diagonal().cwiseAbs();
       unique_lambda_ = pivots.minCoeff() > 1e-12 * pivots.maxCoeff();
       row_norm_ = A_in_.rowwise().norm();
+      if (unique_lambda_ && ctx_.config.backward_prefilter) buildPrefilter();
     }
   } else {
     N_.setIdentity();
@@ -129,6 +145,14 @@ bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
                          Eigen::Ref<Eigen::VectorXd> u_out,
                          Eigen::Ref<Eigen::VectorXd> lambda_out) {
   if (!parent_ok_) return false;
+  if (prefilter_) {
+    slack_lin_ = slack_0_;
+    slack_lin_.noalias() += slack_d_ * d;
+    if ((slack_lin_ + prefilter_margin_).minCoeff() < 0.0) {
+      ++prefilter_rejects_;
+      return false;
+    }
+  }
   const RobotModel& model = *ctx_.model;
   const double dt = ctx_.config.dt;
   v_.noalias() = N_ * d;
@@ -171,6 +195,43 @@ bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
   }
   ctx_.output(ws_, y, y_rate);
   return true;
+}
+
+void BackwardStep::buildPrefilter() {
+  const RobotModel& model = *ctx_.model;
+  const double dt = ctx_.config.dt;
+  // The draw d = 0: qd_{j-1} = qd_j - w, qdd = w / dt; its bias, frozen for every d.
+  qd_center_ = qd_j_ - w_;
+  model.updateVelocity(ws_, qd_center_);
+  model.bias(ws_, b_);
+  tau_center_.noalias() = M_ * w_;
+  tau_center_ /= dt;
+  tau_center_ += b_;
+  T_.noalias() = M_ * N_;
+  T_ /= dt;  // tau(d) ~ tau_center + T d
+  // lambda(d) = J_b^-T tau_b(d); slack = A_in lambda - b_in(tau), b_in as in child().
+  lambda_ = lu_b_.solve(tau_center_.head(6));
+  lambda_d_ = lu_b_.solve(T_.topRows(6));
+  const int r = ContactWrenchCone::kRows * ctx_.nc;
+  const int off = n_ - nu_;
+  b_in_.head(r).setZero();
+  for (int i = 0; i < nu_; ++i) {
+    b_in_[r + i] = tau_center_[off + i] - ctx_.u_max[i];
+    b_in_[r + nu_ + i] = -ctx_.u_max[i] - tau_center_[off + i];
+  }
+  slack_0_.noalias() = A_in_ * lambda_;
+  slack_0_ -= b_in_;
+  slack_d_.noalias() = A_in_ * lambda_d_;
+  slack_d_.middleRows(r, nu_) -= T_.middleRows(off, nu_);
+  slack_d_.middleRows(r + nu_, nu_) += T_.middleRows(off, nu_);
+  // Margin: a share of the row's range over the box, plus the exact test's tolerance.
+  const double tol = qp::QpSolverConfig().feasibility_tol;
+  const double norm = lambda_.norm();
+  prefilter_margin_.noalias() = slack_d_.cwiseAbs() * d_max_;
+  prefilter_margin_ *= kPrefilterRangeShare;
+  for (int j = 0; j < rows_; ++j)
+    prefilter_margin_[j] += 2.0 * tol * (1.0 + std::abs(b_in_[j]) + row_norm_[j] * norm);
+  prefilter_ = prefilter_margin_.allFinite() && slack_0_.allFinite();
 }
 
 bool BackwardStep::uniqueLambdaFeasible() {

@@ -229,6 +229,9 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "a_max of the backward draws (17), actuated joints")
           .add("backward_base_accel", &C::backward_base_accel, "m/s^2 or rad/s^2",
                "same for the floating-base coordinates")
+          .add("backward_prefilter", &C::backward_prefilter, "",
+               "reject single-support backward draws that the linearized (19) rejects by far, "
+               "before their dynamics (same children)")
           .add("delta", &C::delta, "m", "Prop. 2 threshold (paper 1e-5), reported only")
           .add("overlap_gap_max", &C::overlap_gap_max, "m",
                "output sets meet when a pair is closer than min(K, this); reported only")

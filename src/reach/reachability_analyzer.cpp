@@ -174,6 +174,7 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   res.counts.backward_samples = bwd.samples;
   res.counts.backward_rejected = bwd.rejected;
   res.counts.backward_qps = bwd.qps;
+  res.counts.backward_prefiltered = bwd.prefiltered;
   res.timings.backward = bwd.propagation_time;
   res.timings.boundary += bwd.boundary_time;
   // ---- the test (14) on the overlap window ----------------------------------------------

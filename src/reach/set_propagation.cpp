@@ -225,7 +225,11 @@ PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_i
                              (forward ? "forward" : "backward") + " slices");
     }
   }
-  for (const auto& s : scratch) stats.qps += s->step.qpCount();
+  for (const auto& s : scratch) {
+    stats.qps += s->step.qpCount();
+    if constexpr (std::is_same<Step, BackwardStep>::value)
+      stats.prefiltered += s->step.prefilterRejects();
+  }
   stats.propagation_time = since(t0) - stats.boundary_time;
   return stats;
 }

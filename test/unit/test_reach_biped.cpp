@@ -323,6 +323,44 @@ TEST(ReachBiped, OneAndTwoThreadsGiveIdenticalSetsAndVerdict) {
   EXPECT_EQ(b.reach.counts.threads, 2);
 }
 
+// The backward prefilter (ReachConfig::backward_prefilter) only skips the dynamics of draws
+// the exact test (19) rejects: with it, every backward slice is the one without it, bit for
+// bit, and it rejects most of the draws (19) rejects. Two swing speeds: the linearization error
+// grows with |qd| dt (backward_step.h).
+TEST(ReachBiped, BackwardPrefilterKeepsExactlyTheChildrenOfTheExactTest) {
+  for (const double horizon : {0.06, 0.03}) {
+    ReachConfig c = testConfig();
+    c.horizon = horizon;
+    c.window_start = 0.01;
+    c.window_end = 0.02;
+    const Scenario s = normalStep(c);
+    const FootstepReachability fr(s.analyzer, s.kinematics);
+    c.backward_prefilter = false;
+    const FootstepResult exact = fr.check(s.request, c);
+    c.backward_prefilter = true;
+    const FootstepResult fast = fr.check(s.request, c);
+    ASSERT_TRUE(exact.kinematically_feasible);
+    EXPECT_EQ(exact.reach.counts.backward_prefiltered, 0);
+    const ReachCounts& n = fast.reach.counts;
+    EXPECT_GT(n.backward_prefiltered, n.backward_rejected / 2) << "horizon " << horizon;
+    EXPECT_LT(n.backward_qps, exact.reach.counts.backward_qps);
+    EXPECT_EQ(n.backward_rejected, exact.reach.counts.backward_rejected);
+    const auto& A = exact.reach.backward;
+    const auto& B = fast.reach.backward;
+    ASSERT_EQ(A.size(), B.size());
+    for (std::size_t j = 0; j < A.size(); ++j) {
+      EXPECT_EQ(A[j].parent, B[j].parent) << "horizon " << horizon << " slice " << j;
+      EXPECT_EQ(A[j].kept, B[j].kept);
+      EXPECT_TRUE(A[j].qd == B[j].qd);
+      EXPECT_TRUE(A[j].u == B[j].u);
+      EXPECT_TRUE(A[j].lambda == B[j].lambda);
+      EXPECT_TRUE(A[j].output == B[j].output);
+    }
+    EXPECT_EQ(exact.reachable, fast.reachable);
+    EXPECT_EQ(exact.reason, fast.reason);
+  }
+}
+
 TEST(ReachBiped, StatesViolatingContactsAreErrors) {
   const Scenario s = normalStep(testConfig());
   const RobotModel& m = s.analyzer->model();

@@ -83,6 +83,9 @@ struct ReachCounts {
   long forward_samples = 0, backward_samples = 0;    ///< kept samples (roots excluded)
   long forward_qps = 0, backward_qps = 0;            ///< QPs solved
   long forward_rejected = 0, backward_rejected = 0;  ///< draws that gave no sample
+  /// Backward draws rejected by the linearized (19) before their dynamics (part of
+  /// backward_rejected; ReachConfig::backward_prefilter).
+  long backward_prefiltered = 0;
   int threads = 1;
 };
 

@@ -25,6 +25,7 @@ struct PropagationStats {
   long samples = 0;               ///< kept samples over all slices (root excluded)
   long rejected = 0;              ///< draws that gave no sample
   long qps = 0;                   ///< QPs solved
+  long prefiltered = 0;           ///< backward draws the prefilter rejected (before any QP)
   double boundary_time = 0.0;     ///< wall time of the boundary selection (21) [s]
   double propagation_time = 0.0;  ///< wall time of the rest [s]
 };
