@@ -156,27 +156,31 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   const int threads = config.threads > 0 ? config.threads : omp_get_max_threads();
   res.counts.threads = threads;
 
-  // ---- forward set (15)-(16) and backward set (17)-(20) ----------------------------------
-  const PropagationStats fwd = propagateSet(ctx, PropagationDirection::kForward, 0, pb.q0, pb.qd0,
-                                            n_fwd, threads, res.forward, progress);
+  // ---- forward set (15)-(16) and backward set (17)-(20), side by side --------------------
+  const PropagationRoot forward_root{PropagationDirection::kForward, 0, pb.q0, pb.qd0, n_fwd};
+  const PropagationRoot backward_root{PropagationDirection::kBackward, i_t, pb.qf, pb.qdf, n_bwd};
+  PropagationStats fwd, bwd;
+  if (config.forward_set_only)  // the hull pass: the forward set is all it uses
+    fwd = propagateSet(ctx, PropagationDirection::kForward, 0, pb.q0, pb.qd0, n_fwd, threads,
+                       res.forward, progress);
+  else
+    propagateSets(ctx, forward_root, backward_root, threads, res.forward, res.backward, fwd, bwd,
+                  progress);
   res.counts.forward_samples = fwd.samples;
   res.counts.forward_rejected = fwd.rejected;
   res.counts.forward_qps = fwd.qps;
   res.timings.forward = fwd.propagation_time;
-  res.timings.boundary = fwd.boundary_time;
-  if (config.forward_set_only) {  // the hull pass: the forward set is all it uses
+  res.timings.boundary = fwd.boundary_time + bwd.boundary_time;
+  if (config.forward_set_only) {
     res.reason = "not checked: the forward set only (reach.forward_set_only)";
     res.timings.total = since(t_start);
     return res;
   }
-  const PropagationStats bwd = propagateSet(ctx, PropagationDirection::kBackward, i_t, pb.qf,
-                                            pb.qdf, n_bwd, threads, res.backward, progress);
   res.counts.backward_samples = bwd.samples;
   res.counts.backward_rejected = bwd.rejected;
   res.counts.backward_qps = bwd.qps;
   res.counts.backward_prefiltered = bwd.prefiltered;
   res.timings.backward = bwd.propagation_time;
-  res.timings.boundary += bwd.boundary_time;
   // ---- the test (14) on the overlap window ----------------------------------------------
   const auto th = Clock::now();
   res.window = compareWindow(config, res.forward, res.backward, i_2, i_1, i_t);

@@ -6,10 +6,13 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <memory>
+#include <mutex>
 #include <type_traits>
 
 #include "reach_trajopt/common/error.h"
@@ -23,11 +26,20 @@ namespace reach_trajopt {
 namespace {
 
 constexpr int kChunk = 64;  // children per work item (fixed: results do not depend on threads)
-// Below this many draws a step runs serially: a parallel region costs more than it saves.
-// 64, not 256: the quick pass's forward steps (32 kept x 4 children = 128 draws) ran serially
-// at 256; at 64 its forward stage at the walk's horizon went from 0.11-0.13 s to 0.08 s on 2
-// threads (bench/README.md, issue 16).
+// Below this many draws a step runs in its direction's own task: tasks cost more than they
+// save. 64, not 256: the quick pass's forward steps (32 kept x 4 children = 128 draws) ran
+// serially at 256; at 64 its forward stage at the walk's horizon went from 0.11-0.13 s to
+// 0.08 s on 2 threads (bench/README.md, issue 16).
 constexpr long kParallelMin = 64;
+
+/// What the directions run together share: the progress callback (never called
+/// concurrently) and a stop flag, raised when one direction throws (cancelled).
+struct SharedRun {
+  explicit SharedRun(const ReachProgressCallback& cb) : progress(cb) {}
+  const ReachProgressCallback& progress;
+  std::mutex progress_mutex;
+  std::atomic<bool> stop{false};
+};
 enum Direction : std::uint64_t { kForward = 1, kBackward = 2 };
 
 using Clock = std::chrono::steady_clock;
@@ -84,7 +96,9 @@ void propagate(const ReachContext& ctx, Direction dir, int step_index, int n_chi
   const int threads = static_cast<int>(scratch.size());
   const std::uint64_t seed = ctx.config.seed;
   const int n_vertex = vertexDraws(ctx.config.vertex_fraction, n_children);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (total >= kParallelMin)
+  // Inside a team (propagateSets): the items are tasks; this direction's task waits for them
+  // at the end of the taskloop, running tasks of either direction meanwhile.
+#pragma omp taskloop default(shared) grainsize(1) if (threads > 1 && total >= kParallelMin)
   for (int item = 0; item < items; ++item) {
     Scratch<Step>& s = *scratch[omp_get_thread_num()];
     const int k = item / chunks;
@@ -192,8 +206,7 @@ SampleSlice rootSlice(const ReachContext& ctx, double time, const Eigen::VectorX
 template <class Step>
 PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_index,
                                const Eigen::VectorXd& q, const Eigen::VectorXd& qd, int steps,
-                               int threads, std::vector<SampleSlice>& slices,
-                               const ReachProgressCallback& progress) {
+                               int threads, std::vector<SampleSlice>& slices, SharedRun& run) {
   const auto t0 = Clock::now();
   const ReachConfig& config = ctx.config;
   const double dt = config.dt;
@@ -206,7 +219,7 @@ PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_i
   slices.clear();
   slices.reserve(steps + 1);
   slices.push_back(rootSlice(ctx, root_index * dt, q, qd));
-  for (int j = 0; j < steps; ++j) {
+  for (int j = 0; j < steps && !run.stop; ++j) {
     SampleSlice next;
     next.time = (root_index + sign * (j + 1)) * dt;
     propagate(ctx, dir, j, j == 0 ? config.initial_samples : children, slices[j], next, scratch,
@@ -216,10 +229,16 @@ PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_i
     stats.boundary_time += since(tb);
     stats.samples += next.size();
     slices.push_back(std::move(next));
-    if (progress) {
+    if (run.progress) {
       ReachProgress p{forward, j + 1, steps, stats.samples, 0};
       for (const auto& sc : scratch) p.qps += sc->step.qpCount();
-      if (!progress(p))
+      bool cancelled = false;
+      {
+        std::lock_guard<std::mutex> lock(run.progress_mutex);
+        if (!run.stop) cancelled = !run.progress(p);  // none after a cancel
+        if (cancelled) run.stop = true;
+      }
+      if (cancelled)
         throw ReachCancelled(std::string("reachability check cancelled after ") +
                              std::to_string(j + 1) + " of " + std::to_string(steps) + " " +
                              (forward ? "forward" : "backward") + " slices");
@@ -234,17 +253,58 @@ PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_i
   return stats;
 }
 
+/// One direction inside a team's task. An exception may not leave an OpenMP task: it is
+/// stored in `error` (and stops the other direction), for the caller to rethrow.
+PropagationStats runDirection(const ReachContext& ctx, const PropagationRoot& r, int threads,
+                              std::vector<SampleSlice>& slices, SharedRun& run,
+                              std::exception_ptr& error) {
+  try {
+    if (r.direction == PropagationDirection::kForward)
+      return propagateWith<ForwardStep>(ctx, true, r.root_index, r.q, r.qd, r.steps, threads,
+                                        slices, run);
+    return propagateWith<BackwardStep>(ctx, false, r.root_index, r.q, r.qd, r.steps, threads,
+                                       slices, run);
+  } catch (...) {
+    error = std::current_exception();
+    run.stop = true;
+  }
+  return {};
+}
+
 }  // namespace
+
+void propagateSets(const ReachContext& ctx, const PropagationRoot& a, const PropagationRoot& b,
+                   int threads, std::vector<SampleSlice>& slices_a,
+                   std::vector<SampleSlice>& slices_b, PropagationStats& stats_a,
+                   PropagationStats& stats_b, const ReachProgressCallback& progress) {
+  SharedRun run(progress);
+  std::exception_ptr error_a, error_b;
+#pragma omp parallel num_threads(threads)
+#pragma omp single
+  {
+#pragma omp task default(shared)
+    stats_a = runDirection(ctx, a, threads, slices_a, run, error_a);
+#pragma omp task default(shared)
+    stats_b = runDirection(ctx, b, threads, slices_b, run, error_b);
+#pragma omp taskwait
+  }
+  if (error_a) std::rethrow_exception(error_a);
+  if (error_b) std::rethrow_exception(error_b);
+}
 
 PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
                               int root_index, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                               int steps, int threads, std::vector<SampleSlice>& slices,
                               const ReachProgressCallback& progress) {
-  if (direction == PropagationDirection::kForward)
-    return propagateWith<ForwardStep>(ctx, true, root_index, q, qd, steps, threads, slices,
-                                      progress);
-  return propagateWith<BackwardStep>(ctx, false, root_index, q, qd, steps, threads, slices,
-                                     progress);
+  const PropagationRoot root{direction, root_index, q, qd, steps};
+  SharedRun run(progress);
+  PropagationStats stats;
+  std::exception_ptr error;
+#pragma omp parallel num_threads(threads)
+#pragma omp single
+  stats = runDirection(ctx, root, threads, slices, run, error);
+  if (error) std::rethrow_exception(error);
+  return stats;
 }
 
 Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,

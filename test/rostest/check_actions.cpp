@@ -1,6 +1,6 @@
 // rostest checker of actions.test (a gtest executable run by rostest): reachability_node's
 // check_reachability_action on our robot from the standing pose. Feedback arrives after every
-// slice, forward then backward, each direction counted to its end, and the result equals the
+// slice, forward and backward interleaved, each direction counted to its end, and the result equals the
 // one-shot check_reachability service's answer to the same request byte for byte (without the
 // wall times); a newer goal preempts a running check before it ends (fewer feedbacks than
 // slices), the newer one succeeds; a cancel preempts a running check the same way.
@@ -98,25 +98,31 @@ TEST(Actions, FeedbackEverySliceAndTheResultOfTheService) {
   std::lock_guard<std::mutex> lock(feedbacks.mutex);
   const auto& seen = feedbacks.seen;
   ASSERT_GT(seen.size(), 2u);
-  // Forward slices 1..n, then backward slices 1..m, samples and QPs never decreasing.
-  size_t i = 0;
+  // Forward slices 1..n and backward slices 1..m, interleaved (the directions run side by
+  // side), each direction's in order with samples and QPs never decreasing.
+  size_t accounted = 0;
   for (const char* direction : {"forward", "backward"}) {
-    ASSERT_LT(i, seen.size()) << "no " << direction << " feedback";
-    const uint32_t total = seen[i].slices_total;
+    std::vector<reach_trajopt::CheckReachabilityFeedback> mine;
+    for (const auto& f : seen)
+      if (f.direction == direction) mine.push_back(f);
+    ASSERT_FALSE(mine.empty()) << "no " << direction << " feedback";
+    const uint32_t total = mine[0].slices_total;
     EXPECT_GT(total, 0u);
-    for (uint32_t k = 1; k <= total; ++k, ++i) {
-      ASSERT_LT(i, seen.size()) << direction << " slice " << k << " missing";
-      EXPECT_EQ(seen[i].direction, direction);
-      EXPECT_EQ(seen[i].slices_done, k);
-      EXPECT_EQ(seen[i].slices_total, total);
+    ASSERT_EQ(mine.size(), total) << direction;
+    accounted += mine.size();
+    for (uint32_t k = 1; k <= total; ++k) {
+      const auto& f = mine[k - 1];
+      EXPECT_EQ(f.slices_done, k);
+      EXPECT_EQ(f.slices_total, total);
       if (k > 1) {
-        EXPECT_GE(seen[i].samples, seen[i - 1].samples);
-        EXPECT_GE(seen[i].qps, seen[i - 1].qps);
+        EXPECT_GE(f.samples, mine[k - 2].samples);
+        EXPECT_GE(f.qps, mine[k - 2].qps);
       }
     }
+    if (std::string(direction) == "backward")
+      EXPECT_EQ(mine.back().samples, result.result.backward_samples);
   }
-  EXPECT_EQ(i, seen.size());
-  EXPECT_EQ(seen[i - 1].samples, result.result.backward_samples);
+  EXPECT_EQ(accounted, seen.size());
 
   // The same request through the one-shot service: the same answer.
   ros::ServiceClient service =

@@ -8,6 +8,11 @@
 ///
 /// Determinism: the draws of a child depend only on (seed, direction, step, parent, child) and
 /// results are stored at fixed indices, so the slices are bit-identical for any thread count.
+///
+/// Threads: the children of a slice are OpenMP tasks (a few parents each). propagateSets() runs
+/// the forward and the backward direction side by side in one team: while one direction does
+/// the serial part of a step (gathering the children, the boundary selection (21)), the other
+/// one's children keep every thread busy, and neither waits for the other between steps.
 
 #include <Eigen/Core>
 #include <vector>
@@ -29,6 +34,27 @@ struct PropagationStats {
   double boundary_time = 0.0;     ///< wall time of the boundary selection (21) [s]
   double propagation_time = 0.0;  ///< wall time of the rest [s]
 };
+
+/// Where one direction starts and how far it goes.
+struct PropagationRoot {
+  PropagationDirection direction = PropagationDirection::kForward;
+  /// Time index of the root: slice j is at time (root_index + sign j) dt, sign +1 forward
+  /// (root x_0 at index 0), -1 backward (root x_f at index i_t).
+  int root_index = 0;
+  Eigen::VectorXd q, qd;  ///< the root state (size n_q each)
+  int steps = 0;          ///< slices to add after the root
+};
+
+/// Propagates two directions of the check at once (the forward set from x_0 and the backward
+/// set from x_f), with the same results as propagateSet() on each.
+/// \param progress  called after each slice of either direction, never concurrently; false
+///     cancels both (ReachCancelled); may be empty
+/// \param[out] slices_a, slices_b  the slices of a and b; \param[out] stats_a, stats_b theirs
+///     (each direction's wall times overlap the other's)
+void propagateSets(const ReachContext& ctx, const PropagationRoot& a, const PropagationRoot& b,
+                   int threads, std::vector<SampleSlice>& slices_a,
+                   std::vector<SampleSlice>& slices_b, PropagationStats& stats_a,
+                   PropagationStats& stats_b, const ReachProgressCallback& progress = {});
 
 /// Propagates one direction of the check.
 /// \param root_index  time index of the root: slice j is at time (root_index + sign j) dt, sign
