@@ -31,6 +31,7 @@ constexpr int kChunk = 64;  // children per work item (fixed: results do not dep
 // serially at 256; at 64 its forward stage at the walk's horizon went from 0.11-0.13 s to
 // 0.08 s on 2 threads (bench/README.md, issue 16).
 constexpr long kParallelMin = 64;
+constexpr int kTasksPerThread = 8;  // tasks of one step per thread (dynamic balance)
 
 /// What the directions run together share: the progress callback (never called
 /// concurrently) and a stop flag, raised when one direction throws (cancelled).
@@ -80,68 +81,6 @@ struct Scratch {
   Step step;
   Eigen::VectorXd q, qd, draw, u;
 };
-
-/// One propagation step: children of every boundary sample of `prev` into `next`.
-template <class Step>
-void propagate(const ReachContext& ctx, Direction dir, int step_index, int n_children,
-               const SampleSlice& prev, SampleSlice& next,
-               std::vector<std::unique_ptr<Scratch<Step>>>& scratch, long& rejected) {
-  const int n = ctx.n, nu = ctx.nu, m = ctx.m(), ny = ctx.ny();
-  const int parents = static_cast<int>(prev.kept.size());
-  const long total = static_cast<long>(parents) * n_children;
-  std::vector<char> ok(total, 0);
-  Eigen::MatrixXd qd(n, total), y(ny, total), yr(ny, total), u(nu, total), lam(m, total);
-  const int chunks = (n_children + kChunk - 1) / kChunk;
-  const int items = parents * chunks;
-  const int threads = static_cast<int>(scratch.size());
-  const std::uint64_t seed = ctx.config.seed;
-  const int n_vertex = vertexDraws(ctx.config.vertex_fraction, n_children);
-  // Inside a team (propagateSets): the items are tasks; this direction's task waits for them
-  // at the end of the taskloop, running tasks of either direction meanwhile.
-#pragma omp taskloop default(shared) grainsize(1) if (threads > 1 && total >= kParallelMin)
-  for (int item = 0; item < items; ++item) {
-    Scratch<Step>& s = *scratch[omp_get_thread_num()];
-    const int k = item / chunks;
-    const int c0 = (item % chunks) * kChunk;
-    const int c1 = std::min(c0 + kChunk, n_children);
-    const int parent = prev.kept[k];
-    if (!s.step.setParent(prev.q_kept.col(k), prev.qd.col(parent))) continue;
-    for (int c = c0; c < c1; ++c) {
-      const long col = static_cast<long>(k) * n_children + c;
-      bool good;
-      if constexpr (std::is_same<Step, ForwardStep>::value) {
-        drawBox(seed, dir, step_index, parent, c, n_vertex, ctx.u_max, s.u);
-        good =
-            s.step.child(s.u, s.q, qd.col(col), y.col(col), yr.col(col), u.col(col), lam.col(col));
-      } else {
-        drawBox(seed, dir, step_index, parent, c, n_vertex, s.step.drawBound(), s.draw);
-        good = s.step.child(s.draw, s.q, qd.col(col), y.col(col), yr.col(col), u.col(col),
-                            lam.col(col));
-      }
-      ok[col] = good ? 1 : 0;
-    }
-  }
-  long kept = 0;
-  for (long i = 0; i < total; ++i) kept += ok[i];
-  rejected += total - kept;
-  next.parent.resize(kept);
-  next.qd.resize(n, kept);
-  next.output.resize(ny, kept);
-  next.output_rate.resize(ny, kept);
-  next.u.resize(nu, kept);
-  next.lambda.resize(m, kept);
-  long j = 0;
-  for (long i = 0; i < total; ++i) {
-    if (!ok[i]) continue;
-    next.parent[j] = prev.kept[i / n_children];
-    next.qd.col(j) = qd.col(i);
-    next.output.col(j) = y.col(i);
-    next.output_rate.col(j) = yr.col(i);
-    next.u.col(j) = u.col(i);
-    next.lambda.col(j) = lam.col(i);
-    ++j;
-  }
-}
 
 /// Selects the boundary (21) of a slice and stores the configurations of its samples.
 void selectAndStore(const ReachContext& ctx, bool forward, const SampleSlice& prev,
@@ -202,73 +141,229 @@ SampleSlice rootSlice(const ReachContext& ctx, double time, const Eigen::VectorX
   return s;
 }
 
-/// The whole direction, for one step type.
+/// The children of one step, stored at fixed columns (parent k, child c at k n_children + c).
+struct StepChildren {
+  StepChildren(const ReachContext& ctx, long total)
+      : ok(total, 0),
+        qd(ctx.n, total),
+        y(ctx.ny(), total),
+        yr(ctx.ny(), total),
+        u(ctx.nu, total),
+        lam(ctx.m(), total) {}
+  std::vector<char> ok;
+  Eigen::MatrixXd qd, y, yr, u, lam;
+};
+
+/// One direction of the check, run as OpenMP tasks that never wait. A step's children are
+/// split into tasks of a few work items (kChunk children of one parent); the task that
+/// finishes last gathers them (compaction, boundary selection, progress) and starts the next
+/// step's tasks. No thread ever blocks inside a task, so at the region's closing barrier every
+/// thread runs the tasks of both directions as they come (a task waiting for its children in
+/// libgomp could only run its own). Small steps, and one thread, run inline.
+/// A direction being propagated, whatever its step type.
+class DirectionRun {
+ public:
+  virtual ~DirectionRun() = default;
+  /// Starts the direction (in a parallel region's single thread, or serially).
+  virtual void start() = 0;
+  /// Valid once every task of the region has ended.
+  virtual const PropagationStats& stats() const = 0;
+};
+
 template <class Step>
-PropagationStats propagateWith(const ReachContext& ctx, bool forward, int root_index,
-                               const Eigen::VectorXd& q, const Eigen::VectorXd& qd, int steps,
-                               int threads, std::vector<SampleSlice>& slices, SharedRun& run) {
-  const auto t0 = Clock::now();
-  const ReachConfig& config = ctx.config;
-  const double dt = config.dt;
-  const int sign = forward ? 1 : -1;
-  const Direction dir = forward ? kForward : kBackward;
-  const int children = forward ? config.children_per_parent : config.backward_children_per_parent;
-  PropagationStats stats;
-  std::vector<std::unique_ptr<Scratch<Step>>> scratch;
-  for (int i = 0; i < threads; ++i) scratch.push_back(std::make_unique<Scratch<Step>>(ctx));
-  slices.clear();
-  slices.reserve(steps + 1);
-  slices.push_back(rootSlice(ctx, root_index * dt, q, qd));
-  for (int j = 0; j < steps && !run.stop; ++j) {
-    SampleSlice next;
-    next.time = (root_index + sign * (j + 1)) * dt;
-    propagate(ctx, dir, j, j == 0 ? config.initial_samples : children, slices[j], next, scratch,
-              stats.rejected);
-    const auto tb = Clock::now();
-    selectAndStore(ctx, forward, slices[j], next);
-    stats.boundary_time += since(tb);
-    stats.samples += next.size();
-    slices.push_back(std::move(next));
-    if (run.progress) {
-      ReachProgress p{forward, j + 1, steps, stats.samples, 0};
-      for (const auto& sc : scratch) p.qps += sc->step.qpCount();
-      bool cancelled = false;
-      {
-        std::lock_guard<std::mutex> lock(run.progress_mutex);
-        if (!run.stop) cancelled = !run.progress(p);  // none after a cancel
-        if (cancelled) run.stop = true;
+class StepRun : public DirectionRun {
+ public:
+  StepRun(const ReachContext& ctx, const PropagationRoot& root, int threads,
+            std::vector<SampleSlice>& slices, SharedRun& run, std::exception_ptr& error)
+      : ctx_(ctx),
+        forward_(root.direction == PropagationDirection::kForward),
+        dir_(forward_ ? kForward : kBackward),
+        root_(root),
+        threads_(threads),
+        slices_(slices),
+        run_(run),
+        error_(error) {
+    for (int i = 0; i < threads; ++i) scratch_.push_back(std::make_unique<Scratch<Step>>(ctx));
+  }
+
+  void start() override {
+    guarded([&] {
+      t0_ = Clock::now();
+      slices_.clear();
+      slices_.reserve(root_.steps + 1);
+      slices_.push_back(rootSlice(ctx_, root_.root_index * ctx_.config.dt, root_.q, root_.qd));
+      advance();
+    });
+  }
+
+  const PropagationStats& stats() const override { return stats_; }
+
+ private:
+  /// Runs steps inline until one is handed to tasks or the direction ends.
+  void advance() {
+    while (true) {
+      const int j = static_cast<int>(slices_.size()) - 1;
+      if (j == root_.steps || run_.stop) {
+        for (const auto& s : scratch_) {
+          stats_.qps += s->step.qpCount();
+          if constexpr (std::is_same<Step, BackwardStep>::value)
+            stats_.prefiltered += s->step.prefilterRejects();
+        }
+        stats_.propagation_time = since(t0_) - stats_.boundary_time;
+        return;
       }
-      if (cancelled)
-        throw ReachCancelled(std::string("reachability check cancelled after ") +
-                             std::to_string(j + 1) + " of " + std::to_string(steps) + " " +
-                             (forward ? "forward" : "backward") + " slices");
+      const SampleSlice& prev = slices_.back();
+      const ReachConfig& config = ctx_.config;
+      n_children_ = j == 0 ? config.initial_samples
+                           : (forward_ ? config.children_per_parent
+                                       : config.backward_children_per_parent);
+      const long total = static_cast<long>(prev.kept.size()) * n_children_;
+      children_ = std::make_unique<StepChildren>(ctx_, total);
+      chunks_ = (n_children_ + kChunk - 1) / kChunk;
+      const int items = static_cast<int>(prev.kept.size()) * chunks_;
+      if (threads_ == 1 || total < kParallelMin) {
+        runItems(0, items);
+        finishStep();
+        continue;
+      }
+      const int tasks = std::min(items, kTasksPerThread * threads_);
+      pending_.store(tasks);
+      for (int t = 0; t < tasks; ++t) {
+        const int i0 = static_cast<int>(static_cast<long>(items) * t / tasks);
+        const int i1 = static_cast<int>(static_cast<long>(items) * (t + 1) / tasks);
+#pragma omp task default(shared) firstprivate(i0, i1)
+        guarded([&] {
+          runItems(i0, i1);
+          if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {  // the last one
+            finishStep();
+            advance();
+          }
+        });
+      }
+      return;
     }
   }
-  for (const auto& s : scratch) {
-    stats.qps += s->step.qpCount();
-    if constexpr (std::is_same<Step, BackwardStep>::value)
-      stats.prefiltered += s->step.prefilterRejects();
-  }
-  stats.propagation_time = since(t0) - stats.boundary_time;
-  return stats;
-}
 
-/// One direction inside a team's task. An exception may not leave an OpenMP task: it is
-/// stored in `error` (and stops the other direction), for the caller to rethrow.
-PropagationStats runDirection(const ReachContext& ctx, const PropagationRoot& r, int threads,
-                              std::vector<SampleSlice>& slices, SharedRun& run,
-                              std::exception_ptr& error) {
-  try {
-    if (r.direction == PropagationDirection::kForward)
-      return propagateWith<ForwardStep>(ctx, true, r.root_index, r.q, r.qd, r.steps, threads,
-                                        slices, run);
-    return propagateWith<BackwardStep>(ctx, false, r.root_index, r.q, r.qd, r.steps, threads,
-                                       slices, run);
-  } catch (...) {
-    error = std::current_exception();
-    run.stop = true;
+  /// Work items [i0, i1) of the current step (any thread).
+  void runItems(int i0, int i1) {
+    const SampleSlice& prev = slices_.back();
+    const int step_index = static_cast<int>(slices_.size()) - 1;
+    const std::uint64_t seed = ctx_.config.seed;
+    const int n_vertex = vertexDraws(ctx_.config.vertex_fraction, n_children_);
+    StepChildren& ch = *children_;
+    Scratch<Step>& s = *scratch_[omp_get_thread_num()];
+    for (int item = i0; item < i1; ++item) {
+      const int k = item / chunks_;
+      const int c0 = (item % chunks_) * kChunk;
+      const int c1 = std::min(c0 + kChunk, n_children_);
+      const int parent = prev.kept[k];
+      if (!s.step.setParent(prev.q_kept.col(k), prev.qd.col(parent))) continue;
+      for (int c = c0; c < c1; ++c) {
+        const long col = static_cast<long>(k) * n_children_ + c;
+        bool good;
+        if constexpr (std::is_same<Step, ForwardStep>::value) {
+          drawBox(seed, dir_, step_index, parent, c, n_vertex, ctx_.u_max, s.u);
+          good = s.step.child(s.u, s.q, ch.qd.col(col), ch.y.col(col), ch.yr.col(col),
+                              ch.u.col(col), ch.lam.col(col));
+        } else {
+          drawBox(seed, dir_, step_index, parent, c, n_vertex, s.step.drawBound(), s.draw);
+          good = s.step.child(s.draw, s.q, ch.qd.col(col), ch.y.col(col), ch.yr.col(col),
+                              ch.u.col(col), ch.lam.col(col));
+        }
+        ch.ok[col] = good ? 1 : 0;
+      }
+    }
   }
-  return {};
+
+  /// Gathers the step's children into the next slice, selects its boundary, reports.
+  void finishStep() {
+    const SampleSlice& prev = slices_.back();
+    const StepChildren& ch = *children_;
+    const int j = static_cast<int>(slices_.size()) - 1;
+    const long total = static_cast<long>(ch.ok.size());
+    SampleSlice next;
+    next.time = (root_.root_index + (forward_ ? 1 : -1) * (j + 1)) * ctx_.config.dt;
+    long kept = 0;
+    for (long i = 0; i < total; ++i) kept += ch.ok[i];
+    stats_.rejected += total - kept;
+    next.parent.resize(kept);
+    next.qd.resize(ctx_.n, kept);
+    next.output.resize(ctx_.ny(), kept);
+    next.output_rate.resize(ctx_.ny(), kept);
+    next.u.resize(ctx_.nu, kept);
+    next.lambda.resize(ctx_.m(), kept);
+    long col = 0;
+    for (long i = 0; i < total; ++i) {
+      if (!ch.ok[i]) continue;
+      next.parent[col] = prev.kept[i / n_children_];
+      next.qd.col(col) = ch.qd.col(i);
+      next.output.col(col) = ch.y.col(i);
+      next.output_rate.col(col) = ch.yr.col(i);
+      next.u.col(col) = ch.u.col(i);
+      next.lambda.col(col) = ch.lam.col(i);
+      ++col;
+    }
+    children_.reset();
+    const auto tb = Clock::now();
+    selectAndStore(ctx_, forward_, prev, next);
+    stats_.boundary_time += since(tb);
+    stats_.samples += next.size();
+    slices_.push_back(std::move(next));
+    report(j + 1);
+  }
+
+  /// The progress callback after slice `done` (never two at once; none after a cancel).
+  void report(int done) {
+    if (!run_.progress) return;
+    ReachProgress p{forward_, done, root_.steps, stats_.samples, 0};
+    for (const auto& sc : scratch_) p.qps += sc->step.qpCount();
+    bool cancelled = false;
+    {
+      std::lock_guard<std::mutex> lock(run_.progress_mutex);
+      if (!run_.stop) cancelled = !run_.progress(p);
+      if (cancelled) run_.stop = true;
+    }
+    if (cancelled)
+      throw ReachCancelled(std::string("reachability check cancelled after ") +
+                           std::to_string(done) + " of " + std::to_string(root_.steps) + " " +
+                           (forward_ ? "forward" : "backward") + " slices");
+  }
+
+  /// No exception may leave an OpenMP task: the first is kept for the caller and stops both
+  /// directions.
+  template <class F>
+  void guarded(F&& f) {
+    try {
+      f();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(run_.progress_mutex);
+      if (!error_) error_ = std::current_exception();
+      run_.stop = true;
+    }
+  }
+
+  const ReachContext& ctx_;
+  const bool forward_;
+  const Direction dir_;
+  const PropagationRoot& root_;
+  const int threads_;
+  std::vector<SampleSlice>& slices_;
+  SharedRun& run_;
+  std::exception_ptr& error_;
+  std::vector<std::unique_ptr<Scratch<Step>>> scratch_;
+  PropagationStats stats_;
+  Clock::time_point t0_;
+  int n_children_ = 0, chunks_ = 1;
+  std::unique_ptr<StepChildren> children_;
+  std::atomic<int> pending_{0};
+};
+
+std::unique_ptr<DirectionRun> makeRun(const ReachContext& ctx, const PropagationRoot& root,
+                                      int threads, std::vector<SampleSlice>& slices,
+                                      SharedRun& run, std::exception_ptr& error) {
+  if (root.direction == PropagationDirection::kForward)
+    return std::make_unique<StepRun<ForwardStep>>(ctx, root, threads, slices, run, error);
+  return std::make_unique<StepRun<BackwardStep>>(ctx, root, threads, slices, run, error);
 }
 
 }  // namespace
@@ -278,18 +373,19 @@ void propagateSets(const ReachContext& ctx, const PropagationRoot& a, const Prop
                    std::vector<SampleSlice>& slices_b, PropagationStats& stats_a,
                    PropagationStats& stats_b, const ReachProgressCallback& progress) {
   SharedRun run(progress);
-  std::exception_ptr error_a, error_b;
+  std::exception_ptr error;
+  const std::unique_ptr<DirectionRun> run_a = makeRun(ctx, a, threads, slices_a, run, error);
+  const std::unique_ptr<DirectionRun> run_b = makeRun(ctx, b, threads, slices_b, run, error);
+  // Both start in the single thread; the region's closing barrier runs every task to the end.
 #pragma omp parallel num_threads(threads)
-#pragma omp single
+#pragma omp single nowait
   {
-#pragma omp task default(shared)
-    stats_a = runDirection(ctx, a, threads, slices_a, run, error_a);
-#pragma omp task default(shared)
-    stats_b = runDirection(ctx, b, threads, slices_b, run, error_b);
-#pragma omp taskwait
+    run_a->start();
+    run_b->start();
   }
-  if (error_a) std::rethrow_exception(error_a);
-  if (error_b) std::rethrow_exception(error_b);
+  if (error) std::rethrow_exception(error);
+  stats_a = run_a->stats();
+  stats_b = run_b->stats();
 }
 
 PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
@@ -298,13 +394,13 @@ PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection dire
                               const ReachProgressCallback& progress) {
   const PropagationRoot root{direction, root_index, q, qd, steps};
   SharedRun run(progress);
-  PropagationStats stats;
   std::exception_ptr error;
+  const std::unique_ptr<DirectionRun> one = makeRun(ctx, root, threads, slices, run, error);
 #pragma omp parallel num_threads(threads)
-#pragma omp single
-  stats = runDirection(ctx, root, threads, slices, run, error);
+#pragma omp single nowait
+  one->start();
   if (error) std::rethrow_exception(error);
-  return stats;
+  return one->stats();
 }
 
 Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,
