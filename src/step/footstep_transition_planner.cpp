@@ -137,23 +137,19 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
     const FootstepPlanRequest& r, const ReachConfig& reach, const FootstepTransition& quick,
     const FootstepPlanProgress& progress) const {
   FootstepTransition out;
-  out.request = r;
-  out.stance = r.stance;
-  out.horizon = quick.horizon;
-  const Eigen::Isometry3d held = initialState(r, out);
-  const Touchdown touchdown = predictTouchdown(r, out);
+  const PassStart start = startPass(r, quick.horizon, out);
   // The full budget's forward set alone (the full pass's, bit for bit: same seed and budget).
-  FootstepTransition forward = out;
-  std::vector<ReachableSlice> hulls =
-      checkFoothold(r, reach.hullPassConfig(), touchdown, progress.check, forward);
+  double check_time_s = 0.0;
+  FootstepCheckResult forward = runCheck(r, reach.hullPassConfig(), start.touchdown,
+                                         progress.check, out, check_time_s);
   // The quick pass's check stands (verdict, IK, witness): only the OCP's hulls change, cut
   // where its witness leaves the sampled sets.
   recordCheck(quick.check, true, out);
-  out.check_time_s = forward.check_time_s;
-  if (!forward.kinematically_feasible) return out;  // not the quick pass's IK: no retry
-  solveTransition(r, held, touchdown,
-                  slicesUpToJunction(std::move(hulls), quick.check.reach.witness), progress.ocp,
-                  out);
+  out.check_time_s = check_time_s;
+  if (!forward.result.kinematically_feasible) return out;  // not the quick pass's IK: no retry
+  solveTransition(r, start.held, start.touchdown,
+                  slicesUpToJunction(std::move(forward.set_constraint), quick.check.reach.witness),
+                  progress.ocp, out);
   return out;
 }
 
@@ -161,15 +157,22 @@ FootstepTransition FootstepTransitionPlanner::planWith(const FootstepPlanRequest
                                                        const ReachConfig& reach,
                                                        const FootstepPlanProgress& progress) const {
   FootstepTransition out;
+  const PassStart start = startPass(r, r.horizon > 0.0 ? r.horizon : reach.horizon, out);
+  std::vector<ReachableSlice> set_constraint =
+      checkFoothold(r, reach, start.touchdown, progress.check, out);
+  solveTransition(r, start.held, start.touchdown, std::move(set_constraint), progress.ocp, out);
+  return out;
+}
+
+FootstepTransitionPlanner::PassStart FootstepTransitionPlanner::startPass(
+    const FootstepPlanRequest& r, double horizon, FootstepTransition& out) const {
   out.request = r;
   out.stance = r.stance;
-  out.horizon = r.horizon > 0.0 ? r.horizon : reach.horizon;
-  const Eigen::Isometry3d held = initialState(r, out);
-  const Touchdown touchdown = predictTouchdown(r, out);
-  std::vector<ReachableSlice> set_constraint =
-      checkFoothold(r, reach, touchdown, progress.check, out);
-  solveTransition(r, held, touchdown, std::move(set_constraint), progress.ocp, out);
-  return out;
+  out.horizon = horizon;
+  PassStart start;
+  start.held = initialState(r, out);
+  start.touchdown = predictTouchdown(r, out);
+  return start;
 }
 
 Eigen::Isometry3d FootstepTransitionPlanner::initialState(const FootstepPlanRequest& r,
@@ -216,9 +219,12 @@ FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown
   return td;
 }
 
-std::vector<ReachableSlice> FootstepTransitionPlanner::checkFoothold(
-    const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
-    const ReachProgressCallback& progress, FootstepTransition& out) const {
+FootstepCheckResult FootstepTransitionPlanner::runCheck(const FootstepPlanRequest& r,
+                                                        const ReachConfig& reach,
+                                                        const Touchdown& td,
+                                                        const ReachProgressCallback& progress,
+                                                        const FootstepTransition& out,
+                                                        double& time_s) const {
   const auto check_start = std::chrono::steady_clock::now();
   FootstepRequest request;
   request.stance = r.stance;
@@ -232,8 +238,17 @@ std::vector<ReachableSlice> FootstepTransitionPlanner::checkFoothold(
   FootstepCheckResult checked =
       footstep_check_ ? footstep_check_(request, reach, r.check_reachability)
                       : checkFootstep(footsteps_, request, reach, r.check_reachability, progress);
+  time_s = secondsSince(check_start);
+  return checked;
+}
+
+std::vector<ReachableSlice> FootstepTransitionPlanner::checkFoothold(
+    const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
+    const ReachProgressCallback& progress, FootstepTransition& out) const {
+  double time_s = 0.0;
+  FootstepCheckResult checked = runCheck(r, reach, td, progress, out, time_s);
   recordCheck(std::move(checked.result), r.check_reachability, out);
-  out.check_time_s = secondsSince(check_start);
+  out.check_time_s = time_s;
   return std::move(checked.set_constraint);
 }
 

@@ -189,12 +189,24 @@ class FootstepTransitionPlanner {
     std::optional<Eigen::Vector3d> pelvis;
     Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
   };
+  /// What every pass starts from: the held stance sole pose and the touchdown prediction.
+  struct PassStart {
+    Eigen::Isometry3d held = Eigen::Isometry3d::Identity();
+    Touchdown touchdown;
+  };
+  /// Step 1 of a pass of `horizon` [s]: the request, x_0 and the target into `out`.
+  PassStart startPass(const FootstepPlanRequest& r, double horizon, FootstepTransition& out) const;
   /// Steps 1-5 with the check's configuration `reach` (one pass of plan()).
   FootstepTransition planWith(const FootstepPlanRequest& r, const ReachConfig& reach,
                               const FootstepPlanProgress& progress) const;
   /// Step 1: x_0 into `out`; returns the held stance sole pose.
   Eigen::Isometry3d initialState(const FootstepPlanRequest& r, FootstepTransition& out) const;
   Touchdown predictTouchdown(const FootstepPlanRequest& r, const FootstepTransition& out) const;
+  /// Steps 2-3 for the x_0 and target of `out`: the check and the OCP's slices of its forward
+  /// set (eq. 23; empty without a reachability check); its wall time into time_s [s].
+  FootstepCheckResult runCheck(const FootstepPlanRequest& r, const ReachConfig& reach,
+                               const Touchdown& td, const ReachProgressCallback& progress,
+                               const FootstepTransition& out, double& time_s) const;
   /// Steps 2-3 into out.check and the verdict fields; returns the OCP's slices of the
   /// check's forward set (eq. 23; empty without a reachability check).
   std::vector<ReachableSlice> checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach,
