@@ -90,6 +90,9 @@ struct ReachCounts {
 };
 
 /// Wall times of one check [s].
+/// The two directions are propagated side by side (set_propagation.h): forward and backward
+/// (each without its boundary selection) overlap, and with boundary they can add up to more
+/// than total.
 struct ReachTimings {
   double forward = 0.0, backward = 0.0, boundary = 0.0, hausdorff = 0.0, witness = 0.0;
   double total = 0.0;
