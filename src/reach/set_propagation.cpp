@@ -174,7 +174,7 @@ template <class Step>
 class StepRun : public DirectionRun {
  public:
   StepRun(const ReachContext& ctx, const PropagationRoot& root, int threads,
-            std::vector<SampleSlice>& slices, SharedRun& run, std::exception_ptr& error)
+          std::vector<SampleSlice>& slices, SharedRun& run, std::exception_ptr& error)
       : ctx_(ctx),
         forward_(root.direction == PropagationDirection::kForward),
         dir_(forward_ ? kForward : kBackward),
@@ -214,9 +214,9 @@ class StepRun : public DirectionRun {
       }
       const SampleSlice& prev = slices_.back();
       const ReachConfig& config = ctx_.config;
-      n_children_ = j == 0 ? config.initial_samples
-                           : (forward_ ? config.children_per_parent
-                                       : config.backward_children_per_parent);
+      n_children_ =
+          j == 0 ? config.initial_samples
+                 : (forward_ ? config.children_per_parent : config.backward_children_per_parent);
       const long total = static_cast<long>(prev.kept.size()) * n_children_;
       children_ = std::make_unique<StepChildren>(ctx_, total);
       chunks_ = (n_children_ + kChunk - 1) / kChunk;
@@ -359,8 +359,8 @@ class StepRun : public DirectionRun {
 };
 
 std::unique_ptr<DirectionRun> makeRun(const ReachContext& ctx, const PropagationRoot& root,
-                                      int threads, std::vector<SampleSlice>& slices,
-                                      SharedRun& run, std::exception_ptr& error) {
+                                      int threads, std::vector<SampleSlice>& slices, SharedRun& run,
+                                      std::exception_ptr& error) {
   if (root.direction == PropagationDirection::kForward)
     return std::make_unique<StepRun<ForwardStep>>(ctx, root, threads, slices, run, error);
   return std::make_unique<StepRun<BackwardStep>>(ctx, root, threads, slices, run, error);

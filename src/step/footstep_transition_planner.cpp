@@ -140,8 +140,8 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
   const PassStart start = startPass(r, quick.horizon, out);
   // The full budget's forward set alone (the full pass's, bit for bit: same seed and budget).
   double check_time_s = 0.0;
-  FootstepCheckResult forward = runCheck(r, reach.hullPassConfig(), start.touchdown,
-                                         progress.check, out, check_time_s);
+  FootstepCheckResult forward =
+      runCheck(r, reach.hullPassConfig(), start.touchdown, progress.check, out, check_time_s);
   // The quick pass's check stands (verdict, IK, witness): only the OCP's hulls change, cut
   // where its witness leaves the sampled sets.
   recordCheck(quick.check, true, out);
@@ -219,12 +219,9 @@ FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown
   return td;
 }
 
-FootstepCheckResult FootstepTransitionPlanner::runCheck(const FootstepPlanRequest& r,
-                                                        const ReachConfig& reach,
-                                                        const Touchdown& td,
-                                                        const ReachProgressCallback& progress,
-                                                        const FootstepTransition& out,
-                                                        double& time_s) const {
+FootstepCheckResult FootstepTransitionPlanner::runCheck(
+    const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
+    const ReachProgressCallback& progress, const FootstepTransition& out, double& time_s) const {
   const auto check_start = std::chrono::steady_clock::now();
   FootstepRequest request;
   request.stance = r.stance;

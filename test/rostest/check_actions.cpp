@@ -1,7 +1,7 @@
 // rostest checker of actions.test (a gtest executable run by rostest): reachability_node's
 // check_reachability_action on our robot from the standing pose. Feedback arrives after every
-// slice, forward and backward interleaved, each direction counted to its end, and the result equals the
-// one-shot check_reachability service's answer to the same request byte for byte (without the
+// slice, forward and backward interleaved, each direction counted to its end, and the result equals
+// the one-shot check_reachability service's answer to the same request byte for byte (without the
 // wall times); a newer goal preempts a running check before it ends (fewer feedbacks than
 // slices), the newer one succeeds; a cancel preempts a running check the same way.
 // transition_ocp_node's plan_transition_action: feedback from the check, then from the OCP;
