@@ -157,41 +157,38 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   res.counts.threads = threads;
 
   // ---- forward set (15)-(16) and backward set (17)-(20), side by side --------------------
-  const PropagationRoot forward_root{PropagationDirection::kForward, 0, pb.q0, pb.qd0, n_fwd};
-  const PropagationRoot backward_root{PropagationDirection::kBackward, i_t, pb.qf, pb.qdf, n_bwd};
-  PropagationStats fwd, bwd;
-  if (config.forward_set_only)  // the hull pass: the forward set is all it uses
-    fwd = propagateSet(ctx, PropagationDirection::kForward, 0, pb.q0, pb.qd0, n_fwd, threads,
-                       res.forward, progress);
-  else
-    propagateSets(ctx, forward_root, backward_root, threads, res.forward, res.backward, fwd, bwd,
-                  progress);
-  res.counts.forward_samples = fwd.samples;
-  res.counts.forward_rejected = fwd.rejected;
-  res.counts.forward_qps = fwd.qps;
-  res.timings.forward = fwd.propagation_time;
-  res.timings.boundary = fwd.boundary_time + bwd.boundary_time;
+  DirectionSet fwd{{PropagationDirection::kForward, 0, pb.q0, pb.qd0, n_fwd}, {}, {}};
+  DirectionSet bwd{{PropagationDirection::kBackward, i_t, pb.qf, pb.qdf, n_bwd}, {}, {}};
+  std::vector<DirectionSet*> sets{&fwd};
+  if (!config.forward_set_only) sets.push_back(&bwd);  // the hull pass: the forward set alone
+  propagateSets(ctx, sets, threads, progress);
+  res.forward = std::move(fwd.slices);
+  res.backward = std::move(bwd.slices);
+  res.counts.forward_samples = fwd.stats.samples;
+  res.counts.forward_rejected = fwd.stats.rejected;
+  res.counts.forward_qps = fwd.stats.qps;
+  res.counts.backward_samples = bwd.stats.samples;
+  res.counts.backward_rejected = bwd.stats.rejected;
+  res.counts.backward_qps = bwd.stats.qps;
+  res.counts.backward_prefiltered = bwd.stats.prefiltered;
+  res.timings.forward = fwd.stats.propagation_time;
+  res.timings.backward = bwd.stats.propagation_time;
+  res.timings.boundary = fwd.stats.boundary_time + bwd.stats.boundary_time;
   if (config.forward_set_only) {
     res.reason = "not checked: the forward set only (reach.forward_set_only)";
-    res.timings.total = since(t_start);
-    return res;
+  } else {
+    // ---- the test (14) on the overlap window ----------------------------------------------
+    const auto th = Clock::now();
+    res.window = compareWindow(config, res.forward, res.backward, i_2, i_1, i_t);
+    res.timings.hausdorff = since(th);
+    // ---- verdict and witness --------------------------------------------------------------
+    const auto tw = Clock::now();
+    res.best = decidingSlice(res.window, res.sets_meet);
+    res.witness = certifyWitness(ctx, res.forward, res.backward, res.window, res.semi_implicit);
+    res.reachable = res.witness.certified;
+    res.reason = verdictReason(config, res.window, res.best, res.sets_meet, res.witness);
+    res.timings.witness = since(tw);
   }
-  res.counts.backward_samples = bwd.samples;
-  res.counts.backward_rejected = bwd.rejected;
-  res.counts.backward_qps = bwd.qps;
-  res.counts.backward_prefiltered = bwd.prefiltered;
-  res.timings.backward = bwd.propagation_time;
-  // ---- the test (14) on the overlap window ----------------------------------------------
-  const auto th = Clock::now();
-  res.window = compareWindow(config, res.forward, res.backward, i_2, i_1, i_t);
-  res.timings.hausdorff = since(th);
-  // ---- verdict and witness ----------------------------------------------------------------
-  const auto tw = Clock::now();
-  res.best = decidingSlice(res.window, res.sets_meet);
-  res.witness = certifyWitness(ctx, res.forward, res.backward, res.window, res.semi_implicit);
-  res.reachable = res.witness.certified;
-  res.reason = verdictReason(config, res.window, res.best, res.sets_meet, res.witness);
-  res.timings.witness = since(tw);
   res.timings.total = since(t_start);
   return res;
 }

@@ -33,12 +33,14 @@ constexpr int kChunk = 64;  // children per work item (fixed: results do not dep
 constexpr long kParallelMin = 64;
 constexpr int kTasksPerThread = 8;  // tasks of one step per thread (dynamic balance)
 
-/// What the directions run together share: the progress callback (never called
-/// concurrently) and a stop flag, raised when one direction throws (cancelled).
+/// What the directions run together share: the progress callback, the first exception any
+/// of them threw, the mutex guarding both (the callback is never called concurrently), and a
+/// stop flag raised by that exception (or a cancel).
 struct SharedRun {
   explicit SharedRun(const ReachProgressCallback& cb) : progress(cb) {}
   const ReachProgressCallback& progress;
-  std::mutex progress_mutex;
+  std::exception_ptr error;
+  std::mutex mutex;
   std::atomic<bool> stop{false};
 };
 enum Direction : std::uint64_t { kForward = 1, kBackward = 2 };
@@ -166,37 +168,34 @@ class DirectionRun {
   virtual ~DirectionRun() = default;
   /// Starts the direction (in a parallel region's single thread, or serially).
   virtual void start() = 0;
-  /// Valid once every task of the region has ended.
-  virtual const PropagationStats& stats() const = 0;
 };
 
+/// Propagates one DirectionSet (its slices and stats).
 template <class Step>
 class StepRun : public DirectionRun {
  public:
-  StepRun(const ReachContext& ctx, const PropagationRoot& root, int threads,
-          std::vector<SampleSlice>& slices, SharedRun& run, std::exception_ptr& error)
+  StepRun(const ReachContext& ctx, DirectionSet& set, int threads, SharedRun& run)
       : ctx_(ctx),
-        forward_(root.direction == PropagationDirection::kForward),
+        forward_(set.root.direction == PropagationDirection::kForward),
         dir_(forward_ ? kForward : kBackward),
-        root_(root),
+        root_(set.root),
         threads_(threads),
-        slices_(slices),
-        run_(run),
-        error_(error) {
+        slices_(set.slices),
+        stats_(set.stats),
+        run_(run) {
     for (int i = 0; i < threads; ++i) scratch_.push_back(std::make_unique<Scratch<Step>>(ctx));
   }
 
   void start() override {
     guarded([&] {
       t0_ = Clock::now();
+      stats_ = PropagationStats();
       slices_.clear();
       slices_.reserve(root_.steps + 1);
       slices_.push_back(rootSlice(ctx_, root_.root_index * ctx_.config.dt, root_.q, root_.qd));
       advance();
     });
   }
-
-  const PropagationStats& stats() const override { return stats_; }
 
  private:
   /// Runs steps inline until one is handed to tasks or the direction ends.
@@ -319,7 +318,7 @@ class StepRun : public DirectionRun {
     for (const auto& sc : scratch_) p.qps += sc->step.qpCount();
     bool cancelled = false;
     {
-      std::lock_guard<std::mutex> lock(run_.progress_mutex);
+      std::lock_guard<std::mutex> lock(run_.mutex);
       if (!run_.stop) cancelled = !run_.progress(p);
       if (cancelled) run_.stop = true;
     }
@@ -336,8 +335,8 @@ class StepRun : public DirectionRun {
     try {
       f();
     } catch (...) {
-      std::lock_guard<std::mutex> lock(run_.progress_mutex);
-      if (!error_) error_ = std::current_exception();
+      std::lock_guard<std::mutex> lock(run_.mutex);
+      if (!run_.error) run_.error = std::current_exception();
       run_.stop = true;
     }
   }
@@ -348,59 +347,35 @@ class StepRun : public DirectionRun {
   const PropagationRoot& root_;
   const int threads_;
   std::vector<SampleSlice>& slices_;
+  PropagationStats& stats_;
   SharedRun& run_;
-  std::exception_ptr& error_;
   std::vector<std::unique_ptr<Scratch<Step>>> scratch_;
-  PropagationStats stats_;
   Clock::time_point t0_;
   int n_children_ = 0, chunks_ = 1;
   std::unique_ptr<StepChildren> children_;
   std::atomic<int> pending_{0};
 };
 
-std::unique_ptr<DirectionRun> makeRun(const ReachContext& ctx, const PropagationRoot& root,
-                                      int threads, std::vector<SampleSlice>& slices, SharedRun& run,
-                                      std::exception_ptr& error) {
-  if (root.direction == PropagationDirection::kForward)
-    return std::make_unique<StepRun<ForwardStep>>(ctx, root, threads, slices, run, error);
-  return std::make_unique<StepRun<BackwardStep>>(ctx, root, threads, slices, run, error);
+std::unique_ptr<DirectionRun> makeRun(const ReachContext& ctx, DirectionSet& set, int threads,
+                                      SharedRun& run) {
+  if (set.root.direction == PropagationDirection::kForward)
+    return std::make_unique<StepRun<ForwardStep>>(ctx, set, threads, run);
+  return std::make_unique<StepRun<BackwardStep>>(ctx, set, threads, run);
 }
 
 }  // namespace
 
-void propagateSets(const ReachContext& ctx, const PropagationRoot& a, const PropagationRoot& b,
-                   int threads, std::vector<SampleSlice>& slices_a,
-                   std::vector<SampleSlice>& slices_b, PropagationStats& stats_a,
-                   PropagationStats& stats_b, const ReachProgressCallback& progress) {
+void propagateSets(const ReachContext& ctx, const std::vector<DirectionSet*>& sets, int threads,
+                   const ReachProgressCallback& progress) {
+  // Every direction starts in the single thread; the region's closing barrier runs every
+  // task to the end.
   SharedRun run(progress);
-  std::exception_ptr error;
-  const std::unique_ptr<DirectionRun> run_a = makeRun(ctx, a, threads, slices_a, run, error);
-  const std::unique_ptr<DirectionRun> run_b = makeRun(ctx, b, threads, slices_b, run, error);
-  // Both start in the single thread; the region's closing barrier runs every task to the end.
+  std::vector<std::unique_ptr<DirectionRun>> runs;
+  for (DirectionSet* set : sets) runs.push_back(makeRun(ctx, *set, threads, run));
 #pragma omp parallel num_threads(threads)
 #pragma omp single nowait
-  {
-    run_a->start();
-    run_b->start();
-  }
-  if (error) std::rethrow_exception(error);
-  stats_a = run_a->stats();
-  stats_b = run_b->stats();
-}
-
-PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
-                              int root_index, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                              int steps, int threads, std::vector<SampleSlice>& slices,
-                              const ReachProgressCallback& progress) {
-  const PropagationRoot root{direction, root_index, q, qd, steps};
-  SharedRun run(progress);
-  std::exception_ptr error;
-  const std::unique_ptr<DirectionRun> one = makeRun(ctx, root, threads, slices, run, error);
-#pragma omp parallel num_threads(threads)
-#pragma omp single nowait
-  one->start();
-  if (error) std::rethrow_exception(error);
-  return one->stats();
+  for (const auto& r : runs) r->start();
+  if (run.error) std::rethrow_exception(run.error);
 }
 
 Eigen::VectorXd sampleConfigurationOf(const std::vector<SampleSlice>& slices,

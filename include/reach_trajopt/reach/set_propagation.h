@@ -45,29 +45,22 @@ struct PropagationRoot {
   int steps = 0;          ///< slices to add after the root
 };
 
-/// Propagates two directions of the check at once (the forward set from x_0 and the backward
-/// set from x_f), with the same results as propagateSet() on each.
-/// \param progress  called after each slice of either direction, never concurrently; false
-///     cancels both (ReachCancelled); may be empty
-/// \param[out] slices_a, slices_b  the slices of a and b; \param[out] stats_a, stats_b theirs
-///     (each direction's wall times overlap the other's)
-void propagateSets(const ReachContext& ctx, const PropagationRoot& a, const PropagationRoot& b,
-                   int threads, std::vector<SampleSlice>& slices_a,
-                   std::vector<SampleSlice>& slices_b, PropagationStats& stats_a,
-                   PropagationStats& stats_b, const ReachProgressCallback& progress = {});
+/// One direction of the check: its root, then what propagateSets() made of it.
+struct DirectionSet {
+  PropagationRoot root;
+  std::vector<SampleSlice> slices;  ///< out: the root slice followed by root.steps slices
+  PropagationStats stats;           ///< out (wall times overlap the other directions')
+};
 
-/// Propagates one direction of the check.
-/// \param root_index  time index of the root: slice j is at time (root_index + sign j) dt, sign
-///     +1 forward (root x_0 at index 0), -1 backward (root x_f at index i_t).
-/// \param q, qd       the root state (size n_q each)
-/// \param progress    called after each slice; false cancels (ReachCancelled); may be empty
-/// \param steps       slices to add after the root
-/// \param threads     OpenMP threads (>= 1)
-/// \param[out] slices the root slice followed by `steps` slices
-PropagationStats propagateSet(const ReachContext& ctx, PropagationDirection direction,
-                              int root_index, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                              int steps, int threads, std::vector<SampleSlice>& slices,
-                              const ReachProgressCallback& progress = {});
+/// Propagates every set from its root, all directions side by side in one OpenMP team (the
+/// check: the forward set from x_0 and the backward set from x_f; the hull pass: the forward
+/// set alone). A direction's slices are the same whatever runs beside it and for any thread
+/// count.
+/// \param threads   OpenMP threads (>= 1)
+/// \param progress  called after each slice of any direction, never concurrently; false
+///     cancels every direction (ReachCancelled); may be empty
+void propagateSets(const ReachContext& ctx, const std::vector<DirectionSet*>& sets, int threads,
+                   const ReachProgressCallback& progress = {});
 
 /// The configuration q of sample `index` of slice `slice` (exact, from its parent's stored
 /// configuration). \param semi_implicit  the forward integrator used (forward slices only)
