@@ -67,6 +67,7 @@ BackwardStep::BackwardStep(const ReachContext& context)
   if (m_ > 0) factor_.compute(Eigen::MatrixXd::Identity(m_, m_));  // cost |lambda|^2 (19)
   warm_.reserve(rows_);
   T_.resize(n_, n_);
+  lambda_inv_jphi_.resize(m_, n_);
   lambda_d_.resize(m_, n_);
   slack_d_.resize(rows_, n_);
   qd_center_.resize(n_);
@@ -207,8 +208,12 @@ void BackwardStep::buildPrefilter() {
   tau_center_.noalias() = M_ * w_;
   tau_center_ /= dt;
   tau_center_ += b_;
-  T_.noalias() = M_ * N_;
-  T_ /= dt;  // tau(d) ~ tau_center + T d
+  // tau(d) ~ tau_center + T d with T = M N / dt = (M - J_phi^T Lambda^-1 J_phi) / dt, since
+  // M Jbar = J_phi^T Lambda^-1: n x m x n with Lambda's factors, instead of M N's n^3.
+  lambda_inv_jphi_ = lu_c_.solve(Jphi_);
+  T_ = M_;
+  T_.noalias() -= Jphi_.transpose() * lambda_inv_jphi_;
+  T_ /= dt;
   // lambda(d) = J_b^-T tau_b(d); slack = A_in lambda - b_in(tau), b_in as in child().
   lambda_ = lu_b_.solve(tau_center_.head(6));
   lambda_d_ = lu_b_.solve(T_.topRows(6));

@@ -90,6 +90,7 @@ class BackwardStep {
   // Prefilter: slack(d) ~ slack_0 + slack_d d; rejected below -prefilter_margin.
   bool prefilter_ = false;  ///< the model is valid at this parent
   Eigen::MatrixXd T_, lambda_d_, slack_d_;
+  Eigen::MatrixXd lambda_inv_jphi_;  ///< Lambda^-1 J_phi (m x n)
   Eigen::VectorXd qd_center_, tau_center_, slack_0_, prefilter_margin_, slack_lin_;
   long prefilter_rejects_ = 0;
 };
