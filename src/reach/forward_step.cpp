@@ -73,11 +73,13 @@ ForwardStep::ForwardStep(const ReachContext& context, const ForwardStepCost& cos
   w_.tail(m_).setConstant(cost_.w_lambda);
   swing_jz_.setZero(n_);
   target_.resize(k);
+  warm_.reserve(rows_);
 }
 
 bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
                             const Eigen::Ref<const Eigen::VectorXd>& qd) {
   parent_ok_ = false;
+  warm_.clear();
   const RobotModel& model = *ctx_.model;
   const ReachConfig& cfg = ctx_.config;
   const double dt = cfg.dt;
@@ -214,8 +216,10 @@ bool ForwardStep::solveChild(const Eigen::Ref<const Eigen::VectorXd>& u,
   }
   if (hasGroundRow(ctx_, cost_)) b_in_[r++] = ground_rhs_ - swing_jz_.dot(s_.head(n_));
   ++qp_count_;
-  const qp::QpResult& res = qp_.solve(factor_, g_, empty_eq_, empty_beq_, A_in_, b_in_, nullptr);
+  const qp::QpResult& res =
+      qp_.solve(factor_, g_, empty_eq_, empty_beq_, A_in_, b_in_, warm_.empty() ? nullptr : &warm_);
   if (res.status != qp::QpStatus::kOptimal) return false;
+  warm_ = res.active_set;
   u_out = u + res.x;
   z_.noalias() = P_ * u_out;
   z_ += r0_;

@@ -16,8 +16,7 @@
 /// over du alone (n_u variables, no equality rows). Everything that depends on the parent only
 /// (M, b, J, the LU of K, P, the QP Hessian and its factorization, the inequality matrix) is
 /// computed once in setParent() and shared by all its children; a child costs one QP solve,
-/// started cold: siblings draw unrelated torques, and a warm start from the previous child's
-/// active set made the forward stage 10-20 % slower (bench/README.md, issue 16).
+/// warm-started from the previous child's active set.
 ///
 /// The junction bridge of a witness path (junction_bridge.h) uses the same step to track a
 /// target acceleration (trackChild), with the weights of a ForwardStepCost, the ground row,
@@ -104,6 +103,7 @@ class ForwardStep {
   qp::DualActiveSetQp qp_;
   Eigen::MatrixXd empty_eq_;
   Eigen::VectorXd empty_beq_;
+  std::vector<int> warm_;
   bool parent_ok_ = false;
   long qp_count_ = 0;
 };
