@@ -18,7 +18,7 @@
 /// computed once in setParent() and shared by all its children; a child costs one QP solve,
 /// warm-started from the previous child's active set. (Started cold, the forward stage was
 /// 10-20 % faster, but the optimum's last digits, hence the samples, changed, and the proposed
-/// forward walk fell in 2 of 4 seeds against none: bench/README.md, issue 16.)
+/// forward walk fell in 3 of 8 seeds against none: bench/README.md, issue 16.)
 ///
 /// The junction bridge of a witness path (junction_bridge.h) uses the same step to track a
 /// target acceleration (trackChild), with the weights of a ForwardStepCost, the ground row,
