@@ -28,7 +28,7 @@ BackwardStep::BackwardStep(const ReachContext& context)
       m_(context.m()),
       m_eq_(context.floating ? 6 : 0),
       rows_(inequalityRows(context)),
-      lu_m_(context.n),
+      llt_m_(context.n),
       lu_c_(context.m()),
       lu_b_(context.floating ? 6 : 0),
       terms_(context.n),
@@ -47,7 +47,7 @@ BackwardStep::BackwardStep(const ReachContext& context)
   MinvJt_.resize(n_, m_);
   Lambda_.resize(m_, m_);
   Jbar_.resize(n_, m_);
-  N_.resize(n_, n_);
+  jphi_d_.resize(m_);
   J_.resize(6, n_);
   A_eq_.setZero(m_eq_, m_);
   b_eq_.resize(m_eq_);
@@ -91,7 +91,8 @@ bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
     if (q_prev_[i] < ctx_.q_min[i] - tol || q_prev_[i] > ctx_.q_max[i] + tol) return false;
   model.update(ws_, q_prev_, qd_j_);  // q-only quantities below (M, J, phi, poses)
   model.massMatrix(ws_, M_);
-  lu_m_.compute(M_);
+  llt_m_.compute(M_);  // M is symmetric positive definite
+  if (llt_m_.info() != Eigen::Success) return false;
   const double beta = ctx_.config.contact_stabilization;
   for (int c = 0; c < ctx_.nc; ++c) {
     const ContactConstraint& cc = ctx_.contacts[c];
@@ -104,14 +105,14 @@ bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
   }
   if (m_ > 0) {
     // Jbar = M^-1 J^T (J M^-1 J^T)^-1 (dynamically consistent inverse of eq. 17).
-    MinvJt_ = lu_m_.solve(Jphi_.transpose());
-    Lambda_.noalias() = Jphi_ * MinvJt_;
+    // The products below are small (at most 12 x n x 12): coefficient-based (lazyProduct)
+    // instead of the blocked kernel, whose packing costs more than the flops at these sizes.
+    MinvJt_ = llt_m_.solve(Jphi_.transpose());
+    Lambda_.noalias() = Jphi_.lazyProduct(MinvJt_);
     lu_c_.compute(Lambda_);
     const double piv = lu_c_.matrixLU().diagonal().cwiseAbs().minCoeff();
     if (!(piv > 1e-12 * lu_c_.matrixLU().diagonal().cwiseAbs().maxCoeff())) return false;
     Jbar_ = lu_c_.solve(MinvJt_.transpose()).transpose();  // Lambda symmetric
-    N_.setIdentity();
-    N_.noalias() -= Jbar_ * Jphi_;
     w_.noalias() = Jbar_ * e_;
     // Rows of (19): base rows J_b^T lambda = M_b qdd + b_b; cone; torque bounds.
     if (m_eq_ > 0) A_eq_ = Jc_.leftCols(6).transpose();
@@ -133,7 +134,6 @@ bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
       if (unique_lambda_ && ctx_.config.backward_prefilter) buildPrefilter();
     }
   } else {
-    N_.setIdentity();
     w_.setZero();
   }
   parent_ok_ = true;
@@ -156,8 +156,12 @@ bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
   }
   const RobotModel& model = *ctx_.model;
   const double dt = ctx_.config.dt;
-  v_.noalias() = N_ * d;
-  v_ += w_;
+  // v = N d + w with N = I - Jbar J_phi, applied as d - Jbar (J_phi d): O(n m), not O(n^2).
+  v_ = d + w_;
+  if (m_ > 0) {
+    jphi_d_.noalias() = Jphi_ * d;
+    v_.noalias() -= Jbar_ * jphi_d_;
+  }
   qd_prev = qd_j_ - v_;
   q_prev = q_prev_;
   if (!ctx_.withinLimits(q_prev, qd_prev)) return false;
@@ -212,7 +216,7 @@ void BackwardStep::buildPrefilter() {
   // M Jbar = J_phi^T Lambda^-1: n x m x n with Lambda's factors, instead of M N's n^3.
   lambda_inv_jphi_ = lu_c_.solve(Jphi_);
   T_ = M_;
-  T_.noalias() -= Jphi_.transpose() * lambda_inv_jphi_;
+  T_.noalias() -= Jphi_.transpose().lazyProduct(lambda_inv_jphi_);
   T_ /= dt;
   // lambda(d) = J_b^-T tau_b(d); slack = A_in lambda - b_in(tau), b_in as in child().
   lambda_ = lu_b_.solve(tau_center_.head(6));
@@ -226,7 +230,7 @@ void BackwardStep::buildPrefilter() {
   }
   slack_0_.noalias() = A_in_ * lambda_;
   slack_0_ -= b_in_;
-  slack_d_.noalias() = A_in_ * lambda_d_;
+  slack_d_.noalias() = A_in_.lazyProduct(lambda_d_);
   slack_d_.middleRows(r, nu_) -= T_.middleRows(off, nu_);
   slack_d_.middleRows(r + nu_, nu_) += T_.middleRows(off, nu_);
   // Margin: a share of the row's range over the box, plus the exact test's tolerance.

@@ -13,7 +13,7 @@
 ///   M_b qdd + b_b = J_b^T lambda, the cone C_i R_i lambda_i >= 0 and the torque bounds on
 ///   u = M_a qdd + b_a - J_a^T lambda. A feasible child is kept with its (u, lambda).
 /// The step x_{j-1} -> x_j is then the semi-implicit Euler step of eq. (1).
-/// M, J, Jbar, N, the cone rows and the QP matrices depend on q_{j-1} only and are shared by
+/// M (Cholesky), J, Jbar, the cone rows and the QP matrices depend on q_{j-1} only and are shared by
 /// all children of a parent (setParent()); a child costs a velocity-only kinematics pass, one
 /// bias evaluation and a tiny QP. With one held sole the six base rows determine lambda
 /// (J_b^T is square): then (19) has one feasible point, lambda = J_b^-T (M_b qdd + b_b), and
@@ -29,6 +29,7 @@
 /// such a draw fails the exact test too: the children are the same as without the prefilter,
 /// which test_reach_biped checks draw by draw.
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
 
@@ -74,10 +75,11 @@ class BackwardStep {
   const ReachContext& ctx_;
   Workspace ws_;
   int n_, nu_, m_, m_eq_, rows_;
-  Eigen::VectorXd q_prev_, qd_j_, b_, qdd_, v_, w_, d_max_, e_;
-  Eigen::MatrixXd M_, Jc_, Jphi_, MinvJt_, Lambda_, Jbar_, N_, J_, A_eq_, A_in_;
+  Eigen::VectorXd q_prev_, qd_j_, b_, qdd_, v_, w_, d_max_, e_, jphi_d_;
+  Eigen::MatrixXd M_, Jc_, Jphi_, MinvJt_, Lambda_, Jbar_, J_, A_eq_, A_in_;
   Eigen::VectorXd b_eq_, b_in_, g_, tau_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_m_, lu_c_, lu_b_;
+  Eigen::LLT<Eigen::MatrixXd> llt_m_;  ///< of M (symmetric positive definite)
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_c_, lu_b_;
   Eigen::VectorXd lambda_, slack_, row_norm_;
   bool unique_lambda_ = false;  ///< the base rows fix lambda at this parent
   ContactConstraintTerms terms_;
