@@ -6,6 +6,11 @@
 # it). Prints
 #   BENCH reach.walk_check threads=2 mean_s=.. max_s=.. checks=.. ... load_avg=..
 #   BENCH reach.walk_check threads=1 ...  and  BENCH reach.walk_check_speedup ratio=..
+# and the same walk with the sampler seeds 2-5 (2 threads): a check that the quick pass cannot
+# end (about one in ten) costs a hull or full pass, so one walk's max says little about the
+# next one's:
+#   BENCH reach.walk_check_seeds seeds=2-5 checks=.. mean_s=.. median_s=.. p90_s=.. max_s=..
+#     beyond_quick=.. falls=..
 #   scripts/bench_walk_check.sh [steps = 20] [config = config/biped.yaml]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
@@ -18,9 +23,13 @@ for t in 2 1; do
   OMP_NUM_THREADS=$t "$BIN/walk_experiment" --config "$config" --mode proposed --steps "$steps" \
     --push 0,0.4 > "$out/walk_$t.log"
 done
+for seed in 2 3 4 5; do
+  OMP_NUM_THREADS=2 "$BIN/walk_experiment" --config "$config" --mode proposed --steps "$steps" \
+    --push 0,0.4 --seed "$seed" > "$out/seed_$seed.log"
+done
 /usr/bin/python3 - "$out" <<'PY'
 import re, sys, os
-def stats(path):
+def stats(path, beyond=None):
     times, verdicts = [], []
     for line in open(path):
         if not line.startswith("step "):
@@ -30,6 +39,8 @@ def stats(path):
         verdicts.append(v.group(1) + "/" + v.group(2))
         if v.group(1) != "kinematically_infeasible":
             times.append(float(t.group(1)))
+            if beyond is not None and " passes=1 " not in line:
+                beyond.append(line)
     return times, verdicts
 load = os.getloadavg()[0]
 res = {}
@@ -46,4 +57,14 @@ for t in (2, 1):
 same = res[1][2] == res[2][2]
 print(f"BENCH reach.walk_check_speedup threads=2 ratio={res[1][0] / res[2][0]:.2f} "
       f"same_walk={'yes' if same else 'no'}")
+times, beyond, falls = [], [], 0
+for seed in (2, 3, 4, 5):
+    path = os.path.join(sys.argv[1], f"seed_{seed}.log")
+    times += stats(path, beyond)[0]
+    falls += sum(l.startswith("WALK") and " fell=yes" in l for l in open(path))
+s = sorted(times)
+print(f"BENCH reach.walk_check_seeds seeds=2-5 threads=2 checks={len(s)} "
+      f"mean_s={sum(s) / len(s):.3f} median_s={s[len(s) // 2]:.3f} "
+      f"p90_s={s[int(0.9 * (len(s) - 1))]:.3f} max_s={s[-1]:.3f} beyond_quick={len(beyond)} "
+      f"falls={falls}")
 PY

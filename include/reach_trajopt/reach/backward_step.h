@@ -13,8 +13,8 @@
 ///   M_b qdd + b_b = J_b^T lambda, the cone C_i R_i lambda_i >= 0 and the torque bounds on
 ///   u = M_a qdd + b_a - J_a^T lambda. A feasible child is kept with its (u, lambda).
 /// The step x_{j-1} -> x_j is then the semi-implicit Euler step of eq. (1).
-/// M (Cholesky), J, Jbar, the cone rows and the QP matrices depend on q_{j-1} only and are shared by
-/// all children of a parent (setParent()); a child costs a velocity-only kinematics pass, one
+/// M (Cholesky), J, Jbar, the cone rows and the QP matrices depend on q_{j-1} only and are shared
+/// by all children of a parent (setParent()); a child costs a velocity-only kinematics pass, one
 /// bias evaluation and a tiny QP. With one held sole the six base rows determine lambda
 /// (J_b^T is square): then (19) has one feasible point, lambda = J_b^-T (M_b qdd + b_b), and
 /// the "QP" is that solve (LU per parent) and the QP's own test of the inequality rows.
