@@ -213,14 +213,20 @@ void BackwardStep::buildPrefilter() {
   tau_center_ /= dt;
   tau_center_ += b_;
   // tau(d) ~ tau_center + T d with T = M N / dt = (M - J_phi^T Lambda^-1 J_phi) / dt, since
-  // M Jbar = J_phi^T Lambda^-1: n x m x n with Lambda's factors, instead of M N's n^3.
-  lambda_inv_jphi_ = lu_c_.solve(Jphi_);
+  // M Jbar = J_phi^T Lambda^-1: n x m x n with Lambda's inverse, instead of M N's n^3.
+  // The prefilter runs with one held sole only (m = 6, J_b^T square): both 6 x 6 inverses in
+  // fixed size. Its rounding differs from the LU solves of setParent() in the last bits, which
+  // cannot move a draw across the margin below (a share of the row's range).
+  using Matrix6d = Eigen::Matrix<double, 6, 6>;
+  const Matrix6d lambda_inv = Matrix6d(Lambda_).inverse();
+  const Matrix6d base_rows_inv = Matrix6d(A_eq_).inverse();  // J_b^-T
+  lambda_inv_jphi_.noalias() = lambda_inv.lazyProduct(Jphi_);
   T_ = M_;
   T_.noalias() -= Jphi_.transpose().lazyProduct(lambda_inv_jphi_);
   T_ /= dt;
   // lambda(d) = J_b^-T tau_b(d); slack = A_in lambda - b_in(tau), b_in as in child().
   lambda_ = lu_b_.solve(tau_center_.head(6));
-  lambda_d_ = lu_b_.solve(T_.topRows(6));
+  lambda_d_.noalias() = base_rows_inv.lazyProduct(T_.topRows(6));
   const int r = ContactWrenchCone::kRows * ctx_.nc;
   const int off = n_ - nu_;
   b_in_.head(r).setZero();
@@ -230,9 +236,11 @@ void BackwardStep::buildPrefilter() {
   }
   slack_0_.noalias() = A_in_ * lambda_;
   slack_0_ -= b_in_;
-  slack_d_.noalias() = A_in_.lazyProduct(lambda_d_);
+  // Cone rows; the upper torque rows J_a^T lambda(d) - tau_a(d); the lower ones are their
+  // negatives (A_in's rows r + nu.. are minus rows r..), exactly.
+  slack_d_.topRows(r + nu_).noalias() = A_in_.topRows(r + nu_).lazyProduct(lambda_d_);
   slack_d_.middleRows(r, nu_) -= T_.middleRows(off, nu_);
-  slack_d_.middleRows(r + nu_, nu_) += T_.middleRows(off, nu_);
+  slack_d_.middleRows(r + nu_, nu_) = -slack_d_.middleRows(r, nu_);
   // Margin: a share of the row's range over the box, plus the exact test's tolerance.
   const double tol = qp::QpSolverConfig().feasibility_tol;
   const double norm = lambda_.norm();
