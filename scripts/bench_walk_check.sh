@@ -4,13 +4,15 @@
 # gives the same sets, verdicts and therefore the same walk for any thread count), the
 # check's wall time of every step that ran it (kinematically infeasible footholds stop before
 # it). Prints
-#   BENCH reach.walk_check threads=2 mean_s=.. max_s=.. checks=.. ... load_avg=..
+#   BENCH reach.walk_check threads=2 mean_s=.. max_s=.. checks=.. ... ocp_mean_s=.. step_max_s=..
+#     load_avg=..
 #   BENCH reach.walk_check threads=1 ...  and  BENCH reach.walk_check_speedup ratio=..
 # and the same walk with the sampler seeds 2-5 (2 threads): a check that the quick pass cannot
-# end (about one in ten) costs a hull or full pass, so one walk's max says little about the
-# next one's:
+# end costs a retry or a hull or full pass, so one walk's max says little about the next one's:
 #   BENCH reach.walk_check_seeds seeds=2-5 checks=.. mean_s=.. median_s=.. p90_s=.. max_s=..
-#     beyond_quick=.. falls=..
+#     beyond_quick=.. falls=.. ocp_mean_s=.. ocp_max_s=.. step_max_s=..
+# ocp_*: the transition OCP's wall time of those steps; step_max_s: the largest check + OCP of
+# one step (what the step's planning takes in all).
 #   scripts/bench_walk_check.sh [steps = 20] [config = config/biped.yaml]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
@@ -23,13 +25,14 @@ for t in 2 1; do
   OMP_NUM_THREADS=$t "$BIN/walk_experiment" --config "$config" --mode proposed --steps "$steps" \
     --push 0,0.4 > "$out/walk_$t.log"
 done
-for seed in 2 3 4 5; do
+seeds="2 3 4 5"
+for seed in $seeds; do
   OMP_NUM_THREADS=2 "$BIN/walk_experiment" --config "$config" --mode proposed --steps "$steps" \
     --push 0,0.4 --seed "$seed" > "$out/seed_$seed.log"
 done
-/usr/bin/python3 - "$out" <<'PY'
+/usr/bin/python3 - "$out" $seeds <<'PY'
 import re, sys, os
-def stats(path, beyond=None):
+def stats(path, beyond=None, ocp=None):
     times, verdicts = [], []
     for line in open(path):
         if not line.startswith("step "):
@@ -39,13 +42,16 @@ def stats(path, beyond=None):
         verdicts.append(v.group(1) + "/" + v.group(2))
         if v.group(1) != "kinematically_infeasible":
             times.append(float(t.group(1)))
+            if ocp is not None:
+                ocp.append(float(re.search(r" ocp_s=([0-9.eE+-]+)", line).group(1)))
             if beyond is not None and " passes=1 " not in line:
                 beyond.append(line)
     return times, verdicts
 load = os.getloadavg()[0]
 res = {}
 for t in (2, 1):
-    times, verdicts = stats(os.path.join(sys.argv[1], f"walk_{t}.log"))
+    ocp_t = []
+    times, verdicts = stats(os.path.join(sys.argv[1], f"walk_{t}.log"), None, ocp_t)
     if not times:
         sys.exit("bench_walk_check: no step ran the check")
     res[t] = (sum(times) / len(times), times, verdicts)
@@ -53,18 +59,23 @@ for t in (2, 1):
     print(f"BENCH reach.walk_check threads={t} mean_s={res[t][0]:.3f} max_s={s[-1]:.3f} "
           f"median_s={s[len(s) // 2]:.3f} checks={len(times)} "
           f"reachable={sum(v.startswith('reachable') for v in verdicts)} "
-          f"bridge={sum(v.endswith('/bridge') for v in verdicts)} load_avg={load:.2f}")
+          f"bridge={sum(v.endswith('/bridge') for v in verdicts)} "
+          f"ocp_mean_s={sum(ocp_t) / len(ocp_t):.3f} "
+          f"step_max_s={max(c + o for c, o in zip(times, ocp_t)):.3f} load_avg={load:.2f}")
 same = res[1][2] == res[2][2]
 print(f"BENCH reach.walk_check_speedup threads=2 ratio={res[1][0] / res[2][0]:.2f} "
       f"same_walk={'yes' if same else 'no'}")
-times, beyond, falls = [], [], 0
-for seed in (2, 3, 4, 5):
+seeds = sys.argv[2:]
+times, beyond, ocp, falls = [], [], [], 0
+for seed in seeds:
     path = os.path.join(sys.argv[1], f"seed_{seed}.log")
-    times += stats(path, beyond)[0]
+    times += stats(path, beyond, ocp)[0]
     falls += sum(l.startswith("WALK") and " fell=yes" in l for l in open(path))
 s = sorted(times)
-print(f"BENCH reach.walk_check_seeds seeds=2-5 threads=2 checks={len(s)} "
+step_max = max(c + o for c, o in zip(times, ocp))
+print(f"BENCH reach.walk_check_seeds seeds={seeds[0]}-{seeds[-1]} threads=2 checks={len(s)} "
       f"mean_s={sum(s) / len(s):.3f} median_s={s[len(s) // 2]:.3f} "
       f"p90_s={s[int(0.9 * (len(s) - 1))]:.3f} max_s={s[-1]:.3f} beyond_quick={len(beyond)} "
-      f"falls={falls}")
+      f"falls={falls} ocp_mean_s={sum(ocp) / len(ocp):.3f} ocp_max_s={max(ocp):.3f} "
+      f"step_max_s={step_max:.3f}")
 PY

@@ -225,7 +225,7 @@ void BackwardStep::buildPrefilter() {
   T_.noalias() -= Jphi_.transpose().lazyProduct(lambda_inv_jphi_);
   T_ /= dt;
   // lambda(d) = J_b^-T tau_b(d); slack = A_in lambda - b_in(tau), b_in as in child().
-  lambda_ = lu_b_.solve(tau_center_.head(6));
+  lambda_.noalias() = base_rows_inv * tau_center_.head(6);
   lambda_d_.noalias() = base_rows_inv.lazyProduct(T_.topRows(6));
   const int r = ContactWrenchCone::kRows * ctx_.nc;
   const int off = n_ - nu_;

@@ -112,6 +112,7 @@ void ReachConfig::validate() const {
   requirePositive("terminal_position_tolerance", terminal_position_tolerance);
   requirePositive("terminal_velocity_tolerance", terminal_velocity_tolerance);
   requireNonNegative("constraint_margin", constraint_margin);
+  requireNonNegative("quick_retry_constraint_margin", quick_retry_constraint_margin);
   if (output_axes.empty() || output_axes.size() > 3) bad("output_axes", "must hold 1-3 axes");
   for (std::size_t i = 0; i < output_axes.size(); ++i) {
     const char c = output_axes[i];
@@ -273,6 +274,9 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "certificate_candidates of the quick pass")
           .add("quick_constraint_margin", &C::quick_constraint_margin, "m",
                "constraint_margin of the quick pass (its sparser hulls grow more)")
+          .add("quick_retry_constraint_margin", &C::quick_retry_constraint_margin, "m",
+               "when the quick pass's strict OCP fails, solve it again in its hulls grown to "
+               "this margin before the hull pass (0: no retry)")
           .add("hull_pass", &C::hull_pass, "",
                "when the quick pass's strict OCP fails, solve it again in the hulls of the full "
                "budget's forward set alone before the full pass")

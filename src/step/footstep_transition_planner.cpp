@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
@@ -89,11 +90,37 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
   // strict OCP converged: the sparser forward set's hulls (eq. 23) can leave a certified step
   // without a trajectory. A kinematically infeasible foothold is decided before any sample is
   // drawn: its quick pass is final too.
-  FootstepTransition quick = planWith(r, reach.quickPassConfig(), progress);
+  const ReachConfig quick_config = reach.quickPassConfig();
+  std::vector<ReachableSlice> quick_slices;
+  // An uncertified quick pass is final only when its strict OCP converges (the local solve):
+  // a relaxed trajectory of it would be replaced by the passes that follow.
+  FootstepTransition quick =
+      planWith(r, quick_config, progress, RelaxedFallback::kWhenCertified, &quick_slices);
   if (!quick.kinematically_feasible || (quick.reachable && hasStrictTrajectory(r, quick)))
     return quick;
   int passes = 1;
   double check_time_s = quick.check_time_s, ocp_time_s = quick.ocp_time_s;
+  // The wide hull retry: the quick pass's strict OCP again, in its own hulls grown more (with
+  // or without a witness to seed it: a slice of the quick window can be empty while its
+  // forward hulls hold the OCP).
+  const double extra_margin = reach.quick_retry_constraint_margin - quick_config.constraint_margin;
+  if (extra_margin > 0.0 && r.solve_ocp && !quick_slices.empty()) {
+    ++passes;
+    if (progress.pass) progress.pass(passes);
+    FootstepTransition wide =
+        solveInGrownHulls(r, quick, std::move(quick_slices), extra_margin, progress);
+    ocp_time_s += wide.ocp_time_s;
+    if (wide.reachable && hasStrictTrajectory(r, wide)) {
+      wide.check_passes = passes;
+      wide.check_time_s = check_time_s;
+      wide.ocp_time_s = ocp_time_s;
+      char margin[32];
+      std::snprintf(margin, sizeof margin, "%g m", reach.quick_retry_constraint_margin);
+      wide.reason = "the quick pass's strict OCP failed in its hulls, solved in them grown to " +
+                    std::string(margin) + ": " + wide.reason;
+      return wide;
+    }
+  }
   // The hull pass: the quick pass's OCP again, in the full budget's forward hulls.
   if (reach.hull_pass && r.solve_ocp && quick.check.reach.witness.valid) {
     ++passes;
@@ -149,18 +176,33 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
   if (!forward.result.kinematically_feasible) return out;  // not the quick pass's IK: no retry
   solveTransition(r, start.held, start.touchdown,
                   slicesUpToJunction(std::move(forward.set_constraint), quick.check.reach.witness),
-                  progress.ocp, out);
+                  progress.ocp, out, RelaxedFallback::kNever);
   return out;
 }
 
-FootstepTransition FootstepTransitionPlanner::planWith(const FootstepPlanRequest& r,
-                                                       const ReachConfig& reach,
-                                                       const FootstepPlanProgress& progress) const {
+FootstepTransition FootstepTransitionPlanner::solveInGrownHulls(
+    const FootstepPlanRequest& r, const FootstepTransition& quick,
+    std::vector<ReachableSlice> quick_slices, double extra_margin,
+    const FootstepPlanProgress& progress) const {
+  FootstepTransition out;
+  const PassStart start = startPass(r, quick.horizon, out);
+  recordCheck(quick.check, true, out);  // the quick pass's check stands; no sample is drawn
+  solveTransition(r, start.held, start.touchdown,
+                  grownSlices(std::move(quick_slices), extra_margin), progress.ocp, out,
+                  RelaxedFallback::kNever);
+  return out;
+}
+
+FootstepTransition FootstepTransitionPlanner::planWith(
+    const FootstepPlanRequest& r, const ReachConfig& reach, const FootstepPlanProgress& progress,
+    RelaxedFallback relaxed_fallback, std::vector<ReachableSlice>* slices_used) const {
   FootstepTransition out;
   const PassStart start = startPass(r, r.horizon > 0.0 ? r.horizon : reach.horizon, out);
   std::vector<ReachableSlice> set_constraint =
       checkFoothold(r, reach, start.touchdown, progress.check, out);
-  solveTransition(r, start.held, start.touchdown, std::move(set_constraint), progress.ocp, out);
+  if (slices_used) *slices_used = set_constraint;
+  solveTransition(r, start.held, start.touchdown, std::move(set_constraint), progress.ocp, out,
+                  relaxed_fallback);
   return out;
 }
 
@@ -268,7 +310,8 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
                                                 const Eigen::Isometry3d& held, const Touchdown& td,
                                                 std::vector<ReachableSlice> set_constraint,
                                                 const OcpProgressCallback& progress,
-                                                FootstepTransition& out) const {
+                                                FootstepTransition& out,
+                                                RelaxedFallback relaxed_fallback) const {
   const RobotModel& m = *model_;
   const FootstepResult& check = out.check;
   TransitionRequest ocp;
@@ -285,6 +328,10 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     ocp.qf = check.kinematics.q_f;
     ocp.qdf = check.qdf;
     ocp.relaxation = relaxationFor(r.ocp_policy, check.reachable);
+    const bool relaxed_allowed =
+        relaxed_fallback == RelaxedFallback::kAsRequested ||
+        (relaxed_fallback == RelaxedFallback::kWhenCertified && check.reachable);
+    if (!relaxed_allowed) ocp.relaxation = RelaxationMode::kStrict;
     if (r.check_reachability) ocp.slices = std::move(set_constraint);
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kReject) {
     throw RequestError("kinematically infeasible foothold (" + check.kinematics.reason + ")");

@@ -29,6 +29,11 @@ std::vector<ReachableSlice> slicesUpToJunction(std::vector<ReachableSlice> slice
   return slices;
 }
 
+std::vector<ReachableSlice> grownSlices(std::vector<ReachableSlice> slices, double extra) {
+  for (ReachableSlice& s : slices) s.b += extra * s.A.rowwise().norm();
+  return slices;
+}
+
 std::vector<ReachableSlice> reachableSetConstraint(const ReachResult& result,
                                                    const std::string& output_axes, double margin) {
   std::vector<ReachableSlice> out;

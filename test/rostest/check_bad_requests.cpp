@@ -124,8 +124,14 @@ void hammer(const char* service, Tally& t, std::function<void(typename Srv::Requ
   // One persistent connection per pass: a malformed request must not break it either.
   ros::NodeHandle nh;
   ros::ServiceClient client = nh.serviceClient<Srv>(service, true);
+  // A failed call is retried once on a new connection after waiting for the service (as
+  // callService() does): a node that stopped serving still fails the test.
   auto call = [&](Srv& srv) {
     if (!client.isValid()) client = nh.serviceClient<Srv>(service, true);
+    if (client.call(srv)) return true;
+    std::fprintf(stderr, "%s: persistent call failed in transport, retrying once\n", service);
+    if (!ros::service::waitForService(service, ros::Duration(10))) return false;
+    client = nh.serviceClient<Srv>(service, true);
     return client.call(srv);
   };
   std::mt19937 rng(1);

@@ -148,6 +148,12 @@ struct ReachConfig {
   /// (bench/README.md: with 0.01 m 4 of the walk's 14 quick certificates got no strict OCP,
   /// with 0.02 m 2 of 13, with 0.03 m none, but a forward walk then fell by leg collision).
   double quick_constraint_margin = 0.02;
+  /// When the quick pass's strict OCP fails (see hull_pass), FootstepTransitionPlanner first
+  /// solves it again, seeded as before, in the quick pass's own hulls grown to this margin [m]
+  /// (no sampling: the retry costs one OCP), before the hull pass. 0 (or not above
+  /// quick_constraint_margin): no such retry (the default; bench/README.md, "The wide hull
+  /// retry": it spares the sampling of the passes after it, but changed walks fell).
+  double quick_retry_constraint_margin = 0.0;
   /// When the quick pass's strict OCP fails (its certified step has no trajectory, or its local
   /// solve does not converge), FootstepTransitionPlanner first solves that OCP again, seeded
   /// as before, in the eq. (23) hulls of the full budget's forward set alone (hullPassConfig():

@@ -17,8 +17,10 @@
 /// budget and again with the full one only when the quick pass certified nothing or its
 /// certified step got no strict trajectory (a quick certificate is kept when the full pass
 /// finds none; issue 16: most of the walk's steps end after the quick pass; bench/README.md).
-/// With ReachConfig::hull_pass, between the two, the quick pass's OCP is solved again in the
-/// eq. (23) hulls of the full budget's forward set alone, its check and witness kept.
+/// Between the two, the quick pass's strict OCP is solved again, its check and witness kept:
+/// first in its own hulls grown to ReachConfig::quick_retry_constraint_margin (one OCP, no
+/// sampling), then (ReachConfig::hull_pass) in the eq. (23) hulls of the full budget's forward
+/// set alone.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -116,10 +118,11 @@ struct FootstepTransition {
   double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed
   double check_time_s = 0.0;         ///< kinematic + reachability check wall time
   double ocp_time_s = 0.0;           ///< OCP wall time
-  /// The passes that planned the step: 1; 2 when the quick pass (ReachConfig::quick_pass) was
-  /// not final and the hull pass (ReachConfig::hull_pass) or the full budget planned it again;
-  /// 3 when the hull pass did not end it either and the full budget followed. The times above
-  /// are then the sums of every pass.
+  /// The passes that planned the step: 1 when the quick pass (ReachConfig::quick_pass) was
+  /// final; otherwise one more for each of the wide hull retry
+  /// (ReachConfig::quick_retry_constraint_margin), the hull pass (ReachConfig::hull_pass) and the
+  /// full budget that ran, up to the one that ended it (at most 4). The times above are then
+  /// the sums of every pass (the retry adds OCP time only).
   int check_passes = 1;
   TransitionResult trajectory;  ///< converged, relaxed or failed
   /// The full check (kinematics, reachable sets, witness) for recorders and the ROS layer.
@@ -139,9 +142,9 @@ struct FootstepTransition {
 /// Progress callbacks of FootstepTransitionPlanner::plan (any may be empty): the
 /// reachability check's after each slice, the OCP's after each gradient evaluation. Either
 /// returning false cancels the plan (ReachCancelled, common/cancelled.h). `pass` is told the
-/// number of the pass that starts (1: the quick pass or the only one; then the hull pass,
-/// reach.hull_pass, and the full budget, each when the one before was not final): the check and
-/// the OCP report again in each pass.
+/// number of the pass that starts (1: the quick pass or the only one; then the wide hull retry,
+/// the hull pass and the full budget, each when the one before was not final): the check and
+/// the OCP report again in each pass that runs them.
 struct FootstepPlanProgress {
   ReachProgressCallback check;
   OcpProgressCallback ocp;
@@ -196,9 +199,20 @@ class FootstepTransitionPlanner {
   };
   /// Step 1 of a pass of `horizon` [s]: the request, x_0 and the target into `out`.
   PassStart startPass(const FootstepPlanRequest& r, double horizon, FootstepTransition& out) const;
-  /// Steps 1-5 with the check's configuration `reach` (one pass of plan()).
+  /// When a pass's OCP for a kinematically feasible foothold may fall back to the relaxed
+  /// problem (its OcpPolicy's choice) after the strict one fails.
+  enum class RelaxedFallback {
+    kAsRequested,    ///< as the request's OcpPolicy says
+    kWhenCertified,  ///< only when the check certified the step (the quick pass: otherwise the
+                     ///< passes that follow replace its trajectory)
+    kNever,          ///< strict only (the retries, which only a strict trajectory ends)
+  };
+  /// Steps 1-5 with the check's configuration `reach` (one pass of plan()); the OCP's eq. (23)
+  /// slices into `slices_used` when given.
   FootstepTransition planWith(const FootstepPlanRequest& r, const ReachConfig& reach,
-                              const FootstepPlanProgress& progress) const;
+                              const FootstepPlanProgress& progress,
+                              RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested,
+                              std::vector<ReachableSlice>* slices_used = nullptr) const;
   /// Step 1: x_0 into `out`; returns the held stance sole pose.
   Eigen::Isometry3d initialState(const FootstepPlanRequest& r, FootstepTransition& out) const;
   Touchdown predictTouchdown(const FootstepPlanRequest& r, const FootstepTransition& out) const;
@@ -223,10 +237,19 @@ class FootstepTransitionPlanner {
   FootstepTransition solveInFullHulls(const FootstepPlanRequest& r, const ReachConfig& reach,
                                       const FootstepTransition& quick,
                                       const FootstepPlanProgress& progress) const;
+  /// The wide hull retry (ReachConfig::quick_retry_constraint_margin): the quick pass's check
+  /// and seed, its strict OCP solved again in its own slices `quick_slices` grown by
+  /// `extra_margin` [m]; no sample is drawn.
+  FootstepTransition solveInGrownHulls(const FootstepPlanRequest& r,
+                                       const FootstepTransition& quick,
+                                       std::vector<ReachableSlice> quick_slices,
+                                       double extra_margin,
+                                       const FootstepPlanProgress& progress) const;
   /// Steps 4-5 into out.trajectory and out.foothold, held in `set_constraint`.
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
                        const Touchdown& td, std::vector<ReachableSlice> set_constraint,
-                       const OcpProgressCallback& progress, FootstepTransition& out) const;
+                       const OcpProgressCallback& progress, FootstepTransition& out,
+                       RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested) const;
   /// The verdict of a checked, kinematically feasible step from its witness and its OCP.
   void certify(FootstepTransition& out) const;
 

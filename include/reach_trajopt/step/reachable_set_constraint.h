@@ -26,4 +26,8 @@ std::vector<ReachableSlice> reachableSetConstraint(const ReachResult& result,
 std::vector<ReachableSlice> slicesUpToJunction(std::vector<ReachableSlice> slices,
                                                const WitnessPath& witness);
 
+/// `slices` with every half-space A_i y <= b_i moved outward by `extra` [m] (b_i += extra
+/// |A_i|): hulls grown by that much more than their check's margin.
+std::vector<ReachableSlice> grownSlices(std::vector<ReachableSlice> slices, double extra);
+
 }  // namespace reach_trajopt
