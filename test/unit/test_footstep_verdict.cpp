@@ -56,6 +56,18 @@ std::vector<FootstepPlanRequest> requestsOf(const std::string& fixture) {
 
 std::vector<FootstepPlanRequest> walkRequests() { return requestsOf("pushed_walk_requests.jsonl"); }
 
+/// test/fixtures/hull_pass_requests.jsonl, each with reach.quick_retry_constraint_margin set to
+/// `retry_margin` [m] (0: no wide hull retry).
+std::vector<FootstepPlanRequest> hullPassRequests(double retry_margin) {
+  std::vector<FootstepPlanRequest> requests = requestsOf("hull_pass_requests.jsonl");
+  for (FootstepPlanRequest& r : requests) {
+    ReachConfig reach = r.reach ? *r.reach : pipeline().config.reach;
+    reach.quick_retry_constraint_margin = retry_margin;
+    r.reach = reach;
+  }
+  return requests;
+}
+
 /// Largest |M qdd + b - S^T u - J^T lambda| [N, Nm] along the bridged witness, its held sole's
 /// largest displacement [m] and where it ends against x_f.
 struct WitnessRecheck {
@@ -240,12 +252,9 @@ TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHull
   // The wide hull retry (reach.quick_retry_constraint_margin) is off here (as shipped): it
   // would end these steps before the hull pass (WideHullRetry... below).
   const Pipeline& p = pipeline();
-  const std::vector<FootstepPlanRequest> requests = requestsOf("hull_pass_requests.jsonl");
+  const std::vector<FootstepPlanRequest> requests = hullPassRequests(0.0);
   ASSERT_EQ(requests.size(), 2u);
-  for (FootstepPlanRequest request : requests) {
-    ReachConfig no_retry = request.reach ? *request.reach : p.config.reach;
-    no_retry.quick_retry_constraint_margin = 0.0;
-    request.reach = no_retry;
+  for (const FootstepPlanRequest& request : requests) {
     const ReachConfig& reach = *request.reach;
     ASSERT_TRUE(reach.quick_pass && reach.hull_pass);
     FootstepPlanRequest quick_only = request;
@@ -286,12 +295,9 @@ TEST(FootstepVerdict, WideHullRetrySolvesTheQuickPassesOcpInItsGrownHulls) {
   // margin: converged and strict in the second pass. The trajectory is re-checked here on the
   // model, eq. (1) sample by sample.
   const Pipeline& p = pipeline();
-  const std::vector<FootstepPlanRequest> requests = requestsOf("hull_pass_requests.jsonl");
+  const std::vector<FootstepPlanRequest> requests = hullPassRequests(0.04);  // off as shipped
   ASSERT_EQ(requests.size(), 2u);
-  for (FootstepPlanRequest request : requests) {
-    ReachConfig with_retry = request.reach ? *request.reach : p.config.reach;
-    with_retry.quick_retry_constraint_margin = 0.04;  // [m] (off in config/biped.yaml)
-    request.reach = with_retry;
+  for (const FootstepPlanRequest& request : requests) {
     const ReachConfig& reach = *request.reach;
     ASSERT_GT(reach.quick_retry_constraint_margin, reach.quick_constraint_margin);
     FootstepPlanRequest quick_only = request;
