@@ -227,8 +227,8 @@ TEST(Actions, PlanTransitionReportsTheCheckThenTheOcpAndCancels) {
   {
     std::lock_guard<std::mutex> lock(mutex);
     // Each pass (1; then 2, the hull pass or the full budget, when the quick pass did not end
-    // the step; 3, the full budget after a hull pass that did not end it) reports its check,
-    // then its OCP's.
+    // the step; 3, the full budget after a hull pass that did not end it; the wide hull retry,
+    // OCP feedback only, is off in config/biped.yaml) reports its check, then its OCP's.
     size_t checks = 0, ocps = 0, pass_ocps = 0;
     uint32_t pass = 1;
     for (const auto& f : seen) {
