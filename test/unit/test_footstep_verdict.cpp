@@ -137,6 +137,29 @@ FootstepTransition planStrict(FootstepPlanRequest r) {
   return pipeline().planner->plan(r);
 }
 
+/// The quick pass of `request` as the only pass (its strict OCP must fail for the fixtures of
+/// the second passes below).
+FootstepTransition planQuickPassAlone(FootstepPlanRequest request) {
+  request.reach = request.reach->quickPassConfig();
+  const FootstepTransition quick = planStrict(request);
+  EXPECT_FALSE(quick.trajectory.status == OcpStatus::kConverged && !quick.trajectory.relaxed)
+      << "the quick pass's strict OCP converged: the fixture no longer needs a second pass";
+  return quick;
+}
+
+/// A step the second pass ended (its reason naming that pass) with a strict trajectory within
+/// the OCP's tolerance and a certificate.
+void expectSecondPassEndsStrict(const FootstepTransition& step, const std::string& pass_reason) {
+  std::cout << step.reason << "\n";
+  EXPECT_EQ(step.check_passes, 2);
+  EXPECT_NE(step.reason.find(pass_reason), std::string::npos) << step.reason;
+  EXPECT_EQ(step.verdict, "reachable");
+  EXPECT_FALSE(step.certificate.empty());
+  EXPECT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
+  EXPECT_FALSE(step.trajectory.relaxed);
+  EXPECT_LE(step.trajectory.violation.max(), pipeline().config.ocp.tolerance);
+}
+
 }  // namespace
 
 TEST(FootstepVerdict, WalkStepCertifiedByTheBridge) {
@@ -251,28 +274,15 @@ TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHull
   // certificate passes the same model re-check as every other.
   // The wide hull retry (reach.quick_retry_constraint_margin) is off here (as shipped): it
   // would end these steps before the hull pass (WideHullRetry... below).
-  const Pipeline& p = pipeline();
   const std::vector<FootstepPlanRequest> requests = hullPassRequests(0.0);
   ASSERT_EQ(requests.size(), 2u);
   for (const FootstepPlanRequest& request : requests) {
     const ReachConfig& reach = *request.reach;
     ASSERT_TRUE(reach.quick_pass && reach.hull_pass);
-    FootstepPlanRequest quick_only = request;
-    quick_only.reach = reach.quickPassConfig();  // the quick pass as the only one
-    const FootstepTransition quick = planStrict(quick_only);
+    const FootstepTransition quick = planQuickPassAlone(request);
     ASSERT_TRUE(quick.check.reach.witness.valid) << quick.reason;
-    EXPECT_FALSE(quick.trajectory.status == OcpStatus::kConverged && !quick.trajectory.relaxed)
-        << "the quick pass's strict OCP converged: the fixture no longer needs a second pass";
-
     const FootstepTransition step = planStrict(request);
-    std::cout << step.reason << "\n";
-    EXPECT_EQ(step.check_passes, 2);
-    EXPECT_NE(step.reason.find("full budget's forward set"), std::string::npos) << step.reason;
-    EXPECT_EQ(step.verdict, "reachable");
-    EXPECT_FALSE(step.certificate.empty());
-    EXPECT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
-    EXPECT_FALSE(step.trajectory.relaxed);
-    EXPECT_LE(step.trajectory.violation.max(), p.config.ocp.tolerance);
+    expectSecondPassEndsStrict(step, "full budget's forward set");
     // The quick pass's check stands: its witness, bit for bit.
     EXPECT_EQ(step.check.reach.witness.terminal_position_gap,
               quick.check.reach.witness.terminal_position_gap);
@@ -294,27 +304,15 @@ TEST(FootstepVerdict, WideHullRetrySolvesTheQuickPassesOcpInItsGrownHulls) {
   // sample drawn) and solves the strict OCP again in the quick forward hulls grown to the retry's
   // margin: converged and strict in the second pass. The trajectory is re-checked here on the
   // model, eq. (1) sample by sample.
-  const Pipeline& p = pipeline();
   const std::vector<FootstepPlanRequest> requests = hullPassRequests(0.04);  // off as shipped
   ASSERT_EQ(requests.size(), 2u);
   for (const FootstepPlanRequest& request : requests) {
     const ReachConfig& reach = *request.reach;
     ASSERT_GT(reach.quick_retry_constraint_margin, reach.quick_constraint_margin);
-    FootstepPlanRequest quick_only = request;
-    quick_only.reach = reach.quickPassConfig();
-    const FootstepTransition quick = planStrict(quick_only);
-    EXPECT_FALSE(quick.trajectory.status == OcpStatus::kConverged && !quick.trajectory.relaxed)
-        << "the quick pass's strict OCP converged: the fixture no longer needs a second pass";
-
+    const FootstepTransition quick = planQuickPassAlone(request);
     const FootstepTransition step = planStrict(request);
-    std::cout << step.reason << "\n";
-    EXPECT_EQ(step.check_passes, 2);
-    EXPECT_NE(step.reason.find("solved in them grown to"), std::string::npos) << step.reason;
-    EXPECT_EQ(step.verdict, "reachable");
-    EXPECT_FALSE(step.certificate.empty());
-    ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
-    EXPECT_FALSE(step.trajectory.relaxed);
-    EXPECT_LE(step.trajectory.violation.max(), p.config.ocp.tolerance);
+    expectSecondPassEndsStrict(step, "solved in them grown to");
+    ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged);
     // No sample drawn after the quick pass: its check, its time.
     EXPECT_EQ(step.check.reach.counts.forward_qps, quick.check.reach.counts.forward_qps);
     EXPECT_EQ(step.check.reach.witness.valid, quick.check.reach.witness.valid);
