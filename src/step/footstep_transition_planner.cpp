@@ -91,35 +91,40 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
   // without a trajectory. A kinematically infeasible foothold is decided before any sample is
   // drawn: its quick pass is final too.
   const ReachConfig quick_config = reach.quickPassConfig();
-  std::vector<ReachableSlice> quick_slices;
+  // The wide hull retry's extra margin over the quick pass's hulls; <= 0: no retry.
+  const double extra_margin = reach.quick_retry_constraint_margin - quick_config.constraint_margin;
+  std::vector<ReachableSlice> quick_slices;  // kept only for the retry
   // An uncertified quick pass is final only when its strict OCP converges (the local solve):
   // a relaxed trajectory of it would be replaced by the passes that follow.
-  FootstepTransition quick =
-      planWith(r, quick_config, progress, RelaxedFallback::kWhenCertified, &quick_slices);
+  FootstepTransition quick = planWith(r, quick_config, progress, RelaxedFallback::kWhenCertified,
+                                      extra_margin > 0.0 ? &quick_slices : nullptr);
   if (!quick.kinematically_feasible || (quick.reachable && hasStrictTrajectory(r, quick)))
     return quick;
   int passes = 1;
   double check_time_s = quick.check_time_s, ocp_time_s = quick.ocp_time_s;
+  // A retry of the quick pass's OCP ends the step when it gives a certified strict trajectory:
+  // the step then carries the sums of every pass and says which retry solved it.
+  auto endsStep = [&](FootstepTransition& retry, const std::string& how) {
+    if (!retry.reachable || !hasStrictTrajectory(r, retry)) return false;
+    retry.check_passes = passes;
+    retry.check_time_s = check_time_s;
+    retry.ocp_time_s = ocp_time_s;
+    retry.reason =
+        "the quick pass's strict OCP failed in its hulls, solved in " + how + ": " + retry.reason;
+    return true;
+  };
   // The wide hull retry: the quick pass's strict OCP again, in its own hulls grown more (with
   // or without a witness to seed it: a slice of the quick window can be empty while its
   // forward hulls hold the OCP).
-  const double extra_margin = reach.quick_retry_constraint_margin - quick_config.constraint_margin;
   if (extra_margin > 0.0 && r.solve_ocp && !quick_slices.empty()) {
     ++passes;
     if (progress.pass) progress.pass(passes);
     FootstepTransition wide =
         solveInGrownHulls(r, quick, std::move(quick_slices), extra_margin, progress);
     ocp_time_s += wide.ocp_time_s;
-    if (wide.reachable && hasStrictTrajectory(r, wide)) {
-      wide.check_passes = passes;
-      wide.check_time_s = check_time_s;
-      wide.ocp_time_s = ocp_time_s;
-      char margin[32];
-      std::snprintf(margin, sizeof margin, "%g m", reach.quick_retry_constraint_margin);
-      wide.reason = "the quick pass's strict OCP failed in its hulls, solved in them grown to " +
-                    std::string(margin) + ": " + wide.reason;
-      return wide;
-    }
+    char margin[32];
+    std::snprintf(margin, sizeof margin, "%g m", reach.quick_retry_constraint_margin);
+    if (endsStep(wide, std::string("them grown to ") + margin)) return wide;
   }
   // The hull pass: the quick pass's OCP again, in the full budget's forward hulls.
   if (reach.hull_pass && r.solve_ocp && quick.check.reach.witness.valid) {
@@ -128,16 +133,7 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
     FootstepTransition hull = solveInFullHulls(r, reach, quick, progress);
     check_time_s += hull.check_time_s;
     ocp_time_s += hull.ocp_time_s;
-    if (hull.reachable && hasStrictTrajectory(r, hull)) {
-      hull.check_passes = passes;
-      hull.check_time_s = check_time_s;
-      hull.ocp_time_s = ocp_time_s;
-      hull.reason =
-          "the quick pass's strict OCP failed in its hulls, solved in the full budget's forward "
-          "set's: " +
-          hull.reason;
-      return hull;
-    }
+    if (endsStep(hull, "the full budget's forward set's")) return hull;
   }
   ++passes;
   if (progress.pass) progress.pass(passes);
