@@ -137,11 +137,15 @@ void ReachConfig::validate() const {
   }
 }
 
-ReachConfig ReachConfig::hullPassConfig() const {
+ReachConfig ReachConfig::hullPassConfig(double forward_until_s) const {
   ReachConfig c = *this;
   c.quick_pass = false;
   c.hull_pass = false;
   c.forward_set_only = true;
+  if (forward_until_s >= 0.0 && forward_until_s < window_end) {
+    c.window_end = std::max(1.0, std::ceil(forward_until_s / dt - 1e-6)) * dt;  // on the grid
+    c.window_start = std::min(c.window_start, c.window_end);  // unused without backward set
+  }
   return c;
 }
 

@@ -161,18 +161,20 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
     const FootstepPlanProgress& progress) const {
   FootstepTransition out;
   const PassStart start = startPass(r, quick.horizon, out);
-  // The full budget's forward set alone (the full pass's, bit for bit: same seed and budget).
+  // The full budget's forward set alone (the full pass's, bit for bit: same seed and budget),
+  // propagated up to the quick witness's junction only: slicesUpToJunction drops the rest.
   double check_time_s = 0.0;
-  FootstepCheckResult forward =
-      runCheck(r, reach.hullPassConfig(), start.touchdown, progress.check, out, check_time_s);
+  const WitnessPath& witness = quick.check.reach.witness;
+  FootstepCheckResult forward = runCheck(r, reach.hullPassConfig(junctionTime(witness)),
+                                         start.touchdown, progress.check, out, check_time_s);
   // The quick pass's check stands (verdict, IK, witness): only the OCP's hulls change, cut
   // where its witness leaves the sampled sets.
   recordCheck(quick.check, true, out);
   out.check_time_s = check_time_s;
   if (!forward.result.kinematically_feasible) return out;  // not the quick pass's IK: no retry
   solveTransition(r, start.held, start.touchdown,
-                  slicesUpToJunction(std::move(forward.set_constraint), quick.check.reach.witness),
-                  progress.ocp, out, RelaxedFallback::kNever);
+                  slicesUpToJunction(std::move(forward.set_constraint), witness), progress.ocp, out,
+                  RelaxedFallback::kNever);
   return out;
 }
 

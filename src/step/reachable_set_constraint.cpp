@@ -10,19 +10,20 @@
 
 namespace reach_trajopt {
 
+double junctionTime(const WitnessPath& w) {
+  return w.valid && w.bridge_start >= 0 ? w.time[w.bridge_start] : HUGE_VAL;
+}
+
 namespace {
 
-/// The last time [s] of the slices the witness passes through (its bridge start); +inf without
-/// a valid witness.
-double junctionTime(const WitnessPath& w) {
-  return w.valid && w.bridge_start >= 0 ? w.time[w.bridge_start] + 1e-12 : HUGE_VAL;
-}
+/// junctionTime() with a margin for rounding: the slice at the junction is kept.
+double lastSliceTime(const WitnessPath& w) { return junctionTime(w) + 1e-12; }
 
 }  // namespace
 
 std::vector<ReachableSlice> slicesUpToJunction(std::vector<ReachableSlice> slices,
                                                const WitnessPath& witness) {
-  const double until = junctionTime(witness);
+  const double until = lastSliceTime(witness);
   slices.erase(std::remove_if(slices.begin(), slices.end(),
                               [until](const ReachableSlice& s) { return s.time > until; }),
                slices.end());
@@ -39,7 +40,7 @@ std::vector<ReachableSlice> reachableSetConstraint(const ReachResult& result,
   std::vector<ReachableSlice> out;
   const auto ix = output_axes.find('x'), iy = output_axes.find('y');
   if (ix == std::string::npos || iy == std::string::npos) return out;
-  const double until = junctionTime(result.witness);
+  const double until = lastSliceTime(result.witness);
   for (const SampleSlice& s : result.forward) {
     if (s.time <= 0.0 || s.time > until || s.size() < 3) continue;
     Eigen::MatrixXd xy(2, s.size());

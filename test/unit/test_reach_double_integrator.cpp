@@ -295,6 +295,35 @@ TEST(ReachDoubleIntegrator, ForwardSetOnlyIsTheCheckForwardSetAlone) {
   EXPECT_NE(fwd.reason.find("forward_set_only"), std::string::npos) << fwd.reason;
 }
 
+TEST(ReachDoubleIntegrator, HullPassConfigStopsAtTheJunctionWithTheSameSlices) {
+  // hullPassConfig(t): the forward set up to the first step at or after t only (the hull pass
+  // needs it up to the quick witness's junction), each of its slices the whole window's bit for
+  // bit (the draws are keyed by step); no truncation at or past window_end.
+  const ReachConfig c = diConfig();
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
+  const ReachResult whole = an.check(diProblem(), c.hullPassConfig());
+  const int n_window = static_cast<int>(std::lround(c.window_end / c.dt));
+  ASSERT_EQ(static_cast<int>(whole.forward.size()), n_window + 1);
+  ASSERT_GE(n_window, 3);
+  const int k = n_window - 2;  // a junction two steps before the window's end, off the grid
+  const ReachConfig cut = c.hullPassConfig((k - 0.5) * c.dt);
+  EXPECT_TRUE(cut.forward_set_only);
+  EXPECT_NEAR(cut.window_end, k * c.dt, 1e-15);
+  const ReachResult part = an.check(diProblem(), cut);
+  ASSERT_EQ(static_cast<int>(part.forward.size()), k + 1);
+  for (int j = 0; j <= k; ++j) {
+    EXPECT_EQ(part.forward[j].time, whole.forward[j].time);
+    EXPECT_EQ(part.forward[j].parent, whole.forward[j].parent);
+    EXPECT_EQ(part.forward[j].kept, whole.forward[j].kept);
+    EXPECT_TRUE(part.forward[j].qd == whole.forward[j].qd);
+    EXPECT_TRUE(part.forward[j].output == whole.forward[j].output);
+  }
+  EXPECT_EQ(c.hullPassConfig(k * c.dt).window_end, cut.window_end);  // on the grid: that step
+  EXPECT_EQ(c.hullPassConfig(c.window_end + c.dt).window_end, c.window_end);
+  EXPECT_EQ(c.hullPassConfig(HUGE_VAL).window_end, c.window_end);
+  EXPECT_NO_THROW(cut.validate());
+}
+
 TEST(ReachDoubleIntegrator, ProgressReportsEverySliceAndCancels) {
   const ReachConfig c = diConfig();
   const ReachabilityAnalyzer an(slider(), ContactConfig(), c);

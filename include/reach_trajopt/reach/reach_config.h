@@ -14,6 +14,7 @@
 /// direction), children_per_parent x max_boundary (QPs per later step), the number of steps
 /// window_end / dt + (horizon - window_start) / dt.
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -190,8 +191,11 @@ struct ReachConfig {
   /// This configuration with the quick pass's sample budget (quick_*) and quick_pass false.
   ReachConfig quickPassConfig() const;
   /// This configuration (the full budget) with forward_set_only true and quick_pass and hull_pass
-  /// false: the hull pass's check.
-  ReachConfig hullPassConfig() const;
+  /// false: the hull pass's check. Its forward set stops at the first step at or after
+  /// `forward_until_s` [s after t_0] when that is before window_end (the hull pass needs it up
+  /// to the quick witness's junction only). Each draw is keyed by its step, not by the number
+  /// of steps, so the slices it has are those of the whole window's, bit for bit.
+  ReachConfig hullPassConfig(double forward_until_s = HUGE_VAL) const;
 };
 
 }  // namespace reach_trajopt

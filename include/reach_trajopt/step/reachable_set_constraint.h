@@ -14,6 +14,10 @@
 
 namespace reach_trajopt {
 
+/// The time [s] after t_0 of the witness's junction (its bridge start: the last forward sample
+/// it passes through); +inf without a valid, bridged witness.
+double junctionTime(const WitnessPath& witness);
+
 /// The slices of `result` at times 0 < t <= t_junction (the witness's bridge start; the whole
 /// forward set without a witness), each hull grown by `margin` [m]. Empty when the output has
 /// no x and y axes or a slice's hull is degenerate (that slice is skipped).
