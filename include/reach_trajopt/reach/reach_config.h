@@ -158,10 +158,10 @@ struct ReachConfig {
   /// When the quick pass's strict OCP fails (its certified step has no trajectory, or its local
   /// solve does not converge), FootstepTransitionPlanner first solves that OCP again, seeded
   /// as before, in the eq. (23) hulls of the full budget's forward set alone (hullPassConfig():
-  /// the same forward set as the full pass's, without the backward set, about a third of a full
-  /// check at the walk's horizon), and plans the full pass only when that fails too. In all the
-  /// full passes of the walks measured, the quick pass's own sparser hulls were what stopped the
-  /// OCP (bench/README.md, "Why steps need the full pass").
+  /// the same forward set as the full pass's up to the quick witness's junction, without the
+  /// backward set, about a third of a full check at the walk's horizon), and plans the full pass
+  /// only when that fails too. In all the full passes of the walks measured, the quick pass's own
+  /// sparser hulls were what stopped the OCP (bench/README.md, "Why steps need the full pass").
   bool hull_pass = true;
   /// Propagate the forward set alone, to window_end: no backward set, window test or witness;
   /// the verdict is "not shown reachable". What the hull pass checks (its forward set's hulls
