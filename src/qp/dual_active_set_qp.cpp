@@ -121,8 +121,20 @@ void DualActiveSetQp::fail(QpStatus status, const char* format, ...) {
   result_.message.assign(buf);
 }
 
+bool DualActiveSetQp::sameCheckedMatrices(const MatrixRef& A_eq, const MatrixRef& A_in) const {
+  return matrices_checked_ && checked_.A_eq == A_eq.data() && checked_.A_in == A_in.data() &&
+         checked_.eq_rows == A_eq.rows() && checked_.eq_cols == A_eq.cols() &&
+         checked_.eq_stride == A_eq.outerStride() && checked_.in_rows == A_in.rows() &&
+         checked_.in_cols == A_in.cols() && checked_.in_stride == A_in.outerStride();
+}
+
 bool DualActiveSetQp::checkInput(const VectorRef& g, const MatrixRef& A_eq, const VectorRef& b_eq,
-                                 const MatrixRef& A_in, const VectorRef& b_in) {
+                                 const MatrixRef& A_in, const VectorRef& b_in,
+                                 bool matrices_checked) {
+  if (!matrices_checked) {  // new matrices: whatever passed before no longer describes them
+    matrices_checked_ = false;
+    row_norms_valid_ = false;
+  }
   result_.x.setZero();
   result_.objective = 0.0;
   result_.active_set.clear();
@@ -155,17 +167,22 @@ bool DualActiveSetQp::checkInput(const VectorRef& g, const MatrixRef& A_eq, cons
   const char* bad = nullptr;
   if (!g.allFinite())
     bad = "g";
-  else if (m_eq > 0 && !A_eq.allFinite())
+  else if (!matrices_checked && m_eq > 0 && !A_eq.allFinite())
     bad = "A_eq";
   else if (!b_eq.allFinite())
     bad = "b_eq";
-  else if (m_in > 0 && !A_in.allFinite())
+  else if (!matrices_checked && m_in > 0 && !A_in.allFinite())
     bad = "A_in";
   else if (!b_in.allFinite())
     bad = "b_in";
   if (bad != nullptr) {
     fail(QpStatus::kInvalidInput, "%s contains a non-finite value (NaN or inf)", bad);
     return false;
+  }
+  if (!matrices_checked) {
+    checked_ = CheckedMatrices{A_eq.data(),        A_in.data(), A_eq.rows(), A_eq.cols(),
+                               A_eq.outerStride(), A_in.rows(), A_in.cols(), A_in.outerStride()};
+    matrices_checked_ = true;
   }
   result_.m_eq = m_eq;
   result_.m_in = m_in;
@@ -177,7 +194,7 @@ const QpResult& DualActiveSetQp::solve(const MatrixRef& G, const VectorRef& g,
                                        const MatrixRef& A_eq, const VectorRef& b_eq,
                                        const MatrixRef& A_in, const VectorRef& b_in,
                                        const std::vector<int>* warm_start) {
-  if (!checkInput(g, A_eq, b_eq, A_in, b_in)) return result_;
+  if (!checkInput(g, A_eq, b_eq, A_in, b_in, false)) return result_;
   if (!own_factor_.compute(G, config_.regularization)) {
     fail(QpStatus::kInvalidInput, "%s", own_factor_.message().c_str());
     return result_;
@@ -189,8 +206,9 @@ const QpResult& DualActiveSetQp::solve(const MatrixRef& G, const VectorRef& g,
 const QpResult& DualActiveSetQp::solve(const HessianFactor& factor, const VectorRef& g,
                                        const MatrixRef& A_eq, const VectorRef& b_eq,
                                        const MatrixRef& A_in, const VectorRef& b_in,
-                                       const std::vector<int>* warm_start) {
-  if (!checkInput(g, A_eq, b_eq, A_in, b_in)) return result_;
+                                       const std::vector<int>* warm_start, Matrices matrices) {
+  const bool unchanged = matrices == Matrices::kUnchanged && sameCheckedMatrices(A_eq, A_in);
+  if (!checkInput(g, A_eq, b_eq, A_in, b_in, unchanged)) return result_;
   if (!factor.valid() || factor.size() != n_) {
     fail(QpStatus::kInvalidInput, "Hessian factor is %s (size %d, solver has %d variables)",
          factor.valid() ? "of the wrong size" : "not computed or failed", factor.size(), n_);
@@ -323,7 +341,8 @@ void DualActiveSetQp::run(const HessianFactor& factor, const VectorRef& g, const
   }
   dropNegativeMultipliers(A_eq, b_eq, A_in, b_in);
 
-  if (m_in > 0) row_norm_.head(m_in) = A_in.rowwise().norm();
+  if (m_in > 0 && !row_norms_valid_) row_norm_.head(m_in) = A_in.rowwise().norm();
+  row_norms_valid_ = true;  // A_in is the checked matrix (checkInput) until new ones come
   for (;;) {
     // Step 1: the most violated inequality (violation per unit row norm).
     const int p = mostViolatedRow(A_in, b_in);

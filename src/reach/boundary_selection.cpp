@@ -3,6 +3,8 @@
 
 #include "reach_trajopt/reach/boundary_selection.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -111,9 +113,7 @@ std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
     const int n_planes = ny == 2 ? 1 : 3;
     const int tasks = static_cast<int>(rule.lookahead.size()) * n_planes;
     std::vector<std::vector<int>> hulls(tasks), bins(tasks);
-#pragma omp parallel for schedule(dynamic, 1) num_threads( \
-    std::max(1, rule.threads)) if (tasks > 1 && rule.threads > 1 && n >= kParallelBoundaryMin)
-    for (int t = 0; t < tasks; ++t) {
+    const auto plane_task = [&](int t) {
       const double tau = rule.lookahead[t / n_planes];
       const int pl = t % n_planes;
       Eigen::Matrix2Xd p(2, n);
@@ -121,6 +121,17 @@ std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
       p.row(1) = y.row(planes[pl][1]) + tau * y_rate.row(planes[pl][1]);
       hulls[t] = convexHull2d(p);
       if (rule.angular_bins > 0) bins[t] = angularBins(p, rule.angular_bins);
+    };
+    const bool parallel = tasks > 1 && rule.threads > 1 && n >= kParallelBoundaryMin;
+    if (parallel && omp_in_parallel()) {
+      // Called from a task of the check's parallel region (set_propagation.cpp), where a
+      // nested parallel region would get one thread: tasks let the team's other threads
+      // take planes. The implicit taskgroup waits for this loop's tasks only.
+#pragma omp taskloop grainsize(1) default(shared)
+      for (int t = 0; t < tasks; ++t) plane_task(t);
+    } else {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, rule.threads)) if (parallel)
+      for (int t = 0; t < tasks; ++t) plane_task(t);
     }
     for (int t = 0; t < tasks; ++t) {
       lists.push_back(std::move(hulls[t]));

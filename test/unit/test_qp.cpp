@@ -405,6 +405,52 @@ TEST(DualActiveSetQp, FactorizationIsReusedAcrossProblemsSharingG) {
   EXPECT_EQ(a.solve(wrong, p.g, p.Aeq, p.beq, p.Ain, p.bin).status, QpStatus::kInvalidInput);
 }
 
+TEST(DualActiveSetQp, UnchangedMatricesGiveTheSameAnswerAndNewOnesAreStillChecked) {
+  // The children of one parent: the same G, A_eq, A_in; new g and right-hand sides. Stating
+  // Matrices::kUnchanged skips the matrices' check and row norms, not the answer.
+  std::mt19937 rng(11);
+  const int n = 12, m_eq = 3, m_in = 40;
+  Problem p = randomProblem(rng, n, m_eq, m_in);
+  HessianFactor factor(n);
+  ASSERT_TRUE(factor.compute(p.G));
+  DualActiveSetQp fresh(n, m_eq, m_in), reused(n, m_eq, m_in);
+  using M = DualActiveSetQp::Matrices;
+  for (int child = 0; child < 8; ++child) {
+    p.g = randomMatrix(rng, n, 1);
+    p.bin -= 0.1 * randomMatrix(rng, m_in, 1).cwiseAbs();
+    const QpResult& a = fresh.solve(factor, p.g, p.Aeq, p.beq, p.Ain, p.bin);
+    const QpResult& b = reused.solve(factor, p.g, p.Aeq, p.beq, p.Ain, p.bin, nullptr,
+                                     child == 0 ? M::kNew : M::kUnchanged);
+    expectKkt(p, b);
+    EXPECT_EQ(a.x, b.x) << child;
+    EXPECT_EQ(a.active_set, b.active_set) << child;
+  }
+  // Other matrices (another address) stated unchanged are checked all the same.
+  Problem q = p;
+  q.Ain(5, 3) = kNaN;
+  EXPECT_EQ(reused.solve(factor, q.g, q.Aeq, q.beq, q.Ain, q.bin, nullptr, M::kUnchanged).status,
+            QpStatus::kInvalidInput);
+  EXPECT_NE(reused.result().message.find("A_in"), std::string::npos) << reused.result().message;
+  // After a failed check nothing counts as checked, even at the old address.
+  p.Aeq(0, 0) = kNaN;
+  EXPECT_EQ(reused.solve(factor, p.g, p.Aeq, p.beq, p.Ain, p.bin).status, QpStatus::kInvalidInput);
+  p.Aeq(0, 0) = 1.0;
+  p.Ain(2, 2) = kNaN;  // in place, stated unchanged: the last solve checked nothing
+  EXPECT_EQ(reused.solve(factor, p.g, p.Aeq, p.beq, p.Ain, p.bin, nullptr, M::kUnchanged).status,
+            QpStatus::kInvalidInput);
+  // New row norms once the matrices are new: rows of A_in scaled unevenly in place (the same
+  // address; the most violated row per unit norm changes) solved kNew give the fresh answer.
+  p.Ain(2, 2) = 0.5;
+  for (int i = 0; i < m_in; ++i) {
+    p.Ain.row(i) *= 1.0 + 10.0 * (i % 3);
+    p.bin(i) *= 1.0 + 10.0 * (i % 3);
+  }
+  const QpResult& a = fresh.solve(factor, p.g, p.Aeq, p.beq, p.Ain, p.bin);
+  const QpResult& b = reused.solve(factor, p.g, p.Aeq, p.beq, p.Ain, p.bin, nullptr, M::kNew);
+  ASSERT_EQ(a.status, b.status);
+  EXPECT_EQ(a.x, b.x);
+}
+
 TEST(DualActiveSetQp, IterationLimitIsReported) {
   std::mt19937 rng(9);
   const Problem p = randomProblem(rng, 10, 0, 30);

@@ -383,6 +383,37 @@ TEST(BoundarySelection, TheSameBoundaryForOneAndTwoThreads) {
   EXPECT_TRUE(std::find(serial.begin(), serial.end(), arg_min) != serial.end());
 }
 
+TEST(BoundarySelection, InsideATaskOfAParallelRegionTheSameBoundary) {
+  // The check selects a slice's boundary in the OpenMP task that ends the step
+  // (set_propagation.cpp); there its hulls are tasks of the enclosing region, not a nested
+  // region. Two slices selected side by side in two tasks must give the serial boundaries.
+  const int n = 1500;
+  const Eigen::MatrixXd y1 = Eigen::MatrixXd::Random(3, n), yr1 = Eigen::MatrixXd::Random(3, n);
+  const Eigen::MatrixXd y2 = Eigen::MatrixXd::Random(3, n), yr2 = Eigen::MatrixXd::Random(3, n);
+  BoundaryRule rule;
+  rule.lookahead = {0.0, 0.005, 0.02};
+  rule.max_boundary = 48;
+  rule.threads = 1;
+  const std::vector<int> serial1 = selectBoundary(y1, yr1, rule);
+  const std::vector<int> serial2 = selectBoundary(y2, yr2, rule);
+  rule.threads = 2;
+  std::vector<int> task1, task2;
+  int team = 0;
+#pragma omp parallel num_threads(2)
+#pragma omp single
+  {
+    team = omp_get_num_threads();
+#pragma omp task shared(task1)
+    task1 = selectBoundary(y1, yr1, rule);
+#pragma omp task shared(task2)
+    task2 = selectBoundary(y2, yr2, rule);
+  }
+  EXPECT_EQ(task1, serial1);
+  EXPECT_EQ(task2, serial2);
+  EXPECT_GE(team, 1);
+  EXPECT_NE(serial1, serial2);  // the comparison can fail
+}
+
 TEST(ReachDoubleIntegrator, BadInputThrows) {
   const ReachabilityAnalyzer an(slider(), ContactConfig(), diConfig());
   ReachProblem p = diProblem();

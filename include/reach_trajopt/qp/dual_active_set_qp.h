@@ -87,9 +87,17 @@ class DualActiveSetQp {
   /// object, the QR of the equality rows (the paper's J and R after adding them) is reused, so
   /// children of one parent (same M, J, weights; new torque or right-hand sides) only pay for
   /// the inequality steps. A_eq is compared entry by entry (O(m_eq n)), so this is always safe.
+  ///
+  /// `matrices`: kUnchanged states that A_eq and A_in are the matrices of the previous solve
+  /// (the caller's own storage, not a temporary; entries untouched since), as for the children of
+  /// one parent whose step fills them once. Their finiteness check and A_in's row norms (O(m n) per
+  /// solve) are then reused. It is honoured only when the previous solve checked matrices at the
+  /// same addresses with the same sizes; otherwise the full check runs, as for kNew.
+  enum class Matrices { kNew, kUnchanged };
   const QpResult& solve(const HessianFactor& factor, const VectorRef& g, const MatrixRef& A_eq,
                         const VectorRef& b_eq, const MatrixRef& A_in, const VectorRef& b_in,
-                        const std::vector<int>* warm_start = nullptr);
+                        const std::vector<int>* warm_start = nullptr,
+                        Matrices matrices = Matrices::kNew);
 
   const QpResult& result() const { return result_; }
   const QpSolverConfig& config() const { return config_; }
@@ -99,8 +107,12 @@ class DualActiveSetQp {
   int maxInequalities() const { return m_in_max_; }
 
  private:
+  /// Sizes and finite entries of the input; the matrices' entries are not read when
+  /// `matrices_checked` (see Matrices::kUnchanged). Remembers which matrices passed.
   bool checkInput(const VectorRef& g, const MatrixRef& A_eq, const VectorRef& b_eq,
-                  const MatrixRef& A_in, const VectorRef& b_in);
+                  const MatrixRef& A_in, const VectorRef& b_in, bool matrices_checked);
+  /// The previous solve checked these very matrices (same addresses and sizes).
+  bool sameCheckedMatrices(const MatrixRef& A_eq, const MatrixRef& A_in) const;
   void fail(QpStatus status, const char* format, ...);
   void run(const HessianFactor& factor, const VectorRef& g, const MatrixRef& A_eq,
            const VectorRef& b_eq, const MatrixRef& A_in, const VectorRef& b_in,
@@ -148,6 +160,17 @@ class DualActiveSetQp {
   std::vector<char> is_active_;     // per inequality row
   std::vector<char> eq_redundant_;  // per equality row
   Eigen::VectorXd u_, x_, x0_, d_, z_, r_, w_, work_, s_, row_norm_;
+
+  // The matrices the last checkInput passed (Matrices::kUnchanged): addresses, sizes and outer
+  // strides; whether row_norm_ holds that A_in's row norms.
+  struct CheckedMatrices {
+    const double* A_eq = nullptr;
+    const double* A_in = nullptr;
+    long eq_rows = -1, eq_cols = -1, eq_stride = -1, in_rows = -1, in_cols = -1, in_stride = -1;
+  };
+  bool matrices_checked_ = false;
+  CheckedMatrices checked_;
+  bool row_norms_valid_ = false;
 
   // The active set after the equality rows, kept for the next solve with the same factor/A_eq.
   bool cache_valid_ = false;
