@@ -123,14 +123,16 @@ std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
       if (rule.angular_bins > 0) bins[t] = angularBins(p, rule.angular_bins);
     };
     const bool parallel = tasks > 1 && rule.threads > 1 && n >= kParallelBoundaryMin;
-    if (parallel && omp_in_parallel()) {
+    if (!parallel) {
+      for (int t = 0; t < tasks; ++t) plane_task(t);
+    } else if (omp_in_parallel()) {
       // Called from a task of the check's parallel region (set_propagation.cpp), where a
       // nested parallel region would get one thread: tasks let the team's other threads
       // take planes. The implicit taskgroup waits for this loop's tasks only.
 #pragma omp taskloop grainsize(1) default(shared)
       for (int t = 0; t < tasks; ++t) plane_task(t);
     } else {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, rule.threads)) if (parallel)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(rule.threads)
       for (int t = 0; t < tasks; ++t) plane_task(t);
     }
     for (int t = 0; t < tasks; ++t) {
