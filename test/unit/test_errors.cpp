@@ -15,6 +15,7 @@
 #include "reach_trajopt/planner/lipm.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"
+#include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/sim/bullet_world.h"
 
 namespace reach_trajopt {
@@ -67,6 +68,17 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
         YamlSection::loadString("contact:\n  mu: -1\n", "t.yaml").section("contact"));
   });
   EXPECT_NE(invalid.find("mu"), std::string::npos) << invalid;
+  // A sample budget of the step planner's passes: the hull pass's own key.
+  for (const char* value : {"0", "100000"}) {
+    const std::string hull = thrownMessage<ConfigError>([&] {
+      ReachConfig::fromYaml(
+          YamlSection::loadString(
+              std::string("reach:\n  hull_children_per_parent: ") + value + "\n", "t.yaml")
+              .section("reach"))
+          .validate();
+    });
+    EXPECT_NE(hull.find("hull_children_per_parent"), std::string::npos) << hull;
+  }
 }
 
 TEST(Errors, RequestsAndParametersHaveTheirCategories) {

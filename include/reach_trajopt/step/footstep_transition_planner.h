@@ -233,8 +233,9 @@ class FootstepTransitionPlanner {
   /// The OCP of a pass ended as asked: not asked for, or strict and converged.
   static bool hasStrictTrajectory(const FootstepPlanRequest& r, const FootstepTransition& step);
   /// The hull pass (ReachConfig::hull_pass): the quick pass's check and seed, its OCP solved
-  /// again in the hulls of the full budget's forward set alone, propagated up to the quick
-  /// witness's junction (reach.hullPassConfig(junctionTime(witness))).
+  /// again in the hulls of a forward set alone (the full budget with hull_children_per_parent
+  /// children per parent), propagated up to the quick witness's junction
+  /// (reach.hullPassConfig(junctionTime(witness))).
   FootstepTransition solveInFullHulls(const FootstepPlanRequest& r, const ReachConfig& reach,
                                       const FootstepTransition& quick,
                                       const FootstepPlanProgress& progress) const;
