@@ -126,14 +126,14 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
     std::snprintf(margin, sizeof margin, "%g m", reach.quick_retry_constraint_margin);
     if (endsStep(wide, std::string("them grown to ") + margin)) return wide;
   }
-  // The hull pass: the quick pass's OCP again, in the full budget's forward hulls.
+  // The hull pass: the quick pass's OCP again, in the hulls of a denser forward set.
   if (reach.hull_pass && r.solve_ocp && quick.check.reach.witness.valid) {
     ++passes;
     if (progress.pass) progress.pass(passes);
     FootstepTransition hull = solveInFullHulls(r, reach, quick, progress);
     check_time_s += hull.check_time_s;
     ocp_time_s += hull.ocp_time_s;
-    if (endsStep(hull, "the full budget's forward set's")) return hull;
+    if (endsStep(hull, "the hull pass's forward set's")) return hull;
   }
   ++passes;
   if (progress.pass) progress.pass(passes);
@@ -161,8 +161,9 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
     const FootstepPlanProgress& progress) const {
   FootstepTransition out;
   const PassStart start = startPass(r, quick.horizon, out);
-  // The full budget's forward set alone (the full pass's, bit for bit: same seed and budget),
-  // propagated up to the quick witness's junction only: slicesUpToJunction drops the rest.
+  // A forward set alone with the full budget's initial samples and boundary and
+  // reach.hull_children_per_parent children per parent, propagated up to the quick witness's
+  // junction only: slicesUpToJunction drops the rest.
   double check_time_s = 0.0;
   const WitnessPath& witness = quick.check.reach.witness;
   FootstepCheckResult forward = runCheck(r, reach.hullPassConfig(junctionTime(witness)),

@@ -270,7 +270,7 @@ TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHull
   // --plan-requests`): the quick pass's strict OCP fails in its sparse hulls (seeded with its
   // bridge's witness in the first, with its closest bridged path, the local solve, in the
   // second); the hull pass keeps the quick pass's check and witness and solves the OCP in the
-  // full budget's forward hulls, converged and strict, without the full pass. A bridge's
+  // hull pass's denser forward hulls, converged and strict, without the full pass. A bridge's
   // certificate passes the same model re-check as every other.
   // The wide hull retry (reach.quick_retry_constraint_margin) is off here (as shipped): it
   // would end these steps before the hull pass (WideHullRetry... below).
@@ -282,7 +282,7 @@ TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHull
     const FootstepTransition quick = planQuickPassAlone(request);
     ASSERT_TRUE(quick.check.reach.witness.valid) << quick.reason;
     const FootstepTransition step = planStrict(request);
-    expectSecondPassEndsStrict(step, "full budget's forward set");
+    expectSecondPassEndsStrict(step, "the hull pass's forward set");
     // The quick pass's check stands: its witness, bit for bit.
     EXPECT_EQ(step.check.reach.witness.terminal_position_gap,
               quick.check.reach.witness.terminal_position_gap);

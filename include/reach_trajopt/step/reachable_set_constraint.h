@@ -26,7 +26,7 @@ std::vector<ReachableSlice> reachableSetConstraint(const ReachResult& result,
 
 /// The slices of `slices` at times t <= t_junction of `witness` (all of them without a valid
 /// witness): another check's hulls cut where this witness leaves the sampled sets (the step
-/// planner's hull pass: the full budget's forward set, the quick pass's witness).
+/// planner's hull pass: its forward set, the quick pass's witness).
 std::vector<ReachableSlice> slicesUpToJunction(std::vector<ReachableSlice> slices,
                                                const WitnessPath& witness);
 
