@@ -31,17 +31,20 @@ constexpr int kChunk = 64;  // children per work item (fixed: results do not dep
 // serially at 256; at 64 its forward stage at the walk's horizon went from 0.11-0.13 s to
 // 0.08 s on 2 threads (bench/README.md, issue 16).
 constexpr long kParallelMin = 64;
-constexpr int kTasksPerThread = 8;  // tasks of one step per thread (dynamic balance)
+constexpr int kClaimsPerThread = 8;  // a step's items are claimed in about this many parts
+                                     // per thread (dynamic balance)
 
 /// What the directions run together share: the progress callback, the first exception any
 /// of them threw, the mutex guarding both (the callback is never called concurrently), and a
 /// stop flag raised by that exception (or a cancel).
+class DirectionRun;
 struct SharedRun {
   explicit SharedRun(const ReachProgressCallback& cb) : progress(cb) {}
   const ReachProgressCallback& progress;
   std::exception_ptr error;
   std::mutex mutex;
   std::atomic<bool> stop{false};
+  std::vector<DirectionRun*> directions;  ///< what the workers take items from
 };
 enum Direction : std::uint64_t { kForward = 1, kBackward = 2 };
 
@@ -156,19 +159,51 @@ struct StepChildren {
   Eigen::MatrixXd qd, y, yr, u, lam;
 };
 
-/// One direction of the check, run as OpenMP tasks that never wait. A step's children are
-/// split into tasks of a few work items (kChunk children of one parent); the task that
-/// finishes last gathers them (compaction, boundary selection, progress) and starts the next
-/// step's tasks. No thread ever blocks inside a task, so at the region's closing barrier every
-/// thread runs the tasks of both directions as they come (a task waiting for its children in
-/// libgomp could only run its own). Small steps, and one thread, run inline.
+/// One direction of the check, run by OpenMP worker tasks that never wait. A step's children
+/// are work items (kChunk children of one parent); the step publishes them (a cursor), and
+/// workers claim a few at a time. The worker that runs the step's last items gathers them
+/// (compaction, boundary selection, progress) and publishes the next step, with a worker task
+/// per thread. No thread ever blocks inside a task, so at the region's closing barrier every
+/// thread works on both directions as they come (a task waiting for its children in libgomp
+/// could only run its own). Small steps, and one thread, run inline.
 /// A direction being propagated, whatever its step type.
 class DirectionRun {
  public:
   virtual ~DirectionRun() = default;
   /// Starts the direction (in a parallel region's single thread, or serially).
   virtual void start() = 0;
+  /// Steps not yet gathered (the length of the direction's remaining chain).
+  virtual int stepsLeft() const = 0;
+  /// Some item of the published step is unclaimed.
+  virtual bool claimable() const = 0;
+  /// Claims a few unclaimed items and runs them (and the step's end when they were its last);
+  /// false when none was left to claim.
+  virtual bool claimAndRun() = 0;
 };
+
+/// A worker task: runs items until none is left, staying with the direction this thread last
+/// worked on while it has items, else taking the direction with the most steps left (the
+/// longer chain). Alternating directions on one core cost each item 10-18 % more CPU time than
+/// with one thread; keeping to one cut a quick check of the walk by about 5 % on 2 threads
+/// (bench/README.md, issue 16). `last` is only compared, never followed: a stale address from an
+/// earlier check merely sets a preference.
+void runWorker(SharedRun& run) {
+  static thread_local const DirectionRun* last = nullptr;
+  while (!run.stop) {
+    DirectionRun* best = nullptr;
+    for (DirectionRun* d : run.directions) {
+      if (!d->claimable()) continue;
+      if (d == last) {
+        best = d;
+        break;
+      }
+      if (best == nullptr || d->stepsLeft() > best->stepsLeft()) best = d;
+    }
+    if (best == nullptr) return;
+    last = best;
+    best->claimAndRun();  // may find the items claimed by another worker meanwhile: look again
+  }
+}
 
 /// Propagates one DirectionSet (its slices and stats).
 template <class Step>
@@ -193,6 +228,7 @@ class StepRun : public DirectionRun {
       slices_.clear();
       slices_.reserve(root_.steps + 1);
       slices_.push_back(rootSlice(ctx_, root_.root_index * ctx_.config.dt, root_.q, root_.qd));
+      steps_left_.store(root_.steps, std::memory_order_relaxed);
       advance();
     });
   }
@@ -225,22 +261,44 @@ class StepRun : public DirectionRun {
         finishStep();
         continue;
       }
-      const int tasks = std::min(items, kTasksPerThread * threads_);
-      pending_.store(tasks);
-      for (int t = 0; t < tasks; ++t) {
-        const int i0 = static_cast<int>(static_cast<long>(items) * t / tasks);
-        const int i1 = static_cast<int>(static_cast<long>(items) * (t + 1) / tasks);
-#pragma omp task default(shared) firstprivate(i0, i1)
-        guarded([&] {
-          runItems(i0, i1);
-          if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {  // the last one
-            finishStep();
-            advance();
-          }
-        });
+      pending_.store(items, std::memory_order_relaxed);
+      grain_.store(std::max(1, items / (kClaimsPerThread * threads_)), std::memory_order_relaxed);
+      cursor_.store(static_cast<std::uint64_t>(items) << 32, std::memory_order_release);
+      SharedRun& run = run_;
+      for (int t = 0; t < threads_; ++t) {
+#pragma omp task default(none) shared(run)
+        runWorker(run);
       }
       return;
     }
+  }
+
+  int stepsLeft() const override { return steps_left_.load(std::memory_order_relaxed); }
+
+  bool claimable() const override {
+    const std::uint64_t c = cursor_.load(std::memory_order_relaxed);
+    return (c & 0xffffffffu) < (c >> 32);
+  }
+
+  bool claimAndRun() override {
+    std::uint64_t c = cursor_.load(std::memory_order_acquire);
+    std::uint64_t items = 0, next = 0, end = 0;
+    do {
+      items = c >> 32;
+      next = c & 0xffffffffu;
+      if (next >= items) return false;
+      end = std::min<std::uint64_t>(items, next + grain_.load(std::memory_order_relaxed));
+    } while (!cursor_.compare_exchange_weak(c, (items << 32) | end, std::memory_order_acq_rel,
+                                            std::memory_order_acquire));
+    const int i0 = static_cast<int>(next), i1 = static_cast<int>(end);
+    guarded([&] {
+      runItems(i0, i1);
+      if (pending_.fetch_sub(i1 - i0, std::memory_order_acq_rel) == i1 - i0) {
+        finishStep();
+        advance();
+      }
+    });
+    return true;
   }
 
   /// Work items [i0, i1) of the current step (any thread).
@@ -308,6 +366,7 @@ class StepRun : public DirectionRun {
     stats_.boundary_time += since(tb);
     stats_.samples += next.size();
     slices_.push_back(std::move(next));
+    steps_left_.store(root_.steps - (j + 1), std::memory_order_relaxed);
     report(j + 1);
   }
 
@@ -354,6 +413,9 @@ class StepRun : public DirectionRun {
   int n_children_ = 0, chunks_ = 1;
   std::unique_ptr<StepChildren> children_;
   std::atomic<int> pending_{0};
+  std::atomic<int> grain_{1};
+  std::atomic<std::uint64_t> cursor_{0};
+  std::atomic<int> steps_left_{0};
 };
 
 std::unique_ptr<DirectionRun> makeRun(const ReachContext& ctx, DirectionSet& set, int threads,
@@ -372,6 +434,7 @@ void propagateSets(const ReachContext& ctx, const std::vector<DirectionSet*>& se
   SharedRun run(progress);
   std::vector<std::unique_ptr<DirectionRun>> runs;
   for (DirectionSet* set : sets) runs.push_back(makeRun(ctx, *set, threads, run));
+  for (const auto& r : runs) run.directions.push_back(r.get());
 #pragma omp parallel num_threads(threads)
 #pragma omp single nowait
   for (const auto& r : runs) r->start();

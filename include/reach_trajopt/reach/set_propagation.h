@@ -9,10 +9,11 @@
 /// Determinism: the draws of a child depend only on (seed, direction, step, parent, child) and
 /// results are stored at fixed indices, so the slices are bit-identical for any thread count.
 ///
-/// Threads: the children of a slice are OpenMP tasks (a few parents each). propagateSets() runs
-/// the forward and the backward direction side by side in one team: while one direction does
-/// the serial part of a step (gathering the children, the boundary selection (21)), the other
-/// one's children keep every thread busy, and neither waits for the other between steps.
+/// Threads: the children of a slice are work items (a few children of one parent) that OpenMP
+/// worker tasks claim. propagateSets() runs the forward and the backward direction side by side
+/// in one team: while one direction does the serial part of a step (gathering the children, the
+/// boundary selection (21)), the other one's children keep every thread busy, and neither waits
+/// for the other between steps. A worker keeps to one direction while it has items.
 
 #include <Eigen/Core>
 #include <vector>
