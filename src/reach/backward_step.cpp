@@ -81,7 +81,7 @@ bool BackwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
                              const Eigen::Ref<const Eigen::VectorXd>& qd) {
   parent_ok_ = false;
   prefilter_ = false;
-  qp_matrices_solved_ = false;  // setParent rewrites the QP's matrices
+  qp_matrices_.refilled();  // setParent rewrites the QP's matrices
   warm_.clear();
   const RobotModel& model = *ctx_.model;
   const double dt = ctx_.config.dt;
@@ -189,8 +189,9 @@ bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
     if (unique_lambda_) {
       if (!uniqueLambdaFeasible()) return false;
     } else {
-      const qp::QpResult& res = qp_.solve(factor_, g_, A_eq_, b_eq_, A_in_, b_in_,
-                                          warm_.empty() ? nullptr : &warm_, qpMatrices());
+      const qp::QpResult& res =
+          qp_.solve(factor_, g_, A_eq_, b_eq_, A_in_, b_in_, warm_.empty() ? nullptr : &warm_,
+                    qp_matrices_.nextSolve());
       if (res.status != qp::QpStatus::kOptimal) return false;
       warm_ = res.active_set;
       lambda_ = res.x;

@@ -79,7 +79,7 @@ ForwardStep::ForwardStep(const ReachContext& context, const ForwardStepCost& cos
 bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
                             const Eigen::Ref<const Eigen::VectorXd>& qd) {
   parent_ok_ = false;
-  qp_matrices_solved_ = false;  // setParent rewrites the QP's matrices
+  qp_matrices_.refilled();  // setParent rewrites the QP's matrices
   warm_.clear();
   const RobotModel& model = *ctx_.model;
   const ReachConfig& cfg = ctx_.config;
@@ -218,7 +218,7 @@ bool ForwardStep::solveChild(const Eigen::Ref<const Eigen::VectorXd>& u,
   if (hasGroundRow(ctx_, cost_)) b_in_[r++] = ground_rhs_ - swing_jz_.dot(s_.head(n_));
   ++qp_count_;
   const qp::QpResult& res = qp_.solve(factor_, g_, empty_eq_, empty_beq_, A_in_, b_in_,
-                                      warm_.empty() ? nullptr : &warm_, qpMatrices());
+                                      warm_.empty() ? nullptr : &warm_, qp_matrices_.nextSolve());
   if (res.status != qp::QpStatus::kOptimal) return false;
   warm_ = res.active_set;
   u_out = u + res.x;

@@ -34,10 +34,11 @@ constexpr long kParallelMin = 64;
 constexpr int kClaimsPerThread = 8;  // a step's items are claimed in about this many parts
                                      // per thread (dynamic balance)
 
-/// What the directions run together share: the progress callback, the first exception any
-/// of them threw, the mutex guarding both (the callback is never called concurrently), and a
-/// stop flag raised by that exception (or a cancel).
 class DirectionRun;
+
+/// What the directions run together share: the progress callback, the first exception any
+/// of them threw, the mutex guarding both (the callback is never called concurrently), a
+/// stop flag raised by that exception (or a cancel), and the directions workers claim from.
 struct SharedRun {
   explicit SharedRun(const ReachProgressCallback& cb) : progress(cb) {}
   const ReachProgressCallback& progress;

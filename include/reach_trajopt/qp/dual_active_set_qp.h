@@ -181,5 +181,23 @@ class DualActiveSetQp {
   std::vector<char> cache_eq_redundant_;
 };
 
+/// The `matrices` argument of DualActiveSetQp::solve for a caller that refills its A_eq / A_in
+/// now and then (a reach step's setParent) and solves several problems between refills (the
+/// parent's children): kNew on the first solve after a refill, kUnchanged after it.
+class MatricesSinceRefill {
+ public:
+  /// The caller has just rewritten its matrices.
+  void refilled() { solved_ = false; }
+  /// The argument for the solve about to run.
+  DualActiveSetQp::Matrices nextSolve() {
+    const bool solved = solved_;
+    solved_ = true;
+    return solved ? DualActiveSetQp::Matrices::kUnchanged : DualActiveSetQp::Matrices::kNew;
+  }
+
+ private:
+  bool solved_ = false;
+};
+
 }  // namespace qp
 }  // namespace reach_trajopt

@@ -88,14 +88,8 @@ class BackwardStep {
   qp::DualActiveSetQp qp_;
   std::vector<int> warm_;
   bool parent_ok_ = false;
-  /// The QP has solved with this parent's matrices (A_eq_, A_in_) already: later children
-  /// reuse their check (qp::DualActiveSetQp::Matrices::kUnchanged).
-  bool qp_matrices_solved_ = false;
-  qp::DualActiveSetQp::Matrices qpMatrices() {
-    const bool solved = qp_matrices_solved_;
-    qp_matrices_solved_ = true;
-    return solved ? qp::DualActiveSetQp::Matrices::kUnchanged : qp::DualActiveSetQp::Matrices::kNew;
-  }
+  /// A parent's later children reuse the QP's check of its matrices (A_eq_, A_in_).
+  qp::MatricesSinceRefill qp_matrices_;
   long qp_count_ = 0;
   // Prefilter: slack(d) ~ slack_0 + slack_d d; rejected below -prefilter_margin.
   bool prefilter_ = false;  ///< the model is valid at this parent

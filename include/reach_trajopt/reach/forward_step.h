@@ -107,14 +107,8 @@ class ForwardStep {
   Eigen::VectorXd empty_beq_;
   std::vector<int> warm_;
   bool parent_ok_ = false;
-  /// The QP has solved with this parent's matrices (A_eq_, A_in_) already: later children
-  /// reuse their check (qp::DualActiveSetQp::Matrices::kUnchanged).
-  bool qp_matrices_solved_ = false;
-  qp::DualActiveSetQp::Matrices qpMatrices() {
-    const bool solved = qp_matrices_solved_;
-    qp_matrices_solved_ = true;
-    return solved ? qp::DualActiveSetQp::Matrices::kUnchanged : qp::DualActiveSetQp::Matrices::kNew;
-  }
+  /// A parent's later children reuse the QP's check of its matrices (A_eq_, A_in_).
+  qp::MatricesSinceRefill qp_matrices_;
   long qp_count_ = 0;
 };
 
