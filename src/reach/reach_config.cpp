@@ -126,6 +126,8 @@ void ReachConfig::validate() const {
   requireNonNegative("limit_tolerance", limit_tolerance);
   if (hull_children_per_parent < 1) bad("hull_children_per_parent", "must be >= 1 (zero samples)");
   requireAtMost("hull_children_per_parent", hull_children_per_parent, L::kMaxChildrenPerParent);
+  if (hull_initial_samples < 1) bad("hull_initial_samples", "must be >= 1 (zero samples)");
+  requireAtMost("hull_initial_samples", hull_initial_samples, L::kMaxInitialSamples);
   if (quick_pass) {
     try {
       quickPassConfig().validate();
@@ -145,6 +147,7 @@ ReachConfig ReachConfig::hullPassConfig(double forward_until_s) const {
   c.hull_pass = false;
   c.forward_set_only = true;
   c.children_per_parent = hull_children_per_parent;
+  c.initial_samples = hull_initial_samples;
   if (forward_until_s >= 0.0 && forward_until_s < window_end) {
     c.window_end = std::max(1.0, std::ceil(forward_until_s / dt - 1e-6)) * dt;  // on the grid
     c.window_start = std::min(c.window_start, c.window_end);  // unused without backward set
@@ -286,10 +289,13 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "this margin before the hull pass (0: no retry)")
           .add("hull_pass", &C::hull_pass, "",
                "when the quick pass's strict OCP fails, solve it again in the hulls of a forward "
-               "set alone (the full budget, hull_children_per_parent) before the full pass")
+               "set alone (the full budget's boundary, hull_initial_samples, "
+               "hull_children_per_parent) before the full pass")
           .add("hull_children_per_parent", &C::hull_children_per_parent, "",
                "children_per_parent of the hull pass's forward set (its other budget is the "
                "full one's)")
+          .add("hull_initial_samples", &C::hull_initial_samples, "",
+               "initial_samples of the hull pass's forward set")
           .add("forward_set_only", &C::forward_set_only, "",
                "the forward set alone (no backward set, no verdict): the hull pass's check");
   return f;

@@ -161,9 +161,9 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
     const FootstepPlanProgress& progress) const {
   FootstepTransition out;
   const PassStart start = startPass(r, quick.horizon, out);
-  // A forward set alone with the full budget's initial samples and boundary and
-  // reach.hull_children_per_parent children per parent, propagated up to the quick witness's
-  // junction only: slicesUpToJunction drops the rest.
+  // A forward set alone with the full budget's boundary, reach.hull_initial_samples and
+  // reach.hull_children_per_parent, propagated up to the quick witness's junction only:
+  // slicesUpToJunction drops the rest.
   double check_time_s = 0.0;
   const WitnessPath& witness = quick.check.reach.witness;
   FootstepCheckResult forward = runCheck(r, reach.hullPassConfig(junctionTime(witness)),

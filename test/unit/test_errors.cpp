@@ -68,16 +68,17 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
         YamlSection::loadString("contact:\n  mu: -1\n", "t.yaml").section("contact"));
   });
   EXPECT_NE(invalid.find("mu"), std::string::npos) << invalid;
-  // A sample budget of the step planner's passes: the hull pass's own key.
-  for (const char* value : {"0", "100000"}) {
-    const std::string hull = thrownMessage<ConfigError>([&] {
-      ReachConfig::fromYaml(
-          YamlSection::loadString(
-              std::string("reach:\n  hull_children_per_parent: ") + value + "\n", "t.yaml")
-              .section("reach"))
-          .validate();
-    });
-    EXPECT_NE(hull.find("hull_children_per_parent"), std::string::npos) << hull;
+  // A sample budget of the step planner's passes: the hull pass's own keys.
+  for (const char* key : {"hull_children_per_parent", "hull_initial_samples"}) {
+    for (const char* value : {"0", "-3", "1000000"}) {
+      const std::string hull = thrownMessage<ConfigError>([&] {
+        ReachConfig::fromYaml(
+            YamlSection::loadString(std::string("reach:\n  ") + key + ": " + value + "\n", "t.yaml")
+                .section("reach"))
+            .validate();
+      });
+      EXPECT_NE(hull.find(key), std::string::npos) << key << " = " << value << ": " << hull;
+    }
   }
 }
 

@@ -309,7 +309,8 @@ TEST(ReachDoubleIntegrator, HullPassConfigStopsAtTheJunctionWithTheSameSlices) {
   const ReachConfig cut = c.hullPassConfig((k - 0.5) * c.dt);
   EXPECT_TRUE(cut.forward_set_only);
   EXPECT_EQ(cut.children_per_parent, c.hull_children_per_parent);  // its own budget
-  EXPECT_EQ(cut.initial_samples, c.initial_samples);
+  EXPECT_EQ(cut.initial_samples, c.hull_initial_samples);
+  EXPECT_EQ(cut.max_boundary, c.max_boundary);  // the full budget's boundary
   EXPECT_NEAR(cut.window_end, k * c.dt, 1e-15);
   const ReachResult part = an.check(diProblem(), cut);
   ASSERT_EQ(static_cast<int>(part.forward.size()), k + 1);

@@ -19,8 +19,8 @@
 /// finds none; issue 16: most of the walk's steps end after the quick pass; bench/README.md).
 /// Between the two, the quick pass's strict OCP is solved again, its check and witness kept:
 /// first in its own hulls grown to ReachConfig::quick_retry_constraint_margin (one OCP, no
-/// sampling), then (ReachConfig::hull_pass) in the eq. (23) hulls of the full budget's forward
-/// set alone.
+/// sampling), then (ReachConfig::hull_pass) in the eq. (23) hulls of a forward set alone with
+/// the full budget's boundary.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -233,8 +233,9 @@ class FootstepTransitionPlanner {
   /// The OCP of a pass ended as asked: not asked for, or strict and converged.
   static bool hasStrictTrajectory(const FootstepPlanRequest& r, const FootstepTransition& step);
   /// The hull pass (ReachConfig::hull_pass): the quick pass's check and seed, its OCP solved
-  /// again in the hulls of a forward set alone (the full budget with hull_children_per_parent
-  /// children per parent), propagated up to the quick witness's junction
+  /// again in the hulls of a forward set alone (the full budget's boundary with
+  /// hull_initial_samples and hull_children_per_parent), propagated up to the quick witness's
+  /// junction
   /// (reach.hullPassConfig(junctionTime(witness))).
   FootstepTransition solveInFullHulls(const FootstepPlanRequest& r, const ReachConfig& reach,
                                       const FootstepTransition& quick,
