@@ -87,6 +87,9 @@ void ReachConfig::validate() const {
   for (double tau : boundary_lookahead) requireNonNegative("boundary_lookahead", tau);
   if (!(vertex_fraction >= 0.0 && vertex_fraction <= 1.0))
     bad("vertex_fraction", "must be in [0, 1]");
+  if (redraw_rounds < 0) bad("redraw_rounds", "must be >= 0");
+  requireAtMost("redraw_rounds", redraw_rounds, L::kMaxRedrawRounds);
+  if (!(redraw_below >= 0.0 && redraw_below <= 1.0)) bad("redraw_below", "must be in [0, 1]");
   if (threads < 0) bad("threads", "must be >= 0");
   // Each thread owns a workspace; more threads than the machine has cannot run faster.
   if (threads > hardwareThreads())
@@ -227,6 +230,10 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "tau of y + tau ydot in the boundary rule, each >= 0")
           .add("vertex_fraction", &C::vertex_fraction, "",
                "share of bang-bang draws (antithetic pairs), in [0, 1]")
+          .add("redraw_rounds", &C::redraw_rounds, "",
+               "extra rounds of draws at a step whose slice came out thin (0: fixed draws)")
+          .add("redraw_below", &C::redraw_below, "",
+               "share of max_boundary + interior_samples under which a slice is thin, [0, 1]")
           .add("seed", &C::seed, "", "random stream (same results for any thread count)")
           .add("threads", &C::threads, "", "OpenMP threads, 0: OpenMP's default")
           .add("forward_integrator", &C::forward_integrator, "",

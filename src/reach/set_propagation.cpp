@@ -162,7 +162,8 @@ struct StepChildren {
 
 /// One direction of the check, run by OpenMP worker tasks that never wait. A step's children
 /// are work items (kChunk children of one parent); the step publishes them (a cursor), and
-/// workers claim a few at a time. The worker that runs the step's last items gathers them
+/// workers claim a few at a time. The worker that runs the step's last items either publishes
+/// another round of them (a thin slice, ReachConfig::redraw_rounds) or gathers them
 /// (compaction, boundary selection, progress) and publishes the next step, with a worker task
 /// per thread. No thread ever blocks inside a task, so at the region's closing barrier every
 /// thread works on both directions as they come (a task waiting for its children in libgomp
@@ -248,30 +249,52 @@ class StepRun : public DirectionRun {
         stats_.propagation_time = since(t0_) - stats_.boundary_time;
         return;
       }
-      const SampleSlice& prev = slices_.back();
       const ReachConfig& config = ctx_.config;
       n_children_ =
           j == 0 ? config.initial_samples
                  : (forward_ ? config.children_per_parent : config.backward_children_per_parent);
-      const long total = static_cast<long>(prev.kept.size()) * n_children_;
-      children_ = std::make_unique<StepChildren>(ctx_, total);
       chunks_ = (n_children_ + kChunk - 1) / kChunk;
-      const int items = static_cast<int>(prev.kept.size()) * chunks_;
-      if (threads_ == 1 || total < kParallelMin) {
-        runItems(0, items);
-        finishStep();
-        continue;
-      }
-      pending_.store(items, std::memory_order_relaxed);
-      grain_.store(std::max(1, items / (kClaimsPerThread * threads_)), std::memory_order_relaxed);
-      cursor_.store(static_cast<std::uint64_t>(items) << 32, std::memory_order_release);
-      SharedRun& run = run_;
-      for (int t = 0; t < threads_; ++t) {
-#pragma omp task default(none) shared(run)
-        runWorker(run);
-      }
-      return;
+      rounds_.clear();
+      survivors_ = 0;
+      if (!runRounds()) return;  // handed to worker tasks
     }
+  }
+
+  /// Draws the current step's rounds from rounds_.size() on: each one inline when it is small
+  /// (or one thread), until the step is gathered (true), or hands a round to worker tasks
+  /// (false: the worker that runs its last item goes on).
+  bool runRounds() {
+    while (true) {
+      const long total = static_cast<long>(slices_.back().kept.size()) * n_children_;
+      rounds_.push_back(std::make_unique<StepChildren>(ctx_, total));
+      const int items = static_cast<int>(slices_.back().kept.size()) * chunks_;
+      if (threads_ > 1 && total >= kParallelMin) {
+        pending_.store(items, std::memory_order_relaxed);
+        grain_.store(std::max(1, items / (kClaimsPerThread * threads_)),
+                     std::memory_order_relaxed);
+        cursor_.store(static_cast<std::uint64_t>(items) << 32, std::memory_order_release);
+        SharedRun& run = run_;
+        for (int t = 0; t < threads_; ++t) {
+#pragma omp task default(none) shared(run)
+          runWorker(run);
+        }
+        return false;
+      }
+      runItems(0, items);
+      if (!anotherRound()) {
+        finishStep();
+        return true;
+      }
+    }
+  }
+
+  /// After a round: true when the slice is still thin and rounds are left (ReachConfig::
+  /// redraw_rounds, redraw_below).
+  bool anotherRound() {
+    for (char ok : rounds_.back()->ok) survivors_ += ok;
+    const ReachConfig& config = ctx_.config;
+    const double wanted = config.redraw_below * (config.max_boundary + config.interior_samples);
+    return static_cast<int>(rounds_.size()) <= config.redraw_rounds && survivors_ < wanted;
   }
 
   int stepsLeft() const override { return steps_left_.load(std::memory_order_relaxed); }
@@ -294,10 +317,12 @@ class StepRun : public DirectionRun {
     const int i0 = static_cast<int>(next), i1 = static_cast<int>(end);
     guarded([&] {
       runItems(i0, i1);
-      if (pending_.fetch_sub(i1 - i0, std::memory_order_acq_rel) == i1 - i0) {
+      if (pending_.fetch_sub(i1 - i0, std::memory_order_acq_rel) != i1 - i0) return;
+      if (!anotherRound())
         finishStep();
-        advance();
-      }
+      else if (!runRounds())
+        return;  // the next round is the workers'
+      advance();
     });
     return true;
   }
@@ -308,7 +333,9 @@ class StepRun : public DirectionRun {
     const int step_index = static_cast<int>(slices_.size()) - 1;
     const std::uint64_t seed = ctx_.config.seed;
     const int n_vertex = vertexDraws(ctx_.config.vertex_fraction, n_children_);
-    StepChildren& ch = *children_;
+    // Round r draws children r n + c (new keys; uniform: the vertices are round 0's).
+    const int key0 = static_cast<int>(rounds_.size() - 1) * n_children_;
+    StepChildren& ch = *rounds_.back();
     Scratch<Step>& s = *scratch_[omp_get_thread_num()];
     for (int item = i0; item < i1; ++item) {
       const int k = item / chunks_;
@@ -320,11 +347,12 @@ class StepRun : public DirectionRun {
         const long col = static_cast<long>(k) * n_children_ + c;
         bool good;
         if constexpr (std::is_same<Step, ForwardStep>::value) {
-          drawBox(seed, dir_, step_index, parent, c, n_vertex, ctx_.u_max, s.u);
+          drawBox(seed, dir_, step_index, parent, key0 + c, n_vertex, ctx_.u_max, s.u);
           good = s.step.child(s.u, s.q, ch.qd.col(col), ch.y.col(col), ch.yr.col(col),
                               ch.u.col(col), ch.lam.col(col));
         } else {
-          drawBox(seed, dir_, step_index, parent, c, n_vertex, s.step.drawBound(), s.draw);
+          drawBox(seed, dir_, step_index, parent, key0 + c, n_vertex, s.step.drawBound(),
+                  s.draw);
           good = s.step.child(s.draw, s.q, ch.qd.col(col), ch.y.col(col), ch.yr.col(col),
                               ch.u.col(col), ch.lam.col(col));
         }
@@ -333,16 +361,18 @@ class StepRun : public DirectionRun {
     }
   }
 
-  /// Gathers the step's children into the next slice, selects its boundary, reports.
+  /// Gathers the step's children (every round's, in round order) into the next slice, selects
+  /// its boundary, reports.
   void finishStep() {
     const SampleSlice& prev = slices_.back();
-    const StepChildren& ch = *children_;
     const int j = static_cast<int>(slices_.size()) - 1;
-    const long total = static_cast<long>(ch.ok.size());
     SampleSlice next;
     next.time = (root_.root_index + (forward_ ? 1 : -1) * (j + 1)) * ctx_.config.dt;
-    long kept = 0;
-    for (long i = 0; i < total; ++i) kept += ch.ok[i];
+    long total = 0, kept = 0;
+    for (const auto& ch : rounds_) {
+      total += static_cast<long>(ch->ok.size());
+      for (char ok : ch->ok) kept += ok;
+    }
     stats_.rejected += total - kept;
     next.parent.resize(kept);
     next.qd.resize(ctx_.n, kept);
@@ -351,17 +381,20 @@ class StepRun : public DirectionRun {
     next.u.resize(ctx_.nu, kept);
     next.lambda.resize(ctx_.m(), kept);
     long col = 0;
-    for (long i = 0; i < total; ++i) {
-      if (!ch.ok[i]) continue;
-      next.parent[col] = prev.kept[i / n_children_];
-      next.qd.col(col) = ch.qd.col(i);
-      next.output.col(col) = ch.y.col(i);
-      next.output_rate.col(col) = ch.yr.col(i);
-      next.u.col(col) = ch.u.col(i);
-      next.lambda.col(col) = ch.lam.col(i);
-      ++col;
+    for (const auto& round : rounds_) {
+      const StepChildren& ch = *round;
+      for (long i = 0; i < static_cast<long>(ch.ok.size()); ++i) {
+        if (!ch.ok[i]) continue;
+        next.parent[col] = prev.kept[i / n_children_];
+        next.qd.col(col) = ch.qd.col(i);
+        next.output.col(col) = ch.y.col(i);
+        next.output_rate.col(col) = ch.yr.col(i);
+        next.u.col(col) = ch.u.col(i);
+        next.lambda.col(col) = ch.lam.col(i);
+        ++col;
+      }
     }
-    children_.reset();
+    rounds_.clear();
     const auto tb = Clock::now();
     selectAndStore(ctx_, forward_, prev, next);
     stats_.boundary_time += since(tb);
@@ -412,7 +445,8 @@ class StepRun : public DirectionRun {
   std::vector<std::unique_ptr<Scratch<Step>>> scratch_;
   Clock::time_point t0_;
   int n_children_ = 0, chunks_ = 1;
-  std::unique_ptr<StepChildren> children_;
+  std::vector<std::unique_ptr<StepChildren>> rounds_;  ///< the current step's rounds of draws
+  long survivors_ = 0;                                 ///< their children kept so far
   std::atomic<int> pending_{0};
   std::atomic<int> grain_{1};
   std::atomic<std::uint64_t> cursor_{0};

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_yaml.h"
@@ -79,6 +81,21 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
       });
       EXPECT_NE(hull.find(key), std::string::npos) << key << " = " << value << ": " << hull;
     }
+  }
+  // The redraws of thin slices: a bounded number of rounds, a share in [0, 1].
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+           {"redraw_rounds", "-1"},
+           {"redraw_rounds", "9"},
+           {"redraw_below", "-0.1"},
+           {"redraw_below", "1.5"},
+           {"redraw_below", ".nan"}}) {
+    const std::string what = thrownMessage<ConfigError>([&] {
+      ReachConfig::fromYaml(
+          YamlSection::loadString("reach:\n  " + key + ": " + value + "\n", "t.yaml")
+              .section("reach"))
+          .validate();
+    });
+    EXPECT_NE(what.find(key), std::string::npos) << key << " = " << value << ": " << what;
   }
 }
 

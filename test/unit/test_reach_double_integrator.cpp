@@ -271,6 +271,58 @@ TEST(ReachDoubleIntegrator, OneAndTwoThreadsGiveIdenticalResults) {
   EXPECT_EQ(a.reason, b.reason);
 }
 
+TEST(ReachDoubleIntegrator, RedrawsFillThinSlicesWithSoundSamplesAndKeepTheFirstDraws) {
+  // One child per parent leaves every later slice with fewer samples than the parents it
+  // wants (max_boundary + interior_samples): redraw_rounds draws again, with new keys, until
+  // the slice has them or the rounds are spent. Round 0 is the fixed-draw run's, every extra
+  // sample is still in the exact set, and 1 and 2 threads give the same slices.
+  ReachConfig c = diConfig();
+  c.children_per_parent = 1;
+  c.backward_children_per_parent = 1;
+  c.redraw_below = 1.0;
+  c.redraw_rounds = 0;
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
+  const ReachProblem p = diProblem();
+  const ReachResult fixed = an.check(p, c);
+  c.redraw_rounds = 2;
+  const ReachResult redrawn = an.check(p, c);
+  c.threads = 2;
+  const ReachResult redrawn2 = an.check(p, c);
+  const int wanted = c.max_boundary + c.interior_samples;
+  for (bool forward : {true, false}) {
+    const auto& a = forward ? fixed.forward : fixed.backward;
+    const auto& b = forward ? redrawn.forward : redrawn.backward;
+    const auto& b2 = forward ? redrawn2.forward : redrawn2.backward;
+    ASSERT_EQ(a.size(), b.size());
+    // Slice 1 has the same parents (the root's initial draws); slice 2 is the first drawn
+    // from the same kept samples with one child each: its first round is the fixed run's.
+    ASSERT_EQ(a[1].parent, b[1].parent);
+    const int n2 = a[2].size();
+    ASSERT_LT(n2, wanted);
+    ASSERT_GT(b[2].size(), n2) << "no redraw at a thin slice";
+    EXPECT_TRUE(b[2].qd.leftCols(n2) == a[2].qd);
+    int grown = 0;
+    for (std::size_t j = 2; j < b.size(); ++j) {
+      const int parents = static_cast<int>(b[j - 1].kept.size());
+      EXPECT_LE(b[j].size(), (1 + c.redraw_rounds) * parents) << "slice " << j;
+      grown += b[j].size() > parents;
+      ASSERT_EQ(b[j].parent, b2[j].parent) << "slice " << j;
+      ASSERT_TRUE(b[j].qd == b2[j].qd) << "slice " << j;
+    }
+    EXPECT_GT(grown, static_cast<int>(b.size()) / 2);
+    for (int N : {20, 50, 100}) {
+      const Zonotope z = forward ? exactSet({p.q0[0], p.qd0[0]}, N, forwardStep)
+                                 : exactSet({p.qf[0], p.qdf[0]}, N, backwardStep);
+      for (int i = 0; i < b[N].size(); ++i) {
+        const Eigen::VectorXd q = an.sampleConfiguration(redrawn, forward, N, i);
+        EXPECT_TRUE(z.contains(Eigen::Vector2d(q[0], b[N].qd(0, i)), 1e-12))
+            << (forward ? "forward" : "backward") << " slice " << N << " sample " << i;
+      }
+    }
+  }
+  EXPECT_EQ(redrawn.reason, redrawn2.reason);
+}
+
 TEST(ReachDoubleIntegrator, ForwardSetOnlyIsTheCheckForwardSetAlone) {
   // reach.forward_set_only (the step planner's hull pass): the forward set of the whole check, bit
   // for bit, no backward set and no verdict.

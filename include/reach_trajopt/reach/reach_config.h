@@ -37,6 +37,7 @@ struct ReachLimits {
   static constexpr int kMaxLookahead = 16;                ///< entries of boundary_lookahead
   static constexpr int kMaxSteps = 20000;                 ///< horizon / dt
   static constexpr int kMaxCertificateCandidates = 1000;  ///< bridges of one check
+  static constexpr int kMaxRedrawRounds = 8;              ///< redraw_rounds
   /// Estimated memory of one check (estimatedMemoryBytes) allowed [bytes].
   static constexpr double kMaxMemoryBytes = 1024.0 * 1024 * 1024;
   /// Estimated QPs of one check (estimatedQps) allowed: about 10-30 s on one core; the
@@ -71,6 +72,20 @@ struct ReachConfig {
   /// uniform. The extremes of a reachable set come from bang-bang inputs, which uniform draws
   /// almost never produce. 0 = the paper's uniform draws.
   double vertex_fraction = 0.25;
+  /// Extra rounds of draws at a step whose slice keeps fewer samples than redraw_below x
+  /// (max_boundary + interior_samples): each round draws as many children per parent again
+  /// (new draws, uniform), until the slice has that many or the rounds are spent. Where (19)
+  /// rejects nearly every backward draw a slice can otherwise thin out to nothing within a few
+  /// steps and end the set (bench/README.md, "Redraws where a slice thins out"). 0: the
+  /// paper's fixed draws per parent. A step then draws at most (1 + redraw_rounds) times its
+  /// draws; estimatedQps() counts one round.
+  int redraw_rounds = 3;
+  /// The share of max_boundary + interior_samples below which a slice gets another round, in
+  /// [0, 1]. 0.125 (4 samples in the quick pass, 16 with the full budget): only slices on
+  /// their way to nothing draw again. With 0.5 the quick pass's sets changed at many more
+  /// steps, and 3 of 16 seeded forward walks fell against none; with 0.125, 6 of 48 seeded
+  /// walks fell against 7 with no redraws, and no pushed walk needed the full pass.
+  double redraw_below = 0.125;
   std::uint64_t seed = 1;  ///< random stream: results are identical for any thread count
   int threads = 0;         ///< OpenMP threads (0: OpenMP's default)
   // ---- forward QP (15) ----------------------------------------------------------------------

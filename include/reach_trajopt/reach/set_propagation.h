@@ -4,10 +4,13 @@
 /// root state, `steps` slices dt apart, each made of the children of the previous slice's kept
 /// samples (its boundary (21) plus interior picks), every child the solution of one contact QP
 /// (ForwardStep / BackwardStep). The same routine serves both directions; only the step type,
-/// the direction of time and the number of children per parent differ.
+/// the direction of time and the number of children per parent differ. A step whose children
+/// are too few (most draws rejected, ReachConfig::redraw_rounds / redraw_below) draws another
+/// round of children from the same parents, with new keys, before its slice is gathered.
 ///
 /// Determinism: the draws of a child depend only on (seed, direction, step, parent, child) and
-/// results are stored at fixed indices, so the slices are bit-identical for any thread count.
+/// results are stored at fixed indices (round by round), so the slices are bit-identical for
+/// any thread count.
 ///
 /// Threads: the children of a slice are work items (a few children of one parent) that OpenMP
 /// worker tasks claim. propagateSets() runs the forward and the backward direction side by side
