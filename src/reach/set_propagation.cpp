@@ -270,8 +270,7 @@ class StepRun : public DirectionRun {
       const int items = static_cast<int>(slices_.back().kept.size()) * chunks_;
       if (threads_ > 1 && total >= kParallelMin) {
         pending_.store(items, std::memory_order_relaxed);
-        grain_.store(std::max(1, items / (kClaimsPerThread * threads_)),
-                     std::memory_order_relaxed);
+        grain_.store(std::max(1, items / (kClaimsPerThread * threads_)), std::memory_order_relaxed);
         cursor_.store(static_cast<std::uint64_t>(items) << 32, std::memory_order_release);
         SharedRun& run = run_;
         for (int t = 0; t < threads_; ++t) {
@@ -351,8 +350,7 @@ class StepRun : public DirectionRun {
           good = s.step.child(s.u, s.q, ch.qd.col(col), ch.y.col(col), ch.yr.col(col),
                               ch.u.col(col), ch.lam.col(col));
         } else {
-          drawBox(seed, dir_, step_index, parent, key0 + c, n_vertex, s.step.drawBound(),
-                  s.draw);
+          drawBox(seed, dir_, step_index, parent, key0 + c, n_vertex, s.step.drawBound(), s.draw);
           good = s.step.child(s.draw, s.q, ch.qd.col(col), ch.y.col(col), ch.yr.col(col),
                               ch.u.col(col), ch.lam.col(col));
         }

@@ -83,12 +83,12 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
     }
   }
   // The redraws of thin slices: a bounded number of rounds, a share in [0, 1].
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"redraw_rounds", "-1"},
-           {"redraw_rounds", "9"},
-           {"redraw_below", "-0.1"},
-           {"redraw_below", "1.5"},
-           {"redraw_below", ".nan"}}) {
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, std::string>>{{"redraw_rounds", "-1"},
+                                                        {"redraw_rounds", "9"},
+                                                        {"redraw_below", "-0.1"},
+                                                        {"redraw_below", "1.5"},
+                                                        {"redraw_below", ".nan"}}) {
     const std::string what = thrownMessage<ConfigError>([&] {
       ReachConfig::fromYaml(
           YamlSection::loadString("reach:\n  " + key + ": " + value + "\n", "t.yaml")
