@@ -84,7 +84,8 @@ struct ReachConfig {
   /// [0, 1]. 0.125 (4 samples in the quick pass, 16 with the full budget): only slices on
   /// their way to nothing draw again. With 0.5 the quick pass's sets changed at many more
   /// steps, and 3 of 16 seeded forward walks fell against none; with 0.125, 6 of 48 seeded
-  /// walks fell against 7 with no redraws, and no pushed walk needed the full pass.
+  /// walks fell against 7 with no redraws, and only pushed walks that fell still needed the
+  /// full pass (bench/README.md, "Redraws where a slice thins out").
   double redraw_below = 0.125;
   std::uint64_t seed = 1;  ///< random stream: results are identical for any thread count
   int threads = 0;         ///< OpenMP threads (0: OpenMP's default)
