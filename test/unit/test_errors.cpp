@@ -83,19 +83,17 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
     }
   }
   // The redraws of thin slices: a bounded number of rounds, a share in [0, 1].
-  for (const auto& [key, value] :
-       std::vector<std::pair<std::string, std::string>>{{"redraw_rounds", "-1"},
-                                                        {"redraw_rounds", "9"},
-                                                        {"redraw_below", "-0.1"},
-                                                        {"redraw_below", "1.5"},
-                                                        {"redraw_below", ".nan"}}) {
+  const std::vector<std::pair<std::string, std::string>> redraws{{"redraw_rounds", "-1"},
+                                                                 {"redraw_rounds", "9"},
+                                                                 {"redraw_below", "-0.1"},
+                                                                 {"redraw_below", "1.5"},
+                                                                 {"redraw_below", ".nan"}};
+  for (const auto& bad : redraws) {
+    const std::string yaml = "reach:\n  " + bad.first + ": " + bad.second + "\n";
     const std::string what = thrownMessage<ConfigError>([&] {
-      ReachConfig::fromYaml(
-          YamlSection::loadString("reach:\n  " + key + ": " + value + "\n", "t.yaml")
-              .section("reach"))
-          .validate();
+      ReachConfig::fromYaml(YamlSection::loadString(yaml, "t.yaml").section("reach")).validate();
     });
-    EXPECT_NE(what.find(key), std::string::npos) << key << " = " << value << ": " << what;
+    EXPECT_NE(what.find(bad.first), std::string::npos) << yaml << ": " << what;
   }
 }
 
