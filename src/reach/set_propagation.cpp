@@ -366,11 +366,9 @@ class StepRun : public DirectionRun {
     const int j = static_cast<int>(slices_.size()) - 1;
     SampleSlice next;
     next.time = (root_.root_index + (forward_ ? 1 : -1) * (j + 1)) * ctx_.config.dt;
-    long total = 0, kept = 0;
-    for (const auto& ch : rounds_) {
-      total += static_cast<long>(ch->ok.size());
-      for (char ok : ch->ok) kept += ok;
-    }
+    const long kept = survivors_;  // anotherRound() counted every round's survivors
+    long total = 0;
+    for (const auto& ch : rounds_) total += static_cast<long>(ch->ok.size());
     stats_.rejected += total - kept;
     next.parent.resize(kept);
     next.qd.resize(ctx_.n, kept);
