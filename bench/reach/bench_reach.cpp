@@ -3,10 +3,14 @@
 /// samples at the first step of each direction, dt = 1 ms. Prints wall times of the forward,
 /// backward, boundary and Hausdorff stages and of the whole check, QPs per second, the 1 -> 2
 /// thread speed-up, forward-only (the paper's earlier method: forward over the whole horizon)
-/// versus bidirectional, and the peak resident memory. Median of `repeats` runs. Then the same
+/// versus bidirectional, and the peak resident memory. Median of `repeats` runs.
+/// mode=bidirectional is the check as shipped (ReachabilityAnalyzer::check with the adaptive
+/// budget of reach.quick_pass: the quick budget, then the full one unless the quick one
+/// certified or gave up; budgets= and gave_up= say which), mode=full_budget the full budget
+/// alone (1e4 first draws, as before the adaptive budget). Then the same
 /// case with the walk's check horizon (0.2 s, walk.check_horizon: the sole 3 cm short 0.2 s
-/// before touchdown) at 1 and 2 threads, for the stage times of the walk's checks
-/// (mode=walk_horizon; the walk itself is scripts/bench_walk_check.sh).
+/// before touchdown) at 1 and 2 threads with the full budget alone, for the stage times of the
+/// walk's full passes (mode=walk_horizon; the walk itself is scripts/bench_walk_check.sh).
 ///
 ///   bench_reach [repeats=3] [initial_samples=0: the configuration's] [config.yaml]
 
@@ -114,14 +118,14 @@ int main(int argc, char** argv) {
     const char* name;
     int threads;
     bool bidirectional;
+    bool adaptive;  ///< the shipped adaptive budget (else the full budget alone)
   };
-  const Case cases[] = {{"bidirectional", 1, true},
-                        {"bidirectional", 2, true},
-                        {"forward_only", 1, false},
-                        {"forward_only", 2, false}};
+  const Case cases[] = {{"bidirectional", 1, true, true},  {"bidirectional", 2, true, true},
+                        {"full_budget", 1, true, false},   {"full_budget", 2, true, false},
+                        {"forward_only", 1, false, false}, {"forward_only", 2, false, false}};
   double total_1 = 0.0;
   for (const Case& c : cases) {
-    ReachConfig cfg = base;
+    ReachConfig cfg = c.adaptive ? base : base.fullPassConfig();
     cfg.threads = c.threads;
     if (!c.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
     const CaseTimes m = timeCase(check, req, cfg, repeats);
@@ -129,17 +133,18 @@ int main(int argc, char** argv) {
     const ReachCounts& n = r.reach.counts;
     const long qps = n.forward_qps + n.backward_qps;
     const double total = m.total;
-    if (c.bidirectional && c.threads == 1) total_1 = total;
     std::printf(
         "BENCH reach.check mode=%s ours_s=%.4f cpu_s=%.4f forward_s=%.4f backward_s=%.4f "
         "boundary_s=%.4f "
         "hausdorff_s=%.4f witness_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld "
-        "reachable=%d peak_rss_mib=%.1f\n",
+        "reachable=%d budgets=%d gave_up=%d peak_rss_mib=%.1f\n",
         c.name, total, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff, m.witness, samples,
         c.threads, qps, qps / (m.forward + m.backward), n.forward_samples + n.backward_samples,
-        r.reachable ? 1 : 0, peakRssMiB());
+        r.reachable ? 1 : 0, r.reach.budgets, r.reach.gave_up ? 1 : 0, peakRssMiB());
+    if (c.bidirectional && c.threads == 1) total_1 = total;
     if (c.bidirectional && c.threads == 2 && total_1 > 0.0)
-      std::printf("BENCH reach.speedup threads=2 ratio=%.2f\n", total_1 / total);
+      std::printf("BENCH reach.speedup%s threads=2 ratio=%.2f\n",
+                  c.adaptive ? "" : " mode=full_budget", total_1 / total);
   }
   // The walk's horizon: x_0 0.2 s before touchdown, the same window.
   FootstepPlannerConfig walk_config = planner_config;
@@ -149,7 +154,7 @@ int main(int argc, char** argv) {
   req.qd0 = walk_case.qd;
   double walk_1 = 0.0;
   for (int threads : {1, 2}) {
-    ReachConfig cfg = walk_config.reach;
+    ReachConfig cfg = walk_config.reach.fullPassConfig();
     cfg.threads = threads;
     const CaseTimes m = timeCase(check, req, cfg, repeats);
     const FootstepResult& r = m.result;

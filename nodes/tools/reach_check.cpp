@@ -17,7 +17,9 @@
 ///   "xf":      {"q": [...], "qd": [...]}  optional; without it x_f comes from the kinematic
 ///              feasibility check of the target (Sec. III-B) with qd_f = 0
 ///   "config":  {...}  optional overrides of `reach:` keys (e.g. "initial_samples": 1000)
-/// Output: {"reachable", "reason", "kinematically_feasible", "counts", "timings",
+/// Output: {"reachable", "reason", "kinematically_feasible", "budgets", "gave_up" (the adaptive
+///   budget of reach.quick_pass: 1 or 2 budgets drawn; gave up after the quick one), "counts",
+///   "timings" (both budgets'),
 ///   "window": [per slice of [t_2, t_1]: t, hausdorff, closest, resolution, overlap, ...],
 ///   "witness": {time, output, q, qd, junction, gaps, violation}, "slices": {"forward",
 ///   "backward": [t, count, boundary outputs]} (+ every sample's output with --samples)}.
@@ -173,6 +175,8 @@ int main(int argc, char** argv) {
     }
     out["reachable"] = r.reachable;
     out["reason"] = r.reason;
+    out["budgets"] = r.budgets;
+    out["gave_up"] = r.gave_up;
     out["dt"] = r.dt;
     out["joint_names"] = r.joint_names;
     out["counts"] = {{"forward_samples", r.counts.forward_samples},

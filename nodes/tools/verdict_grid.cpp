@@ -36,7 +36,14 @@
 ///     fast_reachable=.. ref_reachable=.. fast_only_reachable=.. ref_only_reachable=..
 ///     false_reachable=.. fast_check_mean_s=.. ref_check_mean_s=.. speedup=..
 /// false_reachable there counts the fast configuration's reachable verdicts whose certificate
-/// fails the re-check (the same as in reach.verdict).
+/// fails the re-check (the same as in reach.verdict). Then the check on its own
+/// (ReachabilityAnalyzer::check, as the check service and bench/reach run it: with quick_pass
+/// its adaptive budget, which may give up after the quick budget; reachable only by the bridge)
+/// against the reference's check, over the kinematically feasible footholds, the same x_0 and
+/// x_f:
+///   BENCH reach.verdict_check ref=reference cases=.. agreement=.. own_reachable=..
+///     ref_reachable=.. own_only_reachable=.. ref_only_reachable=.. false_reachable=..
+///     gave_up=.. both_budgets=.. check_mean_s=.. ref_check_mean_s=.. speedup=..
 /// Exit status: 0 ran, 2 bad input.
 
 #include <algorithm>
@@ -288,6 +295,12 @@ int main(int argc, char** argv) {
         fu = 0, seeded = 0;
     double check_time = 0.0, ref_check_time = 0.0;
     int agree = 0, agree_feasible = 0, ref_reachable = 0, fast_only = 0, ref_only = 0;
+    // The check on its own (reach.verdict_check).
+    struct OwnCheck {
+      int cases = 0, agree = 0, reachable = 0, ref_reachable = 0, only = 0, ref_only = 0, fr = 0,
+          gave_up = 0, both = 0;
+      double time_s = 0.0, ref_time_s = 0.0;
+    } own;
     for (size_t s = 0; s < states.size(); ++s) {
       for (int ix = 0; ix < grid; ++ix) {
         for (int iy = 0; iy < grid; ++iy) {
@@ -318,6 +331,43 @@ int main(int argc, char** argv) {
               std::printf("DISAGREE state=%zu dx=%.3f dy=%.3f fast=%s(%s) reference=%s(%s)\n", s,
                           dx, dy, checked.verdict.c_str(), checked.certificate.c_str(),
                           ref.verdict.c_str(), ref.certificate.c_str());
+          }
+          if (reference && checked.kinematically_feasible) {
+            // The same x_0 and x_f (the planner's IK) through the check alone.
+            FootstepRequest fr;
+            fr.stance = checked.stance;
+            fr.stance_foothold = checked.stance_contact;
+            fr.target = checked.target;
+            fr.q0 = checked.q0;
+            fr.qd0 = checked.qd0;
+            const ReachProblem problem = footstepProblem(fr, checked.check);
+            ReachConfig own_config = probe.reach ? *probe.reach : cfg.reach;
+            ReachConfig ref_config = *reference;
+            ref_config.horizon = own_config.horizon;
+            const ReachResult a = planner.analyzer().check(problem, own_config);
+            const ReachResult b = planner.analyzer().check(problem, ref_config);
+            ++own.cases;
+            own.agree += a.reachable == b.reachable;
+            own.reachable += a.reachable;
+            own.ref_reachable += b.reachable;
+            own.only += a.reachable && !b.reachable;
+            own.ref_only += b.reachable && !a.reachable;
+            own.gave_up += a.gave_up;
+            own.both += a.budgets == 2;
+            own.time_s += a.timings.total;
+            own.ref_time_s += b.timings.total;
+            if (a.reachable) {
+              FootstepTransition bridged = checked;
+              bridged.check.reach = a;
+              bridged.certificate = "bridge";
+              own.fr += !recheckCertificate(*model, contact, cfg, own_config, bridged).passed;
+            }
+            if (details && a.reachable != b.reachable)
+              std::printf(
+                  "DISAGREE_CHECK state=%zu dx=%.3f dy=%.3f own=%d(budgets %d%s) "
+                  "reference=%d\n",
+                  s, dx, dy, a.reachable ? 1 : 0, a.budgets, a.gave_up ? ", gave up" : "",
+                  b.reachable ? 1 : 0);
           }
           if (!checked.kinematically_feasible) {
             ++infeasible;
@@ -382,6 +432,15 @@ int main(int argc, char** argv) {
           static_cast<double>(agree_feasible) / std::max(1, cases - infeasible), reachable,
           ref_reachable, fast_only, ref_only, fr, check_time / std::max(1, cases),
           ref_check_time / std::max(1, cases), ref_check_time / std::max(1e-12, check_time));
+    if (reference)
+      std::printf(
+          "BENCH reach.verdict_check ref=reference cases=%d agreement=%.4f own_reachable=%d "
+          "ref_reachable=%d own_only_reachable=%d ref_only_reachable=%d false_reachable=%d "
+          "gave_up=%d both_budgets=%d check_mean_s=%.3f ref_check_mean_s=%.3f speedup=%.2f\n",
+          own.cases, static_cast<double>(own.agree) / std::max(1, own.cases), own.reachable,
+          own.ref_reachable, own.only, own.ref_only, own.fr, own.gave_up, own.both,
+          own.time_s / std::max(1, own.cases), own.ref_time_s / std::max(1, own.cases),
+          own.ref_time_s / std::max(1e-12, own.time_s));
   } catch (const std::exception& e) {
     std::cerr << "verdict_grid: " << e.what() << "\n";
     return 2;

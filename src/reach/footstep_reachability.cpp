@@ -43,19 +43,23 @@ Eigen::VectorXd FootstepReachability::touchdownVelocity(const FootstepRequest& r
       Eigen::Vector3d(r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y(), 0.0));
 }
 
-FootstepResult FootstepReachability::check(const FootstepRequest& r, const ReachConfig& config,
-                                           const ReachProgressCallback& progress) const {
-  FootstepResult out = kinematicStage(r);
-  if (!out.kinematically_feasible) return out;
+ReachProblem footstepProblem(const FootstepRequest& r, const FootstepResult& kinematic) {
   ReachProblem p;
   p.mode = ContactMode::singleSupport(r.stance);
   p.q0 = r.q0;
   p.qd0 = r.qd0;
-  p.qf = out.kinematics.q_f;
-  p.qdf = out.qdf;
+  p.qf = kinematic.kinematics.q_f;
+  p.qdf = kinematic.qdf;
   p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();
   p.target = r.target.pose();
-  out.reach = analyzer_->check(p, config, progress);
+  return p;
+}
+
+FootstepResult FootstepReachability::check(const FootstepRequest& r, const ReachConfig& config,
+                                           const ReachProgressCallback& progress) const {
+  FootstepResult out = kinematicStage(r);
+  if (!out.kinematically_feasible) return out;
+  out.reach = analyzer_->check(footstepProblem(r, out), config, progress);
   out.reachable = out.reach.reachable;
   out.reason = out.reach.reason;
   return out;

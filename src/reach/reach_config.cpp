@@ -127,6 +127,7 @@ void ReachConfig::validate() const {
   requirePositive("contact_tolerance", contact_tolerance);
   requirePositive("contact_velocity_tolerance", contact_velocity_tolerance);
   requireNonNegative("limit_tolerance", limit_tolerance);
+  if (!(give_up_gap >= 0.0)) bad("give_up_gap", "must be >= 0 (0: never give up)");
   if (hull_children_per_parent < 1) bad("hull_children_per_parent", "must be >= 1 (zero samples)");
   requireAtMost("hull_children_per_parent", hull_children_per_parent, L::kMaxChildrenPerParent);
   if (hull_initial_samples < 1) bad("hull_initial_samples", "must be >= 1 (zero samples)");
@@ -155,6 +156,12 @@ ReachConfig ReachConfig::hullPassConfig(double forward_until_s) const {
     c.window_end = std::max(1.0, std::ceil(forward_until_s / dt - 1e-6)) * dt;  // on the grid
     c.window_start = std::min(c.window_start, c.window_end);  // unused without backward set
   }
+  return c;
+}
+
+ReachConfig ReachConfig::fullPassConfig() const {
+  ReachConfig c = *this;
+  c.quick_pass = false;
   return c;
 }
 
@@ -276,8 +283,8 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
           .add("limit_tolerance", &C::limit_tolerance, "",
                "slack on the position / velocity / torque limits")
           .add("quick_pass", &C::quick_pass, "",
-               "the step planner tries the quick_ budget first, the budget above only when "
-               "it certifies nothing")
+               "the quick_ budget first, the budget above only when it certifies nothing "
+               "(the step planner's passes; a check on its own, see give_up_gap)")
           .add("quick_initial_samples", &C::quick_initial_samples, "",
                "initial_samples of the quick pass")
           .add("quick_children_per_parent", &C::quick_children_per_parent, "",
@@ -289,6 +296,9 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "interior_samples of the quick pass")
           .add("quick_certificate_candidates", &C::quick_certificate_candidates, "",
                "certificate_candidates of the quick pass")
+          .add("give_up_gap", &C::give_up_gap, "terminal tolerances",
+               "a check on its own stops after an uncertified quick budget whose closest "
+               "attempt ends farther than this from x_f (0: never)")
           .add("quick_constraint_margin", &C::quick_constraint_margin, "m",
                "constraint_margin of the quick pass (its sparser hulls grow more)")
           .add("quick_retry_constraint_margin", &C::quick_retry_constraint_margin, "m",

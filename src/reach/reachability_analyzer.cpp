@@ -126,6 +126,44 @@ Eigen::VectorXd ReachabilityAnalyzer::sampleConfiguration(const ReachResult& res
 
 ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfig& config,
                                         const ReachProgressCallback& progress) const {
+  if (!config.quick_pass || config.forward_set_only) return checkBudget(pb, config, progress);
+  config.validate();  // names a bad key of the whole configuration, not of the quick budget's
+  ReachResult quick = checkBudget(pb, config.quickPassConfig(), progress);
+  const double gap = terminalGapInTolerances(config, quick.witness);
+  if (quick.reachable) return quick;
+  if (config.give_up_gap > 0.0 && std::isfinite(gap) && gap > config.give_up_gap) {
+    quick.gave_up = true;
+    quick.reason = "the quick budget's closest attempt ended " + fmt(gap) +
+                   " terminal tolerances from x_f (give_up_gap " + fmt(config.give_up_gap) +
+                   "), the full budget not drawn: " + quick.reason;
+    return quick;
+  }
+  ReachResult full = checkBudget(pb, config.fullPassConfig(), progress);
+  full.budgets = 2;
+  ReachCounts& n = full.counts;
+  const ReachCounts& q = quick.counts;
+  n.forward_samples += q.forward_samples;
+  n.backward_samples += q.backward_samples;
+  n.forward_qps += q.forward_qps;
+  n.backward_qps += q.backward_qps;
+  n.forward_rejected += q.forward_rejected;
+  n.backward_rejected += q.backward_rejected;
+  n.backward_prefiltered += q.backward_prefiltered;
+  ReachTimings& t = full.timings;
+  const ReachTimings& tq = quick.timings;
+  t.forward += tq.forward;
+  t.backward += tq.backward;
+  t.boundary += tq.boundary;
+  t.hausdorff += tq.hausdorff;
+  t.witness += tq.witness;
+  t.total += tq.total;
+  full.reason = "the quick budget certified nothing (closest attempt " + fmt(gap) +
+                " terminal tolerances from x_f), the full budget: " + full.reason;
+  return full;
+}
+
+ReachResult ReachabilityAnalyzer::checkBudget(const ReachProblem& pb, const ReachConfig& config,
+                                              const ReachProgressCallback& progress) const {
   const auto t_start = Clock::now();
   config.validate();
   config.requireResourcesWithinLimits(model_->nq());  // before any sample is drawn

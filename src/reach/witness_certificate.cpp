@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <tuple>
 
@@ -178,6 +179,12 @@ WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
 }
 
 }  // namespace
+
+double terminalGapInTolerances(const ReachConfig& config, const WitnessPath& w) {
+  if (!w.valid) return std::numeric_limits<double>::quiet_NaN();
+  return std::max(w.terminal_position_gap / config.terminal_position_tolerance,
+                  w.terminal_velocity_gap / config.terminal_velocity_tolerance);
+}
 
 std::vector<JunctionCandidate> junctionCandidates(const ReachContext& ctx,
                                                   const std::vector<SampleSlice>& forward,

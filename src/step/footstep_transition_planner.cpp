@@ -137,7 +137,8 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
   }
   ++passes;
   if (progress.pass) progress.pass(passes);
-  FootstepTransition full = planWith(r, reach, progress);
+  // The full budget alone: its check does not draw the quick budget again (and never gives up).
+  FootstepTransition full = planWith(r, reach.fullPassConfig(), progress);
   // A certificate is never given up: when only the quick pass found one, its plan stands.
   FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;
   const char* why = quick.reachable ? "the quick pass's certified step has no strict trajectory"

@@ -82,13 +82,13 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
       EXPECT_NE(hull.find(key), std::string::npos) << key << " = " << value << ": " << hull;
     }
   }
-  // The redraws of thin slices: a bounded number of rounds, a share in [0, 1].
-  const std::vector<std::pair<std::string, std::string>> redraws{{"redraw_rounds", "-1"},
-                                                                 {"redraw_rounds", "9"},
-                                                                 {"redraw_below", "-0.1"},
-                                                                 {"redraw_below", "1.5"},
-                                                                 {"redraw_below", ".nan"}};
-  for (const auto& bad : redraws) {
+  // The redraws of thin slices: a bounded number of rounds, a share in [0, 1]; the adaptive
+  // budget's give-up gap: >= 0.
+  const std::vector<std::pair<std::string, std::string>> bad_keys{
+      {"redraw_rounds", "-1"}, {"redraw_rounds", "9"},   {"redraw_below", "-0.1"},
+      {"redraw_below", "1.5"}, {"redraw_below", ".nan"}, {"give_up_gap", "-1"},
+      {"give_up_gap", ".nan"}};
+  for (const auto& bad : bad_keys) {
     const std::string yaml = "reach:\n  " + bad.first + ": " + bad.second + "\n";
     const std::string what = thrownMessage<ConfigError>([&] {
       ReachConfig::fromYaml(YamlSection::loadString(yaml, "t.yaml").section("reach")).validate();

@@ -19,6 +19,7 @@
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/reach/boundary_selection.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
+#include "reach_trajopt/reach/witness_certificate.h"
 
 using namespace reach_trajopt;
 
@@ -65,6 +66,7 @@ ReachConfig diConfig() {
   c.backward_joint_accel = kA;  // draws of (17) exactly the input bound
   c.seed = 7;
   c.threads = 1;
+  c.quick_pass = false;  // one budget (the adaptive one: AdaptiveBudget... below)
   return c;
 }
 
@@ -208,12 +210,35 @@ TEST(ReachDoubleIntegrator, VerdictAndWitness) {
   EXPECT_NE(no.reason.find("unreachable"), std::string::npos);
 }
 
-// The verdict against the exact answer: the exact reachable set at t_f is the zonotope of the
-// discrete system after N steps; its boundary points are the bang-bang inputs with one switch
-// (+A before step m, -A after, and the mirror). Probed along the rays from its centre through
-// 14 boundary points, at 0.25, 0.5 and 0.75 of the way (inside) and 1.25 and 2 times (outside):
-// no outside x_f is shown reachable and most inside ones are, so an analyzer that always answered
-// yes or always no fails.
+/// An x_f around the exact reachable set at t_f and whether it lies inside.
+struct ExactSetProbe {
+  Eigen::Vector2d xf;
+  bool inside = false;
+};
+
+/// The exact reachable set at t_f is the zonotope of the discrete system after N steps from
+/// x0; its boundary points are the bang-bang inputs with one switch (+A before step m, -A
+/// after, and the mirror). Probes along the rays from its centre through 14 boundary points, at
+/// 0.25, 0.5 and 0.75 of the way (inside) and 1.25 and 2 times (outside).
+std::vector<ExactSetProbe> exactSetProbes(const Eigen::Vector2d& x0, int N) {
+  const Zonotope z = exactSet(x0, N, forwardStep);
+  std::vector<ExactSetProbe> probes;
+  for (int m = 0; m <= N; m += 10)
+    for (double sign : {1.0, -1.0}) {
+      Eigen::Vector2d boundary = x0;
+      for (int k = 0; k < N; ++k) boundary = forwardStep(boundary, sign * (k < m ? kA : -kA));
+      for (double lambda : {0.25, 0.5, 0.75, 1.25, 2.0}) {
+        ExactSetProbe p{z.centre + lambda * (boundary - z.centre), lambda < 1.0};
+        EXPECT_EQ(z.contains(p.xf, 0.0), p.inside) << "ray m = " << m << ", lambda " << lambda;
+        probes.push_back(p);
+      }
+    }
+  return probes;
+}
+
+// The verdict against the exact answer at the probes of exactSetProbes: no outside x_f is shown
+// reachable and most inside ones are, so an analyzer that always answered yes or always no
+// fails.
 TEST(ReachDoubleIntegrator, VerdictAgreesWithTheExactReachableSet) {
   ReachConfig c = diConfig();
   c.horizon = 0.06;
@@ -221,26 +246,15 @@ TEST(ReachDoubleIntegrator, VerdictAgreesWithTheExactReachableSet) {
   c.window_end = 0.04;
   const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
   ReachProblem p = diProblem();
-  const int N = 60;
-  const Eigen::Vector2d x0(p.q0[0], p.qd0[0]);
-  const Zonotope z = exactSet(x0, N, forwardStep);
   int inside = 0, inside_reachable = 0, outside = 0, outside_reachable = 0;
-  for (int m = 0; m <= N; m += 10)
-    for (double sign : {1.0, -1.0}) {
-      Eigen::Vector2d boundary = x0;
-      for (int k = 0; k < N; ++k) boundary = forwardStep(boundary, sign * (k < m ? kA : -kA));
-      for (double lambda : {0.25, 0.5, 0.75, 1.25, 2.0}) {
-        const Eigen::Vector2d xf = z.centre + lambda * (boundary - z.centre);
-        p.qf[0] = xf.x();
-        p.qdf[0] = xf.y();
-        const ReachResult r = an.check(p, c);
-        const bool in = lambda < 1.0;
-        ASSERT_EQ(z.contains(xf, 0.0), in) << "ray m = " << m << ", lambda " << lambda;
-        (in ? inside : outside) += 1;
-        (in ? inside_reachable : outside_reachable) += r.reachable;
-        if (r.reachable) EXPECT_TRUE(r.witness.certified);
-      }
-    }
+  for (const ExactSetProbe& probe : exactSetProbes(Eigen::Vector2d(p.q0[0], p.qd0[0]), 60)) {
+    p.qf[0] = probe.xf.x();
+    p.qdf[0] = probe.xf.y();
+    const ReachResult r = an.check(p, c);
+    (probe.inside ? inside : outside) += 1;
+    (probe.inside ? inside_reachable : outside_reachable) += r.reachable;
+    if (r.reachable) EXPECT_TRUE(r.witness.certified);
+  }
   std::cout << "double integrator: " << inside_reachable << " of " << inside
             << " x_f inside the exact set shown reachable, " << outside_reachable << " of "
             << outside << " outside\n";
@@ -248,6 +262,77 @@ TEST(ReachDoubleIntegrator, VerdictAgreesWithTheExactReachableSet) {
   // Measured 30 of 42: the bridge misses x_f near the boundary, where the chain's bang-bang
   // draws leave no force to close the gap (the sets under-approximate; see docs/method.md 4.5).
   EXPECT_GE(inside_reachable, 0.6 * inside);
+}
+
+// The adaptive budget (ReachConfig::quick_pass with a check on its own): the quick budget first;
+// it ends the check when it certifies x_f (its result, one budget) or when its closest attempt
+// ended beyond give_up_gap tolerances (gave_up, its result); otherwise the full budget's result
+// with both budgets' QPs. Each branch is compared with the two budgets run alone, on the probes
+// of the exact set: no outside x_f is shown reachable, most inside ones are, and giving up never
+// drops an x_f that the full budget alone certifies.
+TEST(ReachDoubleIntegrator, AdaptiveBudgetEndsWhereTheQuickBudgetDecides) {
+  ReachConfig c = diConfig();
+  c.horizon = 0.06;
+  c.window_start = 0.02;
+  c.window_end = 0.04;
+  c.quick_pass = true;
+  c.quick_initial_samples = 100;
+  c.quick_children_per_parent = 3;
+  c.quick_backward_children_per_parent = 3;
+  c.quick_max_boundary = 8;
+  c.quick_interior_samples = 4;
+  c.quick_certificate_candidates = 2;
+  const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
+  ReachProblem p = diProblem();
+  auto qps = [](const ReachResult& r) { return r.counts.forward_qps + r.counts.backward_qps; };
+  int quick_ended = 0, gave_up = 0, both = 0, inside = 0, inside_reachable = 0,
+      outside_reachable = 0;
+  for (const ExactSetProbe& probe : exactSetProbes(Eigen::Vector2d(p.q0[0], p.qd0[0]), 60)) {
+    p.qf[0] = probe.xf.x();
+    p.qdf[0] = probe.xf.y();
+    const ReachResult adaptive = an.check(p, c);
+    const ReachResult quick = an.check(p, c.quickPassConfig());
+    const ReachResult full = an.check(p, c.fullPassConfig());
+    ASSERT_EQ(quick.budgets, 1);
+    ASSERT_EQ(full.budgets, 1);
+    const double gap = terminalGapInTolerances(c, quick.witness);
+    if (quick.reachable) {
+      ++quick_ended;
+      EXPECT_TRUE(adaptive.reachable && adaptive.witness.certified);
+      EXPECT_EQ(adaptive.budgets, 1);
+      EXPECT_EQ(qps(adaptive), qps(quick));
+    } else if (std::isfinite(gap) && gap > c.give_up_gap) {
+      ++gave_up;
+      EXPECT_TRUE(adaptive.gave_up);
+      EXPECT_FALSE(adaptive.reachable);
+      EXPECT_EQ(qps(adaptive), qps(quick));
+      EXPECT_NE(adaptive.reason.find("give_up_gap"), std::string::npos) << adaptive.reason;
+      EXPECT_FALSE(full.reachable) << "gave up on an x_f the full budget certifies";
+    } else {
+      ++both;
+      EXPECT_FALSE(adaptive.gave_up);
+      EXPECT_EQ(adaptive.budgets, 2);
+      EXPECT_EQ(adaptive.reachable, full.reachable);
+      EXPECT_EQ(qps(adaptive), qps(quick) + qps(full));
+      EXPECT_EQ(adaptive.witness.q, full.witness.q);  // the full budget's sets and witness
+    }
+    if (probe.inside) ++inside;
+    (probe.inside ? inside_reachable : outside_reachable) += adaptive.reachable;
+  }
+  std::cout << "adaptive budget: quick certified " << quick_ended << ", gave up " << gave_up
+            << ", both budgets " << both << "; " << inside_reachable << " of " << inside
+            << " inside shown reachable\n";
+  EXPECT_GT(quick_ended, 0);  // every branch ran
+  EXPECT_GT(gave_up, 0);
+  EXPECT_GT(both, 0);
+  EXPECT_EQ(outside_reachable, 0);
+  EXPECT_GE(inside_reachable, 0.6 * inside);
+  // give_up_gap 0: the full budget after every uncertified quick budget.
+  c.give_up_gap = 0.0;
+  p.qf[0] = 0.32;  // far outside (VerdictAndWitness)
+  const ReachResult never = an.check(p, c);
+  EXPECT_FALSE(never.gave_up);
+  EXPECT_EQ(never.budgets, 2);
 }
 
 TEST(ReachDoubleIntegrator, OneAndTwoThreadsGiveIdenticalResults) {

@@ -43,6 +43,11 @@ struct FootstepResult {
   ReachResult reach;                      ///< empty unless kinematically feasible
 };
 
+/// The reachability problem of a footstep whose kinematic stage passed (`kinematic`: q_f and
+/// qd_f): mode SS-stance from the request's x_0 to x_f, the stance foothold held, the target
+/// the swing sole's next contact.
+ReachProblem footstepProblem(const FootstepRequest& request, const FootstepResult& kinematic);
+
 /// @brief Kinematic feasibility (III-B) followed by the reachability check (13)-(21).
 class FootstepReachability {
  public:

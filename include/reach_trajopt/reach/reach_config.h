@@ -152,7 +152,10 @@ struct ReachConfig {
   /// the budget above (a quick certificate is kept if the full pass finds none). Every certificate
   /// is the same full-model re-check whichever budget found it, so the quick pass can add
   /// "reachable" verdicts the full budget misses but never removes one (the full pass is the same
-  /// computation as without it). ReachabilityAnalyzer::check itself runs one budget only.
+  /// computation as without it).
+  /// ReachabilityAnalyzer::check on its own (the check service, reach_check, bench/reach) also
+  /// draws the quick budget first: it ends there when that budget certifies the step or gives
+  /// up (give_up_gap), and draws the full budget otherwise (docs/method.md Sec. 4.6).
   bool quick_pass = true;
   int quick_initial_samples = 1000;             ///< initial_samples of the quick pass
   int quick_children_per_parent = 4;            ///< children_per_parent of the quick pass
@@ -160,6 +163,19 @@ struct ReachConfig {
   int quick_max_boundary = 24;                  ///< max_boundary of the quick pass
   int quick_interior_samples = 8;               ///< interior_samples of the quick pass
   int quick_certificate_candidates = 4;         ///< certificate_candidates of the quick pass
+  /// A check on its own (ReachabilityAnalyzer::check with quick_pass) stops after an
+  /// uncertified quick budget whose closest attempt ends more than this many terminal
+  /// tolerances from x_f (terminalGapInTolerances of witness_certificate.h: the sets are too
+  /// far apart for the full budget to join them): "not shown reachable" without the full
+  /// budget. 0: never; the full budget is drawn after every uncertified quick budget.
+  /// 20: over the 115 kinematically feasible footholds of bench/README.md's verdict grid,
+  /// checked with 1/16, 1/8, 1/4, 1/2 and all of the reference budget, every foothold that a
+  /// larger budget certified had ended each smaller uncertified one within 6.8 tolerances;
+  /// the bench case's footholds ended every budget 24 to 540 tolerances away (the quick
+  /// budget: 45 to 305). The step planner's passes do not give up: there the full pass's
+  /// local solve (the strict OCP) certified a foothold whose quick closest attempt ended 37
+  /// tolerances away.
+  double give_up_gap = 20.0;
   /// constraint_margin of the quick pass [m]: the hull of its 32 kept samples per slice
   /// covers less of the forward set than the full budget's 128, so eq. (23)'s rows grow more
   /// (bench/README.md: with 0.01 m 4 of the walk's 14 quick certificates got no strict OCP,
@@ -217,6 +233,9 @@ struct ReachConfig {
   bool semiImplicit() const { return forward_integrator == "semi_implicit"; }
   /// This configuration with the quick pass's sample budget (quick_*) and quick_pass false.
   ReachConfig quickPassConfig() const;
+  /// This configuration with quick_pass false: the full budget alone (the step planner's
+  /// full pass, after its own quick pass).
+  ReachConfig fullPassConfig() const;
   /// This configuration (the full budget, children_per_parent = hull_children_per_parent,
   /// initial_samples = hull_initial_samples) with forward_set_only true and quick_pass and
   /// hull_pass false: the hull pass's check. Its forward set stops at the first step at or after

@@ -23,6 +23,9 @@
 ///     one set inside the other's convex hull, or a pair closer than min(K, overlap_gap_max);
 ///     Prop. 2: d_H <= min(delta, K)) is reported (sets_meet, window) but decides nothing by
 ///     itself: in the walk the sets "overlapped" on steps no path joined.
+///  5. Sample budget (ReachConfig::quick_pass; docs/method.md Sec. 4.6): steps 1-4 with the
+///     quick budget first; the full budget only when that one neither certified the step nor
+///     ended its closest attempt beyond give_up_gap terminal tolerances of x_f (gave up).
 ///
 /// Choosing the time line (see ReachConfig): for the biped's single support -> double support
 /// check, x_0 is a mid-swing state (swing sole in the air, moving toward the target; see
@@ -109,6 +112,13 @@ struct ReachResult {
   /// The output-set test (14) / Prop. 2 passed on some slice (informative, not the verdict).
   bool sets_meet = false;
   WitnessPath witness;  ///< certified when reachable, else the closest attempt
+  /// Sample budgets drawn (ReachConfig::quick_pass): 2 when the quick budget was followed by
+  /// the full one (the sets and the witness are the full budget's; counts and timings sum
+  /// both), else 1.
+  int budgets = 1;
+  /// The check stopped after an uncertified quick budget whose closest attempt ended beyond
+  /// ReachConfig::give_up_gap: the full budget was not drawn.
+  bool gave_up = false;
   ReachCounts counts;
   ReachTimings timings;
   double dt = 0.0;                       ///< time step used [s]
@@ -130,7 +140,12 @@ class ReachabilityAnalyzer {
   /// footholds, or a config with an empty window or zero samples.
   ReachResult check(const ReachProblem& problem) const;
   /// Same with another configuration (e.g. more samples) for this one call, reporting its
-  /// progress after each slice to `progress` (reach_progress.h; may be empty).
+  /// progress after each slice to `progress` (reach_progress.h; may be empty; with two
+  /// budgets each reports its own slices).
+  /// With config.quick_pass (and not forward_set_only), the sample budget adapts: the quick
+  /// budget (config.quickPassConfig()) first; the check ends there when it certifies the step,
+  /// or when its closest attempt ended beyond config.give_up_gap terminal tolerances of x_f
+  /// (gave_up); otherwise the full budget (config.fullPassConfig()) decides.
   /// \throws ReachCancelled when `progress` returns false.
   ReachResult check(const ReachProblem& problem, const ReachConfig& config,
                     const ReachProgressCallback& progress = {}) const;
@@ -146,6 +161,10 @@ class ReachabilityAnalyzer {
   std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
 
  private:
+  /// One sample budget: steps 1-4 of the file comment with `config` as it is.
+  ReachResult checkBudget(const ReachProblem& problem, const ReachConfig& config,
+                          const ReachProgressCallback& progress) const;
+
   std::shared_ptr<const RobotModel> model_;
   ContactConfig contact_;
   ReachConfig config_;

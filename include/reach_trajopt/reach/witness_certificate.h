@@ -55,4 +55,10 @@ WitnessPath certifyWitness(const ReachContext& ctx, const std::vector<SampleSlic
 /// True when a measured bridged path passes the certificate's tolerances (step 3).
 bool withinCertificate(const ReachConfig& config, const WitnessPath& w);
 
+/// How far a path ends from x_f in units of the certificate's terminal tolerances:
+/// max(|q(t_f) - q_f|_inf / terminal_position_tolerance, |qd(t_f) - qd_f|_inf /
+/// terminal_velocity_tolerance) (<= 1: x(t_f) within them; infinite for a bridge that stopped
+/// early; NaN without an attempt, w.valid false).
+double terminalGapInTolerances(const ReachConfig& config, const WitnessPath& w);
+
 }  // namespace reach_trajopt
