@@ -1,7 +1,8 @@
 // The reachability check on the shipped biped, single support (left stance) -> double support:
 // a normal TVR footstep is reachable; a 1.5 m lateral footstep and a footstep just beyond the
 // leg's reach are not (kinematic stage), nor is a kinematically feasible foothold too far
-// from where the swing sole can go in the window (dynamic stage). Every forward and backward
+// from where the swing sole can go in the window (dynamic stage; the adaptive budget gives up
+// after the quick budget there, and the full budget alone agrees). Every forward and backward
 // sample, and the witness path, is re-checked here independently of the library: the held
 // sole on its foothold within 1e-4 m, joint limits, and the recorded (u, lambda) satisfying
 // eq. (1) and the contact wrench cone to 1e-6. 1 and 2 threads give identical results.
@@ -289,6 +290,17 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
   ASSERT_TRUE(dyn.kinematically_feasible) << dyn.reason;
   EXPECT_FALSE(dyn.reachable);
   EXPECT_GT(dyn.reach.witness.output_gap, 0.05);
+  // The adaptive budget (reach.quick_pass) gave up after the quick budget, its closest attempt
+  // far beyond give_up_gap; the full budget alone does not find a path either.
+  EXPECT_TRUE(dyn.reach.gave_up) << dyn.reason;
+  EXPECT_EQ(dyn.reach.budgets, 1);
+  const FootstepResult full = FootstepReachability(d.analyzer, d.kinematics)
+                                  .check(d.request, testConfig().fullPassConfig());
+  EXPECT_EQ(full.reach.budgets, 1);
+  EXPECT_FALSE(full.reach.gave_up);
+  EXPECT_FALSE(full.reachable) << full.reason;
+  EXPECT_GT(full.reach.counts.forward_qps + full.reach.counts.backward_qps,
+            dyn.reach.counts.forward_qps + dyn.reach.counts.backward_qps);
 }
 
 TEST(ReachBiped, OneAndTwoThreadsGiveIdenticalSetsAndVerdict) {
