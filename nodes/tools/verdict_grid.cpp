@@ -334,13 +334,8 @@ int main(int argc, char** argv) {
           }
           if (reference && checked.kinematically_feasible) {
             // The same x_0 and x_f (the planner's IK) through the check alone.
-            FootstepRequest fr;
-            fr.stance = checked.stance;
-            fr.stance_foothold = checked.stance_contact;
-            fr.target = checked.target;
-            fr.q0 = checked.q0;
-            fr.qd0 = checked.qd0;
-            const ReachProblem problem = footstepProblem(fr, checked.check);
+            const ReachProblem problem =
+                footstepProblem(FootstepTransitionPlanner::checkRequest(checked), checked.check);
             ReachConfig own_config = probe.reach ? *probe.reach : cfg.reach;
             ReachConfig ref_config = *reference;
             ref_config.horizon = own_config.horizon;

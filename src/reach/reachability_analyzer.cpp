@@ -104,6 +104,25 @@ std::string verdictReason(const ReachConfig& config, const std::vector<SliceComp
 
 }  // namespace
 
+void ReachCounts::add(const ReachCounts& o) {
+  forward_samples += o.forward_samples;
+  backward_samples += o.backward_samples;
+  forward_qps += o.forward_qps;
+  backward_qps += o.backward_qps;
+  forward_rejected += o.forward_rejected;
+  backward_rejected += o.backward_rejected;
+  backward_prefiltered += o.backward_prefiltered;
+}
+
+void ReachTimings::add(const ReachTimings& o) {
+  forward += o.forward;
+  backward += o.backward;
+  boundary += o.boundary;
+  hausdorff += o.hausdorff;
+  witness += o.witness;
+  total += o.total;
+}
+
 ReachabilityAnalyzer::ReachabilityAnalyzer(std::shared_ptr<const RobotModel> model,
                                            const ContactConfig& contact, const ReachConfig& config)
     : model_(std::move(model)), contact_(contact), config_(config) {
@@ -140,23 +159,8 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   }
   ReachResult full = checkBudget(pb, config.fullPassConfig(), progress);
   full.budgets = 2;
-  ReachCounts& n = full.counts;
-  const ReachCounts& q = quick.counts;
-  n.forward_samples += q.forward_samples;
-  n.backward_samples += q.backward_samples;
-  n.forward_qps += q.forward_qps;
-  n.backward_qps += q.backward_qps;
-  n.forward_rejected += q.forward_rejected;
-  n.backward_rejected += q.backward_rejected;
-  n.backward_prefiltered += q.backward_prefiltered;
-  ReachTimings& t = full.timings;
-  const ReachTimings& tq = quick.timings;
-  t.forward += tq.forward;
-  t.backward += tq.backward;
-  t.boundary += tq.boundary;
-  t.hausdorff += tq.hausdorff;
-  t.witness += tq.witness;
-  t.total += tq.total;
+  full.counts.add(quick.counts);
+  full.timings.add(quick.timings);
   full.reason = "the quick budget certified nothing (closest attempt " + fmt(gap) +
                 " terminal tolerances from x_f), the full budget: " + full.reason;
   return full;

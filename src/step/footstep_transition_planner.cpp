@@ -261,16 +261,21 @@ FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown
   return td;
 }
 
+FootstepRequest FootstepTransitionPlanner::checkRequest(const FootstepTransition& step) {
+  FootstepRequest request;
+  request.stance = step.stance;
+  request.stance_foothold = step.stance_contact;
+  request.target = step.target;
+  request.q0 = step.q0;
+  request.qd0 = step.qd0;
+  return request;
+}
+
 FootstepCheckResult FootstepTransitionPlanner::runCheck(
     const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
     const ReachProgressCallback& progress, const FootstepTransition& out, double& time_s) const {
   const auto check_start = std::chrono::steady_clock::now();
-  FootstepRequest request;
-  request.stance = r.stance;
-  request.stance_foothold = out.stance_contact;
-  request.target = out.target;
-  request.q0 = out.q0;
-  request.qd0 = out.qd0;
+  FootstepRequest request = checkRequest(out);
   if (!r.touchdown_com) request.qdf = Eigen::VectorXd::Zero(model_->nq());  // x_f at rest
   request.touchdown_com_velocity = td.com_velocity.head<2>();
   request.touchdown_pelvis_position = td.pelvis;

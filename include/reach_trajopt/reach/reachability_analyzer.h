@@ -90,6 +90,8 @@ struct ReachCounts {
   /// backward_rejected; ReachConfig::backward_prefilter).
   long backward_prefiltered = 0;
   int threads = 1;
+  /// Adds another check's counts (threads kept): the work of two sample budgets.
+  void add(const ReachCounts& other);
 };
 
 /// Wall times of one check [s].
@@ -99,6 +101,8 @@ struct ReachCounts {
 struct ReachTimings {
   double forward = 0.0, backward = 0.0, boundary = 0.0, hausdorff = 0.0, witness = 0.0;
   double total = 0.0;
+  /// Adds another check's times: the wall times of two sample budgets run one after the other.
+  void add(const ReachTimings& other);
 };
 
 /// Everything a check returns.

@@ -185,6 +185,9 @@ class FootstepTransitionPlanner {
   const ReachabilityAnalyzer& analyzer() const { return footsteps_.analyzer(); }
   /// The in-process footstep check of steps 2-3.
   const FootstepReachability& footstepReachability() const { return footsteps_; }
+  /// The footstep check's request of a planned step: its stance, held stance contact, target
+  /// and x_0 (the touchdown velocity and pelvis prediction are plan()'s to add).
+  static FootstepRequest checkRequest(const FootstepTransition& step);
 
  private:
   /// The LIPM's prediction at touchdown: pelvis position to hold [m], CoM velocity [m/s].
