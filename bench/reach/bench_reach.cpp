@@ -3,7 +3,8 @@
 /// samples at the first step of each direction, dt = 1 ms. Prints wall times of the forward,
 /// backward, boundary and Hausdorff stages and of the whole check, QPs per second, the 1 -> 2
 /// thread speed-up, forward-only (the paper's earlier method: forward over the whole horizon)
-/// versus bidirectional, and the peak resident memory. Median of `repeats` runs.
+/// versus bidirectional, and the peak resident memory. Median of `repeats` runs (min_s: the
+/// fastest of them, for a machine whose speed drifts between runs).
 /// mode=bidirectional is the check as shipped (ReachabilityAnalyzer::check with the adaptive
 /// budget of reach.quick_pass: the quick budget, then the full one unless the quick one
 /// certified or gave up; budgets= and gave_up= say which), mode=full_budget the full budget
@@ -52,8 +53,8 @@ double median(std::vector<double> v) {
 
 /// Median stage times [s] of `repeats` checks of `req` with `cfg`, and the last result.
 struct CaseTimes {
-  double total = 0.0, cpu = 0.0, forward = 0.0, backward = 0.0, boundary = 0.0, hausdorff = 0.0,
-         witness = 0.0;
+  double total = 0.0, total_min = 0.0, cpu = 0.0, forward = 0.0, backward = 0.0, boundary = 0.0,
+         hausdorff = 0.0, witness = 0.0;
   FootstepResult result;
 };
 
@@ -74,6 +75,7 @@ CaseTimes timeCase(const FootstepReachability& check, const FootstepRequest& req
     wt.push_back(t.witness);
   }
   out.total = median(tot);
+  out.total_min = *std::min_element(tot.begin(), tot.end());
   out.cpu = median(cpu);
   out.forward = median(fw);
   out.backward = median(bw);
@@ -134,13 +136,14 @@ int main(int argc, char** argv) {
     const long qps = n.forward_qps + n.backward_qps;
     const double total = m.total;
     std::printf(
-        "BENCH reach.check mode=%s ours_s=%.4f cpu_s=%.4f forward_s=%.4f backward_s=%.4f "
-        "boundary_s=%.4f "
+        "BENCH reach.check mode=%s ours_s=%.4f min_s=%.4f cpu_s=%.4f forward_s=%.4f "
+        "backward_s=%.4f boundary_s=%.4f "
         "hausdorff_s=%.4f witness_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld "
         "reachable=%d budgets=%d gave_up=%d peak_rss_mib=%.1f\n",
-        c.name, total, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff, m.witness, samples,
-        c.threads, qps, qps / (m.forward + m.backward), n.forward_samples + n.backward_samples,
-        r.reachable ? 1 : 0, r.reach.budgets, r.reach.gave_up ? 1 : 0, peakRssMiB());
+        c.name, total, m.total_min, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff,
+        m.witness, samples, c.threads, qps, qps / (m.forward + m.backward),
+        n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, r.reach.budgets,
+        r.reach.gave_up ? 1 : 0, peakRssMiB());
     if (c.bidirectional && c.threads == 1) total_1 = total;
     if (c.bidirectional && c.threads == 2 && total_1 > 0.0)
       std::printf("BENCH reach.speedup%s threads=2 ratio=%.2f\n",
