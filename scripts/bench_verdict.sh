@@ -6,7 +6,9 @@
 # independently) and by the strict OCP seeded without the witness. Prints `BENCH reach.verdict`.
 # The shipped configuration plans each step with the quick pass first (reach.quick_pass); every
 # foothold is also checked with config/reach_reference.yaml's (the full budget only):
-# `BENCH reach.verdict_fast ref=reference agreement=..` from the same run.
+# `BENCH reach.verdict_fast ref=reference agreement=..` from the same run, and the check on its
+# own (its adaptive budget, which may give up after the quick budget) against the reference's:
+# `BENCH reach.verdict_check ref=reference agreement=.. ref_only_reachable=..`.
 # Last, TALOS legs: `BENCH reach.verdict_talos` (the same oracle on another robot).
 #   scripts/bench_verdict.sh [grid N = 7]
 set -euo pipefail

@@ -157,10 +157,13 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
                    "), the full budget not drawn: " + quick.reason;
     return quick;
   }
+  const ReachCounts quick_counts = quick.counts;
+  const ReachTimings quick_timings = quick.timings;
+  quick = ReachResult();  // its sets are not returned: freed before the full budget's
   ReachResult full = checkBudget(pb, config.fullPassConfig(), progress);
   full.budgets = 2;
-  full.counts.add(quick.counts);
-  full.timings.add(quick.timings);
+  full.counts.add(quick_counts);
+  full.timings.add(quick_timings);
   full.reason = "the quick budget certified nothing (closest attempt " + fmt(gap) +
                 " terminal tolerances from x_f), the full budget: " + full.reason;
   return full;
