@@ -335,7 +335,8 @@ int main(int argc, char** argv) {
           if (reference && checked.kinematically_feasible) {
             // The same x_0 and x_f (the planner's IK) through the check alone.
             const ReachProblem problem =
-                footstepProblem(FootstepTransitionPlanner::checkRequest(checked), checked.check);
+                footstepProblem(FootstepTransitionPlanner::checkRequest(checked),
+                                checked.check.kinematics.q_f, checked.check.qdf);
             ReachConfig own_config = probe.reach ? *probe.reach : cfg.reach;
             ReachConfig ref_config = *reference;
             ref_config.horizon = own_config.horizon;

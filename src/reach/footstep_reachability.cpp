@@ -43,13 +43,14 @@ Eigen::VectorXd FootstepReachability::touchdownVelocity(const FootstepRequest& r
       Eigen::Vector3d(r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y(), 0.0));
 }
 
-ReachProblem footstepProblem(const FootstepRequest& r, const FootstepResult& kinematic) {
+ReachProblem footstepProblem(const FootstepRequest& r, const Eigen::VectorXd& q_f,
+                             const Eigen::VectorXd& qd_f) {
   ReachProblem p;
   p.mode = ContactMode::singleSupport(r.stance);
   p.q0 = r.q0;
   p.qd0 = r.qd0;
-  p.qf = kinematic.kinematics.q_f;
-  p.qdf = kinematic.qdf;
+  p.qf = q_f;
+  p.qdf = qd_f;
   p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();
   p.target = r.target.pose();
   return p;
@@ -59,7 +60,7 @@ FootstepResult FootstepReachability::check(const FootstepRequest& r, const Reach
                                            const ReachProgressCallback& progress) const {
   FootstepResult out = kinematicStage(r);
   if (!out.kinematically_feasible) return out;
-  out.reach = analyzer_->check(footstepProblem(r, out), config, progress);
+  out.reach = analyzer_->check(footstepProblem(r, out.kinematics.q_f, out.qdf), config, progress);
   out.reachable = out.reach.reachable;
   out.reason = out.reach.reason;
   return out;

@@ -148,8 +148,8 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   if (!config.quick_pass || config.forward_set_only) return checkBudget(pb, config, progress);
   config.validate();  // names a bad key of the whole configuration, not of the quick budget's
   ReachResult quick = checkBudget(pb, config.quickPassConfig(), progress);
-  const double gap = terminalGapInTolerances(config, quick.witness);
   if (quick.reachable) return quick;
+  const double gap = terminalGapInTolerances(config, quick.witness);
   if (config.give_up_gap > 0.0 && std::isfinite(gap) && gap > config.give_up_gap) {
     quick.gave_up = true;
     quick.reason = "the quick budget's closest attempt ended " + fmt(gap) +

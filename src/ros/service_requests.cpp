@@ -168,15 +168,13 @@ ReachConfig reachConfigForDuration(const ReachConfig& base, double duration) {
 }
 
 ReachProblem toReachProblem(const FootholdRequest& r, const KinematicFeasibilityResult& ik) {
-  ReachProblem p;
-  p.mode = ContactMode::singleSupport(r.stance);
-  p.q0 = r.q;
-  p.qd0 = r.qd;
-  p.qf = ik.q_f;
-  p.qdf = ik.qd_f;
-  p.footholds[static_cast<int>(r.stance)] = r.stance_contact.pose();
-  p.target = r.target.pose();
-  return p;
+  FootstepRequest footstep;
+  footstep.stance = r.stance;
+  footstep.stance_foothold = r.stance_contact;
+  footstep.target = r.target;
+  footstep.q0 = r.q;
+  footstep.qd0 = r.qd;
+  return footstepProblem(footstep, ik.q_f, ik.qd_f);
 }
 
 reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_reason,

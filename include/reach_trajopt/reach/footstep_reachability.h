@@ -43,10 +43,12 @@ struct FootstepResult {
   ReachResult reach;                      ///< empty unless kinematically feasible
 };
 
-/// The reachability problem of a footstep whose kinematic stage passed (`kinematic`: q_f and
-/// qd_f): mode SS-stance from the request's x_0 to x_f, the stance foothold held, the target
-/// the swing sole's next contact.
-ReachProblem footstepProblem(const FootstepRequest& request, const FootstepResult& kinematic);
+/// The reachability problem of a footstep whose foothold passed the kinematic stage, x_f =
+/// (q_f, qd_f) (size n_q each): mode SS-stance from the request's x_0, the stance foothold held,
+/// the target the swing sole's next contact. (The request's qdf and touchdown fields are not
+/// read: qd_f is given.)
+ReachProblem footstepProblem(const FootstepRequest& request, const Eigen::VectorXd& q_f,
+                             const Eigen::VectorXd& qd_f);
 
 /// @brief Kinematic feasibility (III-B) followed by the reachability check (13)-(21).
 class FootstepReachability {
