@@ -6,9 +6,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <tuple>
 
 #include "reach_trajopt/reach/forward_step.h"
@@ -219,41 +222,59 @@ WitnessPath certifyWitness(const ReachContext& ctx, const std::vector<SampleSlic
   const std::vector<JunctionCandidate> candidates =
       junctionCandidates(ctx, forward, backward, window, ctx.config.certificate_candidates);
   // The attempts in their serial order: each candidate along its backward chain, then direct.
-  // They run `threads` at a time, then are judged in that order, so the witness (the first
-  // certified attempt) and the closest attempt are those of a serial run for any thread count;
-  // only the attempts after the witness in its batch are wasted work.
+  // Threads claim them one at a time in that order, and claim none after an attempt that
+  // certified; every attempt before the first certified one has then run. They are judged in
+  // that order, so the witness (the first certified attempt) and the closest attempt are
+  // those of a serial run for any thread count; only attempts claimed after the witness's are
+  // wasted work. (Claimed one by one, a long attempt no longer holds a batch of short ones.)
   const int attempts = 2 * static_cast<int>(candidates.size());
   const int threads = std::max(
       1, std::min(ctx.config.threads > 0 ? ctx.config.threads : omp_get_max_threads(), attempts));
   std::vector<std::unique_ptr<ForwardStep>> steps;
   for (int t = 0; t < threads; ++t)
     steps.push_back(std::make_unique<ForwardStep>(ctx, junctionBridgeCost()));
-  std::vector<WitnessPath> batch(threads);
-  std::vector<char> measured(threads, 0);
+  std::vector<WitnessPath> paths(attempts);
+  std::vector<char> measured(attempts, 0);
+  std::atomic<int> next_attempt{0};
+  std::atomic<int> first_certified{attempts};
+  std::exception_ptr error;  // the first exception of an attempt, rethrown after the region
+  std::mutex error_mutex;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    ForwardStep& step = *steps[omp_get_thread_num()];
+    for (int a = next_attempt++; a < first_certified.load(); a = next_attempt++) {
+      try {
+        const JunctionCandidate& cand = candidates[a / 2];
+        bool m = false;
+        paths[a] = bridgedPath(ctx, step, forward, backward, window[cand.window_index], cand,
+                               semi_implicit, a % 2 == 1, m);
+        measured[a] = m ? 1 : 0;
+        if (paths[a].certified) {
+          int f = first_certified.load();
+          while (a < f && !first_certified.compare_exchange_weak(f, a)) {
+          }
+        }
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        first_certified.store(-1);  // every thread stops claiming
+      }
+    }
+  }
+  if (error) std::rethrow_exception(error);
   WitnessPath best;
   bool best_measured = false;
   int tried = 0;
-  for (int a0 = 0; a0 < attempts; a0 += threads) {
-    const int a1 = std::min(a0 + threads, attempts);
-#pragma omp parallel for schedule(static, 1) num_threads(threads) if (a1 - a0 > 1)
-    for (int a = a0; a < a1; ++a) {
-      const JunctionCandidate& cand = candidates[a / 2];
-      bool m = false;
-      batch[a - a0] = bridgedPath(ctx, *steps[omp_get_thread_num()], forward, backward,
-                                  window[cand.window_index], cand, semi_implicit, a % 2 == 1, m);
-      measured[a - a0] = m ? 1 : 0;
-    }
-    for (int a = a0; a < a1; ++a) {
-      tried = a / 2 + 1;
-      WitnessPath& w = batch[a - a0];
-      w.candidates_tried = tried;
-      if (w.certified) return std::move(w);
-      // Keep the attempt that ended closest to x_f (a completed bridge before a stopped one).
-      if (!best.valid || w.terminal_position_gap < best.terminal_position_gap ||
-          (std::isinf(best.terminal_position_gap) && w.time.size() > best.time.size())) {
-        best = std::move(w);
-        best_measured = measured[a - a0] != 0;
-      }
+  for (int a = 0; a < attempts; ++a) {
+    tried = a / 2 + 1;
+    WitnessPath& w = paths[a];
+    w.candidates_tried = tried;
+    if (w.certified) return std::move(w);
+    // Keep the attempt that ended closest to x_f (a completed bridge before a stopped one).
+    if (!best.valid || w.terminal_position_gap < best.terminal_position_gap ||
+        (std::isinf(best.terminal_position_gap) && w.time.size() > best.time.size())) {
+      best = std::move(w);
+      best_measured = measured[a] != 0;
     }
   }
   if (best.valid && !best_measured) measurePath(ctx, best);  // its violations are reported

@@ -239,6 +239,9 @@ reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
   m.backward_samples = static_cast<uint32_t>(r.counts.backward_samples);
   m.forward_rejected = static_cast<uint32_t>(r.counts.forward_rejected);
   m.backward_rejected = static_cast<uint32_t>(r.counts.backward_rejected);
+  m.qps = static_cast<uint32_t>(r.counts.forward_qps + r.counts.backward_qps);
+  m.budgets = static_cast<uint32_t>(r.budgets);
+  m.gave_up = r.gave_up;
   if (r.best >= 0 && r.best < static_cast<int>(r.window.size())) {
     const SliceComparison& c = r.window[r.best];
     m.witness_time = c.time;

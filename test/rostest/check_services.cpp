@@ -101,6 +101,13 @@ TEST(Services, CheckReachabilityRoundTrip) {
     EXPECT_GT(r.slices.size(), 0u);
     EXPECT_GT(r.forward_samples, 0u);
     EXPECT_GT(r.total_time, 0.0);
+    EXPECT_GT(r.qps, 0u);
+    // The adaptive budget: one budget or two; a check that gave up drew one and is unreachable.
+    EXPECT_TRUE(r.budgets == 1u || r.budgets == 2u) << r.budgets;
+    if (r.gave_up) {
+      EXPECT_EQ(r.budgets, 1u);
+      EXPECT_EQ(r.verdict, "unreachable");
+    }
     EXPECT_LE(r.overlap_start, r.overlap_end);
     for (const auto& s : r.slices) {
       EXPECT_EQ(s.header.frame_id, "world");

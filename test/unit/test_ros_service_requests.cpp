@@ -200,6 +200,9 @@ TEST(RosServiceRequests, ReachabilityMessageFromAResultAndAFoothold) {
     r.window.push_back(c);
   }
   r.best = 1;
+  r.counts.forward_qps = 70;
+  r.counts.backward_qps = 30;
+  r.budgets = 2;
   const Eigen::Vector3d foothold(0.2, -0.25, 0.001);
   const auto m = rb::toReachabilityResultMsg(r, foothold, "r_sole", 1e-5, ros::Time(4.0), true);
   EXPECT_EQ(m.verdict, "reachable");
@@ -213,6 +216,15 @@ TEST(RosServiceRequests, ReachabilityMessageFromAResultAndAFoothold) {
   EXPECT_DOUBLE_EQ(m.witness_time, 0.01);
   EXPECT_DOUBLE_EQ(m.witness_forward.x, 1.0);
   EXPECT_DOUBLE_EQ(m.witness_backward.y, 0.5);
+  EXPECT_EQ(m.qps, 100u);
+  EXPECT_EQ(m.budgets, 2u);
+  EXPECT_FALSE(m.gave_up);
+  r.budgets = 1;
+  r.gave_up = true;  // the quick budget alone, given up
+  const auto given_up =
+      rb::toReachabilityResultMsg(r, foothold, "r_sole", 1e-5, ros::Time(4.0), false);
+  EXPECT_EQ(given_up.budgets, 1u);
+  EXPECT_TRUE(given_up.gave_up);
   // The request overload is the same message with the request's target.
   Fixture f;
   rb::FootholdRequest q = f.parse("world", "SS-L", {}, {});
