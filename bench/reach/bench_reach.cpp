@@ -4,7 +4,8 @@
 /// backward, boundary and Hausdorff stages and of the whole check, QPs per second, the 1 -> 2
 /// thread speed-up, forward-only (the paper's earlier method: forward over the whole horizon)
 /// versus bidirectional, and the peak resident memory. Median of `repeats` runs (min_s: the
-/// fastest of them, for a machine whose speed drifts between runs).
+/// fastest of them, for a machine whose speed drifts between runs); a mode's 1- and 2-thread
+/// checks take turns (timeCases), so their ratio compares the same moments.
 /// mode=bidirectional is the check as shipped (ReachabilityAnalyzer::check with the adaptive
 /// budget of reach.quick_pass: the quick budget, then the full one unless the quick one
 /// certified or gave up; budgets= and gave_up= say which), mode=full_budget the full budget
@@ -51,37 +52,46 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-/// Median stage times [s] of `repeats` checks of `req` with `cfg`, and the last result.
+/// Median stage times [s] of a check, and its last result.
 struct CaseTimes {
   double total = 0.0, total_min = 0.0, cpu = 0.0, forward = 0.0, backward = 0.0, boundary = 0.0,
          hausdorff = 0.0, witness = 0.0;
   FootstepResult result;
 };
 
-CaseTimes timeCase(const FootstepReachability& check, const FootstepRequest& req,
-                   const ReachConfig& cfg, int repeats) {
-  std::vector<double> tot, fw, bw, bd, hd, wt, cpu;
-  CaseTimes out;
+/// Median stage times [s] of `repeats` checks of `req` with each of `configs`, and the last
+/// result of each. The configurations take turns, one check each per repeat, so a machine whose
+/// speed drifts between runs slows them alike: their ratio (the 1 -> 2 thread speed-up) is not
+/// that of two different moments.
+std::vector<CaseTimes> timeCases(const FootstepReachability& check, const FootstepRequest& req,
+                                 const std::vector<ReachConfig>& configs, int repeats) {
+  const std::size_t n = configs.size();
+  std::vector<std::vector<double>> tot(n), fw(n), bw(n), bd(n), hd(n), wt(n), cpu(n);
+  std::vector<CaseTimes> out(n);
   for (int k = 0; k < repeats; ++k) {
-    const double c0 = cpuSeconds();
-    out.result = check.check(req, cfg);
-    cpu.push_back(cpuSeconds() - c0);
-    const ReachTimings& t = out.result.reach.timings;
-    tot.push_back(t.total);
-    fw.push_back(t.forward);
-    bw.push_back(t.backward);
-    bd.push_back(t.boundary);
-    hd.push_back(t.hausdorff);
-    wt.push_back(t.witness);
+    for (std::size_t c = 0; c < n; ++c) {
+      const double c0 = cpuSeconds();
+      out[c].result = check.check(req, configs[c]);
+      cpu[c].push_back(cpuSeconds() - c0);
+      const ReachTimings& t = out[c].result.reach.timings;
+      tot[c].push_back(t.total);
+      fw[c].push_back(t.forward);
+      bw[c].push_back(t.backward);
+      bd[c].push_back(t.boundary);
+      hd[c].push_back(t.hausdorff);
+      wt[c].push_back(t.witness);
+    }
   }
-  out.total = median(tot);
-  out.total_min = *std::min_element(tot.begin(), tot.end());
-  out.cpu = median(cpu);
-  out.forward = median(fw);
-  out.backward = median(bw);
-  out.boundary = median(bd);
-  out.hausdorff = median(hd);
-  out.witness = median(wt);
+  for (std::size_t c = 0; c < n; ++c) {
+    out[c].total = median(tot[c]);
+    out[c].total_min = *std::min_element(tot[c].begin(), tot[c].end());
+    out[c].cpu = median(cpu[c]);
+    out[c].forward = median(fw[c]);
+    out[c].backward = median(bw[c]);
+    out[c].boundary = median(bd[c]);
+    out[c].hausdorff = median(hd[c]);
+    out[c].witness = median(wt[c]);
+  }
   return out;
 }
 
@@ -116,38 +126,41 @@ int main(int argc, char** argv) {
   const FootstepReachability check(analyzer,
                                    std::make_shared<KinematicFeasibility>(model, kfc, contact));
 
-  struct Case {
+  // Each mode at 1 and 2 threads, the two taking turns (timeCases).
+  struct Mode {
     const char* name;
-    int threads;
     bool bidirectional;
     bool adaptive;  ///< the shipped adaptive budget (else the full budget alone)
   };
-  const Case cases[] = {{"bidirectional", 1, true, true},  {"bidirectional", 2, true, true},
-                        {"full_budget", 1, true, false},   {"full_budget", 2, true, false},
-                        {"forward_only", 1, false, false}, {"forward_only", 2, false, false}};
-  double total_1 = 0.0;
-  for (const Case& c : cases) {
-    ReachConfig cfg = c.adaptive ? base : base.fullPassConfig();
-    cfg.threads = c.threads;
-    if (!c.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
-    const CaseTimes m = timeCase(check, req, cfg, repeats);
-    const FootstepResult& r = m.result;
-    const ReachCounts& n = r.reach.counts;
-    const long qps = n.forward_qps + n.backward_qps;
-    const double total = m.total;
-    std::printf(
-        "BENCH reach.check mode=%s ours_s=%.4f min_s=%.4f cpu_s=%.4f forward_s=%.4f "
-        "backward_s=%.4f boundary_s=%.4f "
-        "hausdorff_s=%.4f witness_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld "
-        "reachable=%d budgets=%d gave_up=%d peak_rss_mib=%.1f\n",
-        c.name, total, m.total_min, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff,
-        m.witness, samples, c.threads, qps, qps / (m.forward + m.backward),
-        n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, r.reach.budgets,
-        r.reach.gave_up ? 1 : 0, peakRssMiB());
-    if (c.bidirectional && c.threads == 1) total_1 = total;
-    if (c.bidirectional && c.threads == 2 && total_1 > 0.0)
+  const Mode modes[] = {
+      {"bidirectional", true, true}, {"full_budget", true, false}, {"forward_only", false, false}};
+  for (const Mode& mode : modes) {
+    std::vector<ReachConfig> configs;
+    for (int threads : {1, 2}) {
+      ReachConfig cfg = mode.adaptive ? base : base.fullPassConfig();
+      cfg.threads = threads;
+      if (!mode.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
+      configs.push_back(cfg);
+    }
+    const std::vector<CaseTimes> times = timeCases(check, req, configs, repeats);
+    for (std::size_t c = 0; c < configs.size(); ++c) {
+      const CaseTimes& m = times[c];
+      const FootstepResult& r = m.result;
+      const ReachCounts& n = r.reach.counts;
+      const long qps = n.forward_qps + n.backward_qps;
+      std::printf(
+          "BENCH reach.check mode=%s ours_s=%.4f min_s=%.4f cpu_s=%.4f forward_s=%.4f "
+          "backward_s=%.4f boundary_s=%.4f "
+          "hausdorff_s=%.4f witness_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f "
+          "kept=%ld reachable=%d budgets=%d gave_up=%d peak_rss_mib=%.1f\n",
+          mode.name, m.total, m.total_min, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff,
+          m.witness, samples, configs[c].threads, qps, qps / (m.forward + m.backward),
+          n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, r.reach.budgets,
+          r.reach.gave_up ? 1 : 0, peakRssMiB());
+    }
+    if (mode.bidirectional)
       std::printf("BENCH reach.speedup%s threads=2 ratio=%.2f\n",
-                  c.adaptive ? "" : " mode=full_budget", total_1 / total);
+                  mode.adaptive ? "" : " mode=full_budget", times[0].total / times[1].total);
   }
   // The walk's horizon: x_0 0.2 s before touchdown, the same window.
   FootstepPlannerConfig walk_config = planner_config;
@@ -155,23 +168,26 @@ int main(int argc, char** argv) {
   const FootstepPlanRequest walk_case = benchSwingCase(model, walk_config, contact);
   req.q0 = walk_case.q;
   req.qd0 = walk_case.qd;
-  double walk_1 = 0.0;
+  std::vector<ReachConfig> walk_configs;
   for (int threads : {1, 2}) {
     ReachConfig cfg = walk_config.reach.fullPassConfig();
     cfg.threads = threads;
-    const CaseTimes m = timeCase(check, req, cfg, repeats);
+    walk_configs.push_back(cfg);
+  }
+  const std::vector<CaseTimes> walk_times = timeCases(check, req, walk_configs, repeats);
+  for (std::size_t c = 0; c < walk_configs.size(); ++c) {
+    const CaseTimes& m = walk_times[c];
     const FootstepResult& r = m.result;
     const ReachCounts& n = r.reach.counts;
-    if (threads == 1) walk_1 = m.total;
     std::printf(
         "BENCH reach.check mode=walk_horizon horizon_s=%.3f ours_s=%.4f cpu_s=%.4f forward_s=%.4f "
         "backward_s=%.4f boundary_s=%.4f hausdorff_s=%.4f witness_s=%.4f threads=%d qps=%ld "
         "kept=%ld reachable=%d peak_rss_mib=%.1f\n",
-        cfg.horizon, m.total, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff, m.witness,
-        threads, n.forward_qps + n.backward_qps, n.forward_samples + n.backward_samples,
-        r.reachable ? 1 : 0, peakRssMiB());
-    if (threads == 2)
-      std::printf("BENCH reach.speedup mode=walk_horizon threads=2 ratio=%.2f\n", walk_1 / m.total);
+        walk_configs[c].horizon, m.total, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff,
+        m.witness, walk_configs[c].threads, n.forward_qps + n.backward_qps,
+        n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, peakRssMiB());
   }
+  std::printf("BENCH reach.speedup mode=walk_horizon threads=2 ratio=%.2f\n",
+              walk_times[0].total / walk_times[1].total);
   return 0;
 }
