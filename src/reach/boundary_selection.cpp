@@ -15,8 +15,11 @@ namespace reach_trajopt {
 
 namespace {
 
-/// Below this many samples the planes are done serially (a parallel region costs more).
-constexpr int kParallelBoundaryMin = 256;
+/// Below this many samples the planes are done serially (a parallel region costs more). 96, not
+/// 256: the quick budget's slices (128 forward children) then share their nine hulls too; its
+/// bench case on 2 threads took about 4 % less in paired runs, with a steadier 1 -> 2 thread
+/// speed-up (1.85-1.90 against 1.59-1.87 over three runs each; bench/README.md, issue 16).
+constexpr int kParallelBoundaryMin = 96;
 
 double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
