@@ -95,6 +95,32 @@ std::vector<CaseTimes> timeCases(const FootstepReachability& check, const Footst
   return out;
 }
 
+/// Times `configs` (one mode at 1 and 2 threads, taking turns) and prints a
+/// `BENCH reach.check mode=<mode>` line per configuration, then, when `speedup` is not null,
+/// `BENCH reach.speedup<speedup> threads=2 ratio=<first / second>`.
+void benchMode(const FootstepReachability& check, const FootstepRequest& req, const char* mode,
+               const std::vector<ReachConfig>& configs, int repeats, const char* speedup) {
+  const std::vector<CaseTimes> times = timeCases(check, req, configs, repeats);
+  for (std::size_t c = 0; c < configs.size(); ++c) {
+    const CaseTimes& m = times[c];
+    const FootstepResult& r = m.result;
+    const ReachCounts& n = r.reach.counts;
+    const long qps = n.forward_qps + n.backward_qps;
+    std::printf(
+        "BENCH reach.check mode=%s horizon_s=%.3f ours_s=%.4f min_s=%.4f cpu_s=%.4f "
+        "forward_s=%.4f backward_s=%.4f boundary_s=%.4f hausdorff_s=%.4f witness_s=%.4f "
+        "samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld reachable=%d budgets=%d "
+        "gave_up=%d peak_rss_mib=%.1f\n",
+        mode, configs[c].horizon, m.total, m.total_min, m.cpu, m.forward, m.backward, m.boundary,
+        m.hausdorff, m.witness, configs[c].initial_samples, configs[c].threads, qps,
+        qps / (m.forward + m.backward), n.forward_samples + n.backward_samples, r.reachable ? 1 : 0,
+        r.reach.budgets, r.reach.gave_up ? 1 : 0, peakRssMiB());
+  }
+  if (speedup != nullptr && times.size() == 2)
+    std::printf("BENCH reach.speedup%s threads=2 ratio=%.2f\n", speedup,
+                times[0].total / times[1].total);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -105,7 +131,6 @@ int main(int argc, char** argv) {
   if (argc > 3) base = ReachConfig::fromYaml(YamlSection::loadFile(argv[3]).section("reach"), base);
   base.threads = 0;
   if (argc > 2 && std::atoi(argv[2]) > 0) base.initial_samples = std::atoi(argv[2]);
-  const int samples = base.initial_samples;
   const auto model = RobotModel::fromUrdfFile(std::string(REACH_REPO) + "/urdf/biped.urdf");
   const ContactConfig contact;
   const KinematicFeasibilityConfig kfc;
@@ -130,10 +155,12 @@ int main(int argc, char** argv) {
   struct Mode {
     const char* name;
     bool bidirectional;
-    bool adaptive;  ///< the shipped adaptive budget (else the full budget alone)
+    bool adaptive;        ///< the shipped adaptive budget (else the full budget alone)
+    const char* speedup;  ///< the suffix of its reach.speedup line (nullptr: none)
   };
-  const Mode modes[] = {
-      {"bidirectional", true, true}, {"full_budget", true, false}, {"forward_only", false, false}};
+  const Mode modes[] = {{"bidirectional", true, true, ""},
+                        {"full_budget", true, false, " mode=full_budget"},
+                        {"forward_only", false, false, nullptr}};
   for (const Mode& mode : modes) {
     std::vector<ReachConfig> configs;
     for (int threads : {1, 2}) {
@@ -142,27 +169,9 @@ int main(int argc, char** argv) {
       if (!mode.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
       configs.push_back(cfg);
     }
-    const std::vector<CaseTimes> times = timeCases(check, req, configs, repeats);
-    for (std::size_t c = 0; c < configs.size(); ++c) {
-      const CaseTimes& m = times[c];
-      const FootstepResult& r = m.result;
-      const ReachCounts& n = r.reach.counts;
-      const long qps = n.forward_qps + n.backward_qps;
-      std::printf(
-          "BENCH reach.check mode=%s ours_s=%.4f min_s=%.4f cpu_s=%.4f forward_s=%.4f "
-          "backward_s=%.4f boundary_s=%.4f "
-          "hausdorff_s=%.4f witness_s=%.4f samples=%d threads=%d qps=%ld qps_per_s=%.0f "
-          "kept=%ld reachable=%d budgets=%d gave_up=%d peak_rss_mib=%.1f\n",
-          mode.name, m.total, m.total_min, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff,
-          m.witness, samples, configs[c].threads, qps, qps / (m.forward + m.backward),
-          n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, r.reach.budgets,
-          r.reach.gave_up ? 1 : 0, peakRssMiB());
-    }
-    if (mode.bidirectional)
-      std::printf("BENCH reach.speedup%s threads=2 ratio=%.2f\n",
-                  mode.adaptive ? "" : " mode=full_budget", times[0].total / times[1].total);
+    benchMode(check, req, mode.name, configs, repeats, mode.speedup);
   }
-  // The walk's horizon: x_0 0.2 s before touchdown, the same window.
+  // The walk's horizon: x_0 0.2 s before touchdown, the same window, the full budget alone.
   FootstepPlannerConfig walk_config = planner_config;
   walk_config.reach.horizon = 0.2;
   const FootstepPlanRequest walk_case = benchSwingCase(model, walk_config, contact);
@@ -174,20 +183,6 @@ int main(int argc, char** argv) {
     cfg.threads = threads;
     walk_configs.push_back(cfg);
   }
-  const std::vector<CaseTimes> walk_times = timeCases(check, req, walk_configs, repeats);
-  for (std::size_t c = 0; c < walk_configs.size(); ++c) {
-    const CaseTimes& m = walk_times[c];
-    const FootstepResult& r = m.result;
-    const ReachCounts& n = r.reach.counts;
-    std::printf(
-        "BENCH reach.check mode=walk_horizon horizon_s=%.3f ours_s=%.4f cpu_s=%.4f forward_s=%.4f "
-        "backward_s=%.4f boundary_s=%.4f hausdorff_s=%.4f witness_s=%.4f threads=%d qps=%ld "
-        "kept=%ld reachable=%d peak_rss_mib=%.1f\n",
-        walk_configs[c].horizon, m.total, m.cpu, m.forward, m.backward, m.boundary, m.hausdorff,
-        m.witness, walk_configs[c].threads, n.forward_qps + n.backward_qps,
-        n.forward_samples + n.backward_samples, r.reachable ? 1 : 0, peakRssMiB());
-  }
-  std::printf("BENCH reach.speedup mode=walk_horizon threads=2 ratio=%.2f\n",
-              walk_times[0].total / walk_times[1].total);
+  benchMode(check, req, "walk_horizon", walk_configs, repeats, " mode=walk_horizon");
   return 0;
 }
