@@ -26,7 +26,7 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
-#include "reach_trajopt/step/reference_cases.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -134,8 +134,8 @@ int main(int argc, char** argv) {
   const auto model = RobotModel::fromUrdfFile(std::string(REACH_REPO) + "/urdf/biped.urdf");
   const ContactConfig contact;
   const KinematicFeasibilityConfig kfc;
-  // step/reference_cases.h: left stance at (0, 0.1); the right sole 3 cm short of its target
-  // (0.25, -0.12) and 2 cm up, moving to stop there at t_f = 0.08 s.
+  // testing/reference_cases.h (test/support/): left stance at (0, 0.1); the right sole 3 cm short
+  // of its target (0.25, -0.12) and 2 cm up, moving to stop there at t_f = 0.08 s.
   FootstepPlannerConfig planner_config;
   planner_config.reach = base;
   planner_config.kinematics = kfc;

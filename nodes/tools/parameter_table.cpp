@@ -7,7 +7,7 @@
 
 #include <iostream>
 
-#include "reach_trajopt/walk/parameter_tables.h"
+#include "reach_trajopt/testing/parameter_tables.h"
 
 int main(int argc, char** argv) {
   if (argc > 1) {

@@ -41,7 +41,7 @@
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reach_request_json.h"
-#include "reach_trajopt/reach/swing_state.h"
+#include "reach_trajopt/testing/swing_state.h"
 
 using namespace reach_trajopt;
 using nlohmann::json;

@@ -62,7 +62,7 @@
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
-#include "reach_trajopt/step/reference_cases.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -202,7 +202,7 @@ Recheck recheckPath(const RobotModel& model, const ContactConfig& contact, const
 Recheck recheckCertificate(const RobotModel& model, const ContactConfig& contact,
                            const FootstepPlannerConfig& cfg, const ReachConfig& reach,
                            const FootstepTransition& step) {
-  if (step.certificate == "bridge")
+  if (step.certificate == Certificate::kBridge)
     return recheckPath(model, contact, reach, reach.certificate_tolerance, step,
                        fromWitness(step.check.reach.witness, reach.dt));
   // The OCP's tolerance is relative to m g and u_max; in newtons that is at most this.
@@ -329,8 +329,9 @@ int main(int argc, char** argv) {
             ref_only += ref.reachable && !checked.reachable;
             if (details && ref.verdict != checked.verdict)
               std::printf("DISAGREE state=%zu dx=%.3f dy=%.3f fast=%s(%s) reference=%s(%s)\n", s,
-                          dx, dy, checked.verdict.c_str(), checked.certificate.c_str(),
-                          ref.verdict.c_str(), ref.certificate.c_str());
+                          dx, dy, stepVerdictName(checked.verdict),
+                          certificateName(checked.certificate), stepVerdictName(ref.verdict),
+                          certificateName(ref.certificate));
           }
           if (reference && checked.kinematically_feasible) {
             // The same x_0 and x_f (the planner's IK) through the check alone.
@@ -355,7 +356,7 @@ int main(int argc, char** argv) {
             if (a.reachable) {
               FootstepTransition bridged = checked;
               bridged.check.reach = a;
-              bridged.certificate = "bridge";
+              bridged.certificate = Certificate::kBridge;
               own.fr += !recheckCertificate(*model, contact, cfg, own_config, bridged).passed;
             }
             if (details && a.reachable != b.reachable)
@@ -383,7 +384,7 @@ int main(int argc, char** argv) {
           std::string recheck = "-";
           if (checked.reachable) {
             ++reachable;
-            bridge += checked.certificate == "bridge";
+            bridge += checked.certificate == Certificate::kBridge;
             seeded += checked.trajectory.status == OcpStatus::kConverged;
             const ReachConfig& reach = probe.reach ? *probe.reach : cfg.reach;
             const Recheck rc = recheckCertificate(*model, contact, cfg, reach, checked);
@@ -399,14 +400,15 @@ int main(int argc, char** argv) {
                 "ocp=%s "
                 "witness_violation=%.3g (dynamics %.2g cone %.2g torque %.2g limits %.2g/%.2g "
                 "contact %.2g/%.2g ground %.2g) x_f_gap=%.3g/%.3g check_s=%.2f reason: %s\n",
-                s, dx, dy, checked.verdict.c_str(),
-                checked.certificate.empty() ? "none" : checked.certificate.c_str(), recheck.c_str(),
-                ocpStatusName(checked.trajectory.status), ocpStatusName(ocp.trajectory.status),
-                w.valid ? w.violation.max() : -1.0, w.violation.dynamics, w.violation.cone,
-                w.violation.torque, w.violation.position_limit, w.violation.velocity_limit,
-                w.violation.contact, w.violation.contact_velocity, w.violation.ground,
-                w.terminal_position_gap, w.terminal_velocity_gap, checked.check_time_s,
-                checked.check.reach.reason.c_str());
+                s, dx, dy, stepVerdictName(checked.verdict),
+                checked.certificate == Certificate::kNone ? "none"
+                                                          : certificateName(checked.certificate),
+                recheck.c_str(), ocpStatusName(checked.trajectory.status),
+                ocpStatusName(ocp.trajectory.status), w.valid ? w.violation.max() : -1.0,
+                w.violation.dynamics, w.violation.cone, w.violation.torque,
+                w.violation.position_limit, w.violation.velocity_limit, w.violation.contact,
+                w.violation.contact_velocity, w.violation.ground, w.terminal_position_gap,
+                w.terminal_velocity_gap, checked.check_time_s, checked.check.reach.reason.c_str());
             std::fflush(stdout);
           }
         }

@@ -141,11 +141,11 @@ int main(int argc, char** argv) {
               "ocp_s=%.3f ocp=%s%s%s\n",
               s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
               s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
-              s.executed.y(), s.touchdown_error, s.verdict.c_str(),
-              s.certificate.empty() ? "none" : s.certificate.c_str(), s.witness_violation,
-              s.junction_position_gap, s.junction_velocity_gap, s.terminal_position_gap,
-              s.terminal_velocity_gap, s.hausdorff_distance, s.check_time_s, s.check_passes,
-              s.ocp_time_s, s.ocp_status.c_str(),
+              s.executed.y(), s.touchdown_error, s.verdictName(),
+              s.certificate == Certificate::kNone ? "none" : s.certificateName(),
+              s.witness_violation, s.junction_position_gap, s.junction_velocity_gap,
+              s.terminal_position_gap, s.terminal_velocity_gap, s.hausdorff_distance,
+              s.check_time_s, s.check_passes, s.ocp_time_s, s.ocpStatusName(),
               s.reason.empty() ? "" : " reason: ", s.reason.c_str());
           std::fflush(stdout);
         },
@@ -161,9 +161,9 @@ int main(int argc, char** argv) {
         out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
             << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
             << s.planned.y() << "," << s.executed.x() << "," << s.executed.y() << ","
-            << s.touchdown_error << "," << s.offset_clipped << "," << s.verdict << ","
-            << s.certificate << "," << s.witness_violation << "," << s.junction_position_gap << ","
-            << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
+            << s.touchdown_error << "," << s.offset_clipped << "," << s.verdictName() << ","
+            << s.certificateName() << "," << s.witness_violation << "," << s.junction_position_gap
+            << "," << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
             << s.terminal_velocity_gap << "\n";
     }
     std::printf("%s\n", r.summaryLine().c_str());

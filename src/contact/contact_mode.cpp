@@ -4,8 +4,6 @@
 
 namespace reach_trajopt {
 
-const char* sideName(Side s) { return s == Side::kLeft ? "left" : "right"; }
-
 Side ContactMode::stance() const {
   if (!isSingleSupport()) throw ReachError("contact mode " + name() + " has no single stance sole");
   return left ? Side::kLeft : Side::kRight;

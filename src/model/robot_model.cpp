@@ -371,6 +371,27 @@ void RobotModel::inverseDynamics(Workspace& ws, const Eigen::Ref<const Eigen::Ve
     d.fn[i] = aw;
     d.ff[i] = av;
   }
+  rneaForcesAndBackwardPass(ws, tau);
+}
+
+void RobotModel::bias(Workspace& ws, Eigen::Ref<Eigen::VectorXd> b) const {
+  requireSize("bias: b", b.size(), nq());
+  requireUpdated(ws);
+  // RNEA with qdd = 0: the velocity-product accelerations from update() plus gravity, taken as
+  // a uniform base acceleration -g expressed in each body's frame.
+  Workspace::Buffers& d = ws.buffers();
+  const int n = static_cast<int>(tree_->bodies.size());
+  for (int i = 0; i < n; ++i) {
+    d.fn[i].setZero();
+    d.ff[i] = -(d.R_world[i].transpose() * gravity_);
+  }
+  rneaForcesAndBackwardPass(ws, b);
+}
+
+void RobotModel::rneaForcesAndBackwardPass(Workspace& ws, Eigen::Ref<Eigen::VectorXd> tau) const {
+  Workspace::Buffers& d = ws.buffers();
+  const auto& bodies = tree_->bodies;
+  const int n = static_cast<int>(bodies.size());
   // Add the velocity-product accelerations (already propagated in dw, dv) and form forces.
   for (int i = 0; i < n; ++i) {
     const Body& b = bodies[i];
@@ -386,7 +407,7 @@ void RobotModel::inverseDynamics(Workspace& ws, const Eigen::Ref<const Eigen::Ve
     d.fn[i] = b.inertia_origin * aw + h.cross(av) + w.cross(Iv_n) + v.cross(Iv_f);
     d.ff[i] = m * av - h.cross(aw) + w.cross(Iv_f);
   }
-  // Note: the first loop read fn/ff of parents as accelerations; it completed before forces.
+  // Backward: each body's force onto its joint, then into its parent.
   for (int i = n - 1; i >= 0; --i) {
     const Body& b = bodies[i];
     tau[i] = b.prismatic ? b.axis.dot(d.ff[i]) : b.axis.dot(d.fn[i]);
@@ -394,38 +415,6 @@ void RobotModel::inverseDynamics(Workspace& ws, const Eigen::Ref<const Eigen::Ve
       const Eigen::Vector3d f = d.R[i] * d.ff[i];
       d.fn[b.parent] += d.R[i] * d.fn[i] + d.p[i].cross(f);
       d.ff[b.parent] += f;
-    }
-  }
-}
-
-void RobotModel::bias(Workspace& ws, Eigen::Ref<Eigen::VectorXd> b) const {
-  requireSize("bias: b", b.size(), nq());
-  // RNEA with qdd = 0: the velocity-product accelerations from update() plus gravity.
-  Workspace::Buffers& d = ws.buffers();
-  const auto& bodies = tree_->bodies;
-  const int n = static_cast<int>(bodies.size());
-  requireUpdated(ws);
-  for (int i = 0; i < n; ++i) {
-    const Body& bd = bodies[i];
-    // Gravity as a uniform base acceleration -g, expressed in the body frame.
-    const Eigen::Vector3d aw = d.dw[i];
-    const Eigen::Vector3d av = d.dv[i] - d.R_world[i].transpose() * gravity_;
-    const double m = bd.mass;
-    const Eigen::Vector3d h = m * bd.com;
-    const Eigen::Vector3d& w = d.w[i];
-    const Eigen::Vector3d& v = d.v[i];
-    const Eigen::Vector3d Iv_n = bd.inertia_origin * w + h.cross(v);
-    const Eigen::Vector3d Iv_f = m * v - h.cross(w);
-    d.fn[i] = bd.inertia_origin * aw + h.cross(av) + w.cross(Iv_n) + v.cross(Iv_f);
-    d.ff[i] = m * av - h.cross(aw) + w.cross(Iv_f);
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    const Body& bd = bodies[i];
-    b[i] = bd.prismatic ? bd.axis.dot(d.ff[i]) : bd.axis.dot(d.fn[i]);
-    if (bd.parent >= 0) {
-      const Eigen::Vector3d f = d.R[i] * d.ff[i];
-      d.fn[bd.parent] += d.R[i] * d.fn[i] + d.p[i].cross(f);
-      d.ff[bd.parent] += f;
     }
   }
 }

@@ -9,16 +9,11 @@ double ConstraintViolations::max() const {
                    joint_limits, reachable_set, initial_state, final_state});
 }
 
-const char* ocpStatusName(OcpStatus s) {
-  switch (s) {
-    case OcpStatus::kConverged:
-      return "converged";
-    case OcpStatus::kRelaxed:
-      return "relaxed";
-    case OcpStatus::kFailed:
-      return "failed";
-  }
-  return "unknown";
+const EnumNames<OcpStatus>& ocpStatusNames() {
+  static const EnumNames<OcpStatus> n = {{"converged", OcpStatus::kConverged},
+                                         {"relaxed", OcpStatus::kRelaxed},
+                                         {"failed", OcpStatus::kFailed}};
+  return n;
 }
 
 }  // namespace reach_trajopt

@@ -209,7 +209,7 @@ reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, const WalkingPoli
   m.index = static_cast<uint32_t>(std::max(0, r.index));
   m.mode = policy.name;
   m.policy = policy.definition();
-  m.failed_check_action = r.failed_check_action;
+  m.failed_check_action = r.failedCheckActionName();
   m.swing_side = sideName(r.swing);
   m.plan_time = r.plan_time;
   m.touchdown_time = r.touchdown_time;
@@ -225,15 +225,15 @@ reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, const WalkingPoli
   m.com_velocity_at_plan = toVector3Msg(r.com_at_plan.pd);
   m.com_predicted = toPointMsg(r.com_predicted.p);
   m.com_velocity_predicted = toVector3Msg(r.com_predicted.pd);
-  m.verdict = r.verdict;
+  m.verdict = r.verdictName();
   m.hausdorff_distance = r.hausdorff_distance;
-  m.certificate = r.certificate;
+  m.certificate = r.certificateName();
   m.witness_violation = r.witness_violation;
   m.terminal_position_gap = r.terminal_position_gap;
   m.terminal_velocity_gap = r.terminal_velocity_gap;
   m.check_time = r.check_time_s;
   m.ocp_time = r.ocp_time_s;
-  m.ocp_status = r.ocp_status;
+  m.ocp_status = r.ocpStatusName();
   return m;
 }
 

@@ -188,12 +188,12 @@ reach_trajopt::PlanFootstep::Response toPlanFootstepResponseMsg(const FootstepTr
                                                                 const ros::Time& t0) {
   reach_trajopt::PlanFootstep::Response m;
   m.success = true;
-  m.message = step.verdict + ": " + step.reason;
+  m.message = std::string(stepVerdictName(step.verdict)) + ": " + step.reason;
   m.kinematically_feasible = step.kinematically_feasible;
   m.kinematics_reason = step.check.kinematics.reason;
   m.reachable = step.reachable;
-  m.certificate = step.certificate;
-  m.verdict = step.verdict;
+  m.certificate = certificateName(step.certificate);
+  m.verdict = stepVerdictName(step.verdict);
   m.reason = step.reason;
   m.hausdorff_distance = step.hausdorff_distance;
   m.check_time = step.check_time_s;
@@ -225,8 +225,8 @@ FootstepTransition fromPlanFootstepResponseMsg(const reach_trajopt::PlanFootstep
   s.check.kinematics.reason = m.kinematics_reason;
   s.reachable = m.reachable;
   s.check.reachable = m.reachable;
-  s.certificate = m.certificate;
-  s.verdict = m.verdict;
+  s.certificate = valueOf(certificateNames(), m.certificate, "plan_footstep response: certificate");
+  s.verdict = valueOf(stepVerdictNames(), m.verdict, "plan_footstep response: verdict");
   s.reason = m.reason;
   s.check.reason = m.reason;
   s.hausdorff_distance = m.hausdorff_distance;

@@ -253,7 +253,7 @@ reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
     if (c.distance.closest_b >= 0)
       m.witness_backward = columnsToPoints(b.output, {c.distance.closest_b})[0];
   }
-  m.certificate = r.reachable ? "bridge" : "";
+  m.certificate = certificateName(r.reachable ? Certificate::kBridge : Certificate::kNone);
   m.witness_terminal_position_gap = m.witness_terminal_velocity_gap = -1.0;
   if (r.witness.valid) {
     m.witness_max_violation = r.witness.violation.max();
@@ -271,8 +271,8 @@ reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
 }
 
 void applyPlannerVerdict(const FootstepTransition& step, reach_trajopt::ReachabilityResult& m) {
-  m.verdict = step.reachable ? "reachable" : "unreachable";
-  m.certificate = step.certificate;
+  m.verdict = stepVerdictName(step.reachable ? StepVerdict::kReachable : StepVerdict::kUnreachable);
+  m.certificate = certificateName(step.certificate);
   m.message = step.reason;
 }
 

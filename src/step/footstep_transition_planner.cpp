@@ -21,10 +21,10 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-const char* verdictOf(const FootstepResult& check, bool checked) {
-  if (!check.kinematically_feasible) return "kinematically_infeasible";
-  if (!checked) return "kinematically_feasible";  // the kinematic check only
-  return check.reachable ? "reachable" : "unreachable";
+StepVerdict verdictOf(const FootstepResult& check, bool checked) {
+  if (!check.kinematically_feasible) return StepVerdict::kKinematicallyInfeasible;
+  if (!checked) return StepVerdict::kKinematicallyFeasible;  // the kinematic check only
+  return check.reachable ? StepVerdict::kReachable : StepVerdict::kUnreachable;
 }
 
 RelaxationMode relaxationFor(OcpPolicy policy, bool reachable) {
@@ -392,19 +392,19 @@ void FootstepTransitionPlanner::certify(FootstepTransition& out) const {
   // must respect them as the bridge's path does (TALOS's are tight enough to matter).
   const bool certifies = out.trajectory.reachesTargetWithinLimits(config_.ocp.tolerance);
   if (out.check.reachable) {
-    out.certificate = "bridge";
+    out.certificate = Certificate::kBridge;
   } else if (strict_converged && !certifies) {
     out.reason += "; not a certificate: the strict OCP's path exceeds a joint velocity limit by " +
                   std::to_string(out.trajectory.violation.velocity_limits) + " (relative)";
   } else if (certifies) {
-    out.certificate = "local_solve";
+    out.certificate = Certificate::kLocalSolve;
     out.reason =
         "reachable: certified by the local solve, the strict OCP seeded with the "
         "check's closest bridged path (" +
         out.check.reason + ")";
   }
-  out.reachable = !out.certificate.empty();
-  out.verdict = out.reachable ? "reachable" : "unreachable";
+  out.reachable = out.certificate != Certificate::kNone;
+  out.verdict = out.reachable ? StepVerdict::kReachable : StepVerdict::kUnreachable;
 }
 
 }  // namespace reach_trajopt

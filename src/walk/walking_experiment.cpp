@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "reach_trajopt/common/config_fields.h"
+#include "reach_trajopt/control/com_reference.h"
+#include "reach_trajopt/control/swing_trajectory.h"
+#include "reach_trajopt/control/transition_tracking.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
 #include "reach_trajopt/sim/bullet_world.h"
-#include "reach_trajopt/walk/com_reference.h"
 #include "reach_trajopt/walk/standing_pose.h"
-#include "reach_trajopt/walk/swing_trajectory.h"
-#include "reach_trajopt/walk/transition_tracking.h"
 
 namespace reach_trajopt {
 
@@ -124,8 +124,8 @@ std::string WalkResult::summaryLine() const {
   if (policy.checksFoothold()) {
     int infeasible = 0, failed = 0;
     for (const StepRecord& r : records) {
-      infeasible += r.verdict == "kinematically_infeasible";
-      failed += !r.failed_check_action.empty();
+      infeasible += r.verdict == StepVerdict::kKinematicallyInfeasible;
+      failed += r.failed_check_action.has_value();
     }
     os << " kinematically_infeasible=" << infeasible << " failed_checks=" << failed;
   }
@@ -133,11 +133,12 @@ std::string WalkResult::summaryLine() const {
     // The verdicts: every "reachable" rests on a certified witness; its OCP was strict.
     int reachable = 0, bridge = 0, local_solve = 0, reachable_converged = 0, unreachable = 0;
     for (const StepRecord& r : records) {
-      reachable += r.verdict == "reachable";
-      bridge += r.certificate == "bridge";
-      local_solve += r.certificate == "local_solve";
-      reachable_converged += r.verdict == "reachable" && r.ocp_status == "converged";
-      unreachable += r.verdict == "unreachable";
+      reachable += r.verdict == StepVerdict::kReachable;
+      bridge += r.certificate == Certificate::kBridge;
+      local_solve += r.certificate == Certificate::kLocalSolve;
+      reachable_converged +=
+          r.verdict == StepVerdict::kReachable && r.ocp_status == OcpStatus::kConverged;
+      unreachable += r.verdict == StepVerdict::kUnreachable;
     }
     os << " reachable=" << reachable << " bridge_certified=" << bridge
        << " local_solve_certified=" << local_solve
@@ -471,7 +472,7 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
     Eigen::Vector2d foothold = xy(step.foothold);
     bool track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
     if (failed) {
-      current_.failed_check_action = WalkingPolicy::actionName(policy.on_failed_check);
+      current_.failed_check_action = policy.on_failed_check;
       if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds) {
         // The TVR step clipped to the heuristic bounds, reached by interpolation.
         foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
@@ -489,7 +490,7 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
   } catch (const ReachError& e) {
     // The measured state is outside what the check accepts (e.g. a joint beyond its velocity
     // limit while the robot is already falling): the step goes on unchecked.
-    current_.verdict = "check_error";
+    current_.verdict = StepVerdict::kCheckError;
     current_.reason = e.what();
   }
 }
@@ -545,7 +546,8 @@ void WalkingExperiment::Loop::recordCheck(const FootstepTransition& step) {
   current_.check_time_s = step.check_time_s;
   current_.ocp_time_s = step.ocp_time_s;
   current_.check_passes = step.check_passes;
-  current_.ocp_status = wc_.policy.solvesOcp() ? ocpStatusName(step.trajectory.status) : "none";
+  current_.ocp_status =
+      wc_.policy.solvesOcp() ? std::optional<OcpStatus>(step.trajectory.status) : std::nullopt;
   current_.reason = step.reason;
 }
 

@@ -5,12 +5,12 @@
 #include "fuzz_common.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/control/whole_body_controller.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/sim/sim_config.h"
-#include "reach_trajopt/sim/whole_body_controller.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 

@@ -182,7 +182,7 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
                                               << expected;
   }
   size_t checked = 0;
-  for (const StepRecord& r : in_process.records) checked += r.verdict != "not_checked";
+  for (const StepRecord& r : in_process.records) checked += r.verdict != StepVerdict::kNotChecked;
   EXPECT_EQ(checked, in_process.records.size());
   const int workers = param(pnh, "workers", 0);
   if (workers > 0) {

@@ -15,7 +15,7 @@
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
-#include "reach_trajopt/step/reference_cases.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -153,8 +153,8 @@ void expectSecondPassEndsStrict(const FootstepTransition& step, const std::strin
   std::cout << step.reason << "\n";
   EXPECT_EQ(step.check_passes, 2);
   EXPECT_NE(step.reason.find(pass_reason), std::string::npos) << step.reason;
-  EXPECT_EQ(step.verdict, "reachable");
-  EXPECT_FALSE(step.certificate.empty());
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
+  EXPECT_NE(step.certificate, Certificate::kNone);
   EXPECT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
   EXPECT_FALSE(step.trajectory.relaxed);
   EXPECT_LE(step.trajectory.violation.max(), pipeline().config.ocp.tolerance);
@@ -167,8 +167,8 @@ TEST(FootstepVerdict, WalkStepCertifiedByTheBridge) {
   ASSERT_EQ(requests.size(), 3u);
   const FootstepTransition step = planStrict(requests[2]);  // the walk's step 5
   std::cout << step.reason << "\n";
-  EXPECT_EQ(step.verdict, "reachable");
-  EXPECT_EQ(step.certificate, "bridge");
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
+  EXPECT_EQ(step.certificate, Certificate::kBridge);
   const WitnessPath& w = step.check.reach.witness;
   ASSERT_TRUE(w.certified);
   EXPECT_EQ(w.junction, -1);
@@ -188,8 +188,8 @@ TEST(FootstepVerdict, WalkStepCertifiedByTheBridge) {
 TEST(FootstepVerdict, WalkStepReachableWithAStrictTrajectory) {
   const FootstepTransition step = planStrict(walkRequests()[1]);  // the walk's step 2
   std::cout << step.reason << "\n";
-  EXPECT_EQ(step.verdict, "reachable");
-  EXPECT_FALSE(step.certificate.empty());
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
+  EXPECT_NE(step.certificate, Certificate::kNone);
   EXPECT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
   EXPECT_LE(step.trajectory.violation.max(), pipeline().config.ocp.tolerance);
 }
@@ -198,14 +198,14 @@ TEST(FootstepVerdict, FootholdsOutOfReachAreNeverReachable) {
   const std::vector<FootstepPlanRequest> requests = walkRequests();
   // The walk's step 1: TVR's narrow step through the stance sole.
   const FootstepTransition narrow = planStrict(requests[0]);
-  EXPECT_EQ(narrow.verdict, "kinematically_infeasible");
+  EXPECT_EQ(narrow.verdict, StepVerdict::kKinematicallyInfeasible);
   EXPECT_FALSE(narrow.reachable);
   // Step 5's foothold 0.6 m farther forward.
   FootstepPlanRequest far = requests[2];
   far.target.x() += 0.6;
   const FootstepTransition f = planStrict(far);
   EXPECT_FALSE(f.reachable) << f.reason;
-  EXPECT_NE(f.verdict, "reachable");
+  EXPECT_NE(f.verdict, StepVerdict::kReachable);
 }
 
 TEST(FootstepVerdict, BenchCaseSoleCannotStopInTime) {
@@ -217,8 +217,8 @@ TEST(FootstepVerdict, BenchCaseSoleCannotStopInTime) {
   const FootstepTransition step = planStrict(r);
   std::cout << step.reason << "\n";
   ASSERT_TRUE(step.kinematically_feasible);
-  EXPECT_EQ(step.verdict, "unreachable");
-  EXPECT_TRUE(step.certificate.empty());
+  EXPECT_EQ(step.verdict, StepVerdict::kUnreachable);
+  EXPECT_EQ(step.certificate, Certificate::kNone);
   EXPECT_NE(step.trajectory.status, OcpStatus::kConverged);
 }
 
@@ -252,9 +252,9 @@ TEST(FootstepVerdict, QuickPassKeepsTheFullBudgetsVerdictWhereItCertifiesNothing
   EXPECT_EQ(quick.reason.substr(quick.reason.size() - tail.size()), tail) << quick.reason;
 
   const FootstepTransition step5 = withQuickPass(walkRequests()[2], true);
-  EXPECT_EQ(step5.verdict, "reachable") << step5.reason;
+  EXPECT_EQ(step5.verdict, StepVerdict::kReachable) << step5.reason;
   EXPECT_EQ(step5.trajectory.status, OcpStatus::kConverged) << step5.reason;
-  if (step5.certificate == "bridge") {
+  if (step5.certificate == Certificate::kBridge) {
     const WitnessRecheck r = recheck(step5);
     const ReachConfig& reach = *step5.request.reach;
     EXPECT_LE(r.dynamics, 1e-6);
@@ -287,7 +287,7 @@ TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHull
     EXPECT_EQ(step.check.reach.witness.terminal_position_gap,
               quick.check.reach.witness.terminal_position_gap);
     EXPECT_EQ(step.check.reach.counts.forward_qps, quick.check.reach.counts.forward_qps);
-    if (step.certificate == "bridge") {
+    if (step.certificate == Certificate::kBridge) {
       const WitnessRecheck r = recheck(step);
       EXPECT_LE(r.dynamics, 1e-6);
       EXPECT_LE(r.sole, reach.contact_tolerance);

@@ -17,7 +17,7 @@
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/sim/sim_config.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
-#include "reach_trajopt/walk/parameter_tables.h"
+#include "reach_trajopt/testing/parameter_tables.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
 using namespace reach_trajopt;

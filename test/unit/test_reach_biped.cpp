@@ -16,7 +16,7 @@
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
-#include "reach_trajopt/reach/swing_state.h"
+#include "reach_trajopt/testing/swing_state.h"
 
 using namespace reach_trajopt;
 

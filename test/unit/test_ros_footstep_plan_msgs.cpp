@@ -146,8 +146,8 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   step.kinematically_feasible = true;
   step.check.kinematics.reason = "ok";
   step.reachable = true;
-  step.certificate = "local_solve";
-  step.verdict = "reachable";
+  step.certificate = Certificate::kLocalSolve;
+  step.verdict = StepVerdict::kReachable;
   step.reason = "strict OCP converged";
   step.hausdorff_distance = 0.1 / 3.0;
   step.check_time_s = 1.25;
@@ -185,8 +185,8 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   const FootstepTransition back = rb::fromPlanFootstepResponseMsg(m, request, *model);
   EXPECT_TRUE(back.kinematically_feasible);
   EXPECT_TRUE(back.reachable);
-  EXPECT_EQ(back.certificate, "local_solve");
-  EXPECT_EQ(back.verdict, "reachable");
+  EXPECT_EQ(back.certificate, Certificate::kLocalSolve);
+  EXPECT_EQ(back.verdict, StepVerdict::kReachable);
   EXPECT_EQ(back.reason, step.reason);
   EXPECT_EQ(back.check.kinematics.reason, "ok");
   EXPECT_EQ(back.hausdorff_distance, step.hausdorff_distance);

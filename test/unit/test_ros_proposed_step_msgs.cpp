@@ -80,8 +80,8 @@ TEST(RosProposedStepMsgs, ReachableStepGivesSetsMarkersAndTrajectory) {
   step.trajectory = makeTrajectory(*model, 5);
   // The planner's verdict (certified by the local solve) is what the message carries.
   step.reachable = true;
-  step.certificate = "local_solve";
-  step.verdict = "reachable";
+  step.certificate = Certificate::kLocalSolve;
+  step.verdict = StepVerdict::kReachable;
   const Eigen::Vector3d foothold(0.1, 0.2, 0.0);
   const ros::Time t0(2.14);
   const rb::ProposedStepMsgs m =
@@ -129,7 +129,7 @@ TEST(RosProposedStepMsgs, KinematicallyInfeasibleStepIsUnreachableWithoutSets) {
   StepRecord record;
   record.swing = Side::kRight;
   FootstepTransition step;
-  step.verdict = "kinematically_infeasible";
+  step.verdict = StepVerdict::kKinematicallyInfeasible;
   step.check.kinematically_feasible = false;
   step.check.kinematics.reason = "knee at its limit";
   step.trajectory.status = OcpStatus::kFailed;

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/control/swing_trajectory.h"
 #include "reach_trajopt/walk/push_envelope.h"
-#include "reach_trajopt/walk/swing_trajectory.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
@@ -116,19 +116,21 @@ WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2
 void expectCheckedAndTracked(const WalkResult& r, int failures_allowed) {
   int failed = 0;
   for (const StepRecord& s : r.records) {
-    EXPECT_TRUE(s.verdict == "reachable" || s.verdict == "unreachable" ||
-                s.verdict == "kinematically_infeasible")
-        << s.verdict << ": " << s.reason;
-    if (s.verdict != "kinematically_infeasible") EXPECT_GT(s.check_time_s, 0.0);
+    EXPECT_TRUE(s.verdict == StepVerdict::kReachable || s.verdict == StepVerdict::kUnreachable ||
+                s.verdict == StepVerdict::kKinematicallyInfeasible)
+        << s.verdictName() << ": " << s.reason;
+    if (s.verdict != StepVerdict::kKinematicallyInfeasible) EXPECT_GT(s.check_time_s, 0.0);
     // "reachable" only with a certificate, and then the strict OCP converged.
-    if (s.verdict == "reachable") {
-      EXPECT_TRUE(s.certificate == "bridge" || s.certificate == "local_solve") << s.index;
-      EXPECT_EQ(s.ocp_status, "converged") << "step " << s.index << ": " << s.reason;
-      if (s.certificate == "bridge") EXPECT_LE(s.witness_violation, 1e-2) << s.index;
+    if (s.verdict == StepVerdict::kReachable) {
+      EXPECT_TRUE(s.certificate == Certificate::kBridge ||
+                  s.certificate == Certificate::kLocalSolve)
+          << s.index;
+      EXPECT_EQ(s.ocp_status, OcpStatus::kConverged) << "step " << s.index << ": " << s.reason;
+      if (s.certificate == Certificate::kBridge) EXPECT_LE(s.witness_violation, 1e-2) << s.index;
     } else {
-      EXPECT_TRUE(s.certificate.empty()) << s.index;
+      EXPECT_EQ(s.certificate, Certificate::kNone) << s.index;
     }
-    failed += s.ocp_status != "converged" && s.ocp_status != "relaxed";
+    failed += s.ocp_status != OcpStatus::kConverged && s.ocp_status != OcpStatus::kRelaxed;
     EXPECT_LT(s.touchdown_error, 0.02) << "step " << s.index << ": " << s.reason;
   }
   EXPECT_LE(failed, failures_allowed) << "steps without an OCP trajectory";
@@ -165,7 +167,7 @@ TEST(WalkingExperiment, LateralPushBaselineFallsProposedKeepsWalking) {
   EXPECT_FALSE(proposed.fell) << proposed.summaryLine();
   EXPECT_EQ(proposed.steps, 20) << proposed.summaryLine();
   int tracked = 0;
-  for (const StepRecord& s : proposed.records) tracked += s.ocp_status != "failed";
+  for (const StepRecord& s : proposed.records) tracked += s.ocp_status != OcpStatus::kFailed;
   EXPECT_GE(tracked, 18) << "steps that tracked an OCP trajectory";
 }
 
@@ -208,25 +210,28 @@ TEST(WalkingPolicy, EachPresetWalksAndItsRecordsShowItsParts) {
         EXPECT_EQ(s.planned, s.planned_tvr) << name << " " << s.index;  // TVR as planned
       switch (policy.check) {
         case WalkingPolicy::FootholdCheck::kNone:
-          EXPECT_EQ(s.verdict, "not_checked") << name;
-          EXPECT_EQ(s.ocp_status, "none") << name;
+          EXPECT_EQ(s.verdict, StepVerdict::kNotChecked) << name;
+          EXPECT_FALSE(s.ocp_status.has_value()) << name;
           break;
         case WalkingPolicy::FootholdCheck::kKinematic:
-          EXPECT_TRUE(s.verdict == "kinematically_feasible" ||
-                      s.verdict == "kinematically_infeasible")
-              << name << ": " << s.verdict;
-          EXPECT_NE(s.ocp_status, "none") << name;
-          EXPECT_TRUE(s.certificate.empty());
+          EXPECT_TRUE(s.verdict == StepVerdict::kKinematicallyFeasible ||
+                      s.verdict == StepVerdict::kKinematicallyInfeasible)
+              << name << ": " << s.verdictName();
+          EXPECT_TRUE(s.ocp_status.has_value()) << name;
+          EXPECT_EQ(s.certificate, Certificate::kNone);
           break;
         case WalkingPolicy::FootholdCheck::kReachability:
-          EXPECT_TRUE(s.verdict == "reachable" || s.verdict == "unreachable" ||
-                      s.verdict == "kinematically_infeasible")
-              << name << ": " << s.verdict;
-          EXPECT_EQ(s.verdict == "reachable", !s.certificate.empty()) << name;
+          EXPECT_TRUE(s.verdict == StepVerdict::kReachable ||
+                      s.verdict == StepVerdict::kUnreachable ||
+                      s.verdict == StepVerdict::kKinematicallyInfeasible)
+              << name << ": " << s.verdictName();
+          EXPECT_EQ(s.verdict == StepVerdict::kReachable, s.certificate != Certificate::kNone)
+              << name;
           break;
       }
-      EXPECT_EQ(s.failed_check_action.empty(),
-                s.verdict != "kinematically_infeasible" && s.verdict != "unreachable")
+      EXPECT_EQ(!s.failed_check_action.has_value(),
+                s.verdict != StepVerdict::kKinematicallyInfeasible &&
+                    s.verdict != StepVerdict::kUnreachable)
           << name << " " << s.index;
     }
   }
@@ -242,12 +247,12 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
   EXPECT_EQ(r.policy.name, "custom");
   int clipped = 0;
   for (const StepRecord& s : r.records) {
-    if (s.failed_check_action.empty()) {
+    if (!s.failed_check_action.has_value()) {
       EXPECT_EQ(s.planned, s.planned_tvr) << s.index;
       continue;
     }
     ++clipped;
-    EXPECT_EQ(s.failed_check_action, "clip_to_bounds");
+    EXPECT_EQ(s.failed_check_action, WalkingPolicy::OnFailedCheck::kClipToBounds);
     const Eigen::Vector2d o = s.planned - s.stance;
     const double toward_swing = s.swing == Side::kLeft ? o.y() : -o.y();
     EXPECT_LE(std::abs(o.x()), 0.42 + 1e-9) << s.index;
@@ -355,6 +360,6 @@ TEST(TalosWalk, ProposedKeepsWalkingAfterALateralPush) {
   EXPECT_EQ(r.steps, 6) << r.summaryLine();
   expectCheckedAndTracked(r, 1);
   int reachable = 0;
-  for (const StepRecord& s : r.records) reachable += s.verdict == "reachable";
+  for (const StepRecord& s : r.records) reachable += s.verdict == StepVerdict::kReachable;
   EXPECT_GE(reachable, 3) << r.summaryLine();
 }

@@ -70,7 +70,7 @@ TEST(WalkFootstepPlanner, ARejectingPlannerLeavesTheStepsUnchecked) {
   });
   const WalkResult r = e->run();
   ASSERT_FALSE(r.records.empty()) << r.summaryLine();
-  EXPECT_EQ(r.records.front().verdict, "check_error");
+  EXPECT_EQ(r.records.front().verdict, StepVerdict::kCheckError);
   EXPECT_EQ(r.records.front().reason, "plan_footstep: no such node");
-  EXPECT_EQ(r.records.front().ocp_status, "none");
+  EXPECT_FALSE(r.records.front().ocp_status.has_value());
 }

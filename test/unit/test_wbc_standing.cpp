@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "reach_trajopt/control/whole_body_controller.h"
 #include "reach_trajopt/sim/bullet_world.h"
-#include "reach_trajopt/sim/whole_body_controller.h"
 #include "reach_trajopt/walk/standing_pose.h"
 
 using namespace reach_trajopt;

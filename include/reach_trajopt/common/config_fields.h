@@ -29,11 +29,11 @@
 ///   }
 ///   MyConfig MyConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
 ///
-/// then add `MyConfig::fields().table()` to parameterTables() (walk/parameter_tables.cpp) and
-/// regenerate docs/parameters.md. Member types: double, int, bool, std::string,
-/// std::vector<double>, unsigned and std::uint64_t (seeds: read as an int, negative is an
-/// error), fixed-size Eigen vectors (the YAML sequence must have their size), enums through
-/// choice(), anything else through custom(). read(section, base) reads over `base` (missing
+/// then add `MyConfig::fields().table()` to parameterTables()
+/// (test/support/src/parameter_tables.cpp) and regenerate docs/parameters.md. Member types: double,
+/// int, bool, std::string, std::vector<double>, unsigned and std::uint64_t (seeds: read as an int,
+/// negative is an error), fixed-size Eigen vectors (the YAML sequence must have their size), enums
+/// through choice(), anything else through custom(). read(section, base) reads over `base` (missing
 /// keys keep its values) and ends with validate(), its error prefixed by the section's
 /// location (validatedIn). Range checks stay in validate(): the `description` says them in
 /// words for the table. A key is spelled only in its add() call; fromYaml() is fields().read().

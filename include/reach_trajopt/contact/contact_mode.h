@@ -7,15 +7,9 @@
 
 #include <string>
 
+#include "reach_trajopt/common/side.h"
+
 namespace reach_trajopt {
-
-/// A sole of the biped.
-enum class Side { kLeft = 0, kRight = 1 };
-
-/// The other sole.
-inline Side opposite(Side s) { return s == Side::kLeft ? Side::kRight : Side::kLeft; }
-/// "left" / "right".
-const char* sideName(Side s);
 
 /// Which soles are in contact (the index set I_{m_k} of the paper).
 struct ContactMode {

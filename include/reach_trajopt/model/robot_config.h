@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/common/side.h"
 #include "reach_trajopt/model/joint_locking.h"
 
 namespace reach_trajopt {

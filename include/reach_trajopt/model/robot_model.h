@@ -176,6 +176,11 @@ class RobotModel {
   RobotModel();
   /// The velocity part of update() on buffers whose poses are current.
   void velocityPass(Workspace& ws, const Eigen::Ref<const Eigen::VectorXd>& qd) const;
+  /// The RNEA's force and backward passes (inverseDynamics and bias): on entry the buffers'
+  /// fn, ff hold each body's angular and linear acceleration from qdd and gravity, body frame
+  /// (the velocity products dw, dv of update() are added here); tau (size n_q) receives the
+  /// generalized forces. fn, ff are overwritten.
+  void rneaForcesAndBackwardPass(Workspace& ws, Eigen::Ref<Eigen::VectorXd> tau) const;
   friend class Workspace;
   friend class ModelBuilder;
 

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "reach_trajopt/common/enum_names.h"
+
 namespace reach_trajopt {
 
 /// Outcome of a transition OCP.
@@ -15,7 +17,9 @@ enum class OcpStatus {
   kRelaxed,    ///< relaxed problem solved: lands at swing_target + eps, flagged
   kFailed,     ///< no acceptable trajectory; `reason` says why (the trajectory is diagnostic)
 };
-const char* ocpStatusName(OcpStatus s);  ///< "converged", "relaxed", "failed"
+/// "converged", "relaxed", "failed" (names at the edges: messages, JSON, CSV).
+const EnumNames<OcpStatus>& ocpStatusNames();
+inline const char* ocpStatusName(OcpStatus s) { return nameOf(ocpStatusNames(), s); }
 
 /// Largest violation per constraint family over all output samples (0 when satisfied).
 /// Units: dynamics residual of eq. (1) divided by the effort limit (actuated rows) or by the

@@ -39,6 +39,7 @@
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/step/footstep_check.h"
+#include "reach_trajopt/step/step_verdict.h"
 
 namespace reach_trajopt {
 
@@ -107,13 +108,11 @@ struct FootstepTransition {
   bool kinematically_feasible = false;
   /// A checked path x_0 -> x_f exists (see `certificate`).
   bool reachable = false;
-  /// What certifies `reachable`: "bridge" (the check's witness, ReachResult::reachable),
-  /// "local_solve" (the strict OCP seeded with the check's closest bridged path and held in
-  /// its sets, converged through its 1 ms re-check), or "" (not shown reachable).
-  std::string certificate;
-  std::string verdict;               ///< "reachable", "unreachable" (not shown reachable),
-                                     ///< "kinematically_feasible" (no reachability check),
-                                     ///< "kinematically_infeasible"
+  /// What certifies `reachable` (kNone: not shown reachable).
+  Certificate certificate = Certificate::kNone;
+  /// kReachable, kUnreachable (not shown reachable), kKinematicallyFeasible (no reachability
+  /// check) or kKinematicallyInfeasible.
+  StepVerdict verdict = StepVerdict::kNotChecked;
   std::string reason;                ///< the check's and the OCP's explanations
   double hausdorff_distance = -1.0;  ///< smallest d_H over the window [m], -1 if not computed
   double check_time_s = 0.0;         ///< kinematic + reachability check wall time

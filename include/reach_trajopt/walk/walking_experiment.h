@@ -14,18 +14,20 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/control/whole_body_controller.h"
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/planner/tvr_proposal.h"
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/sim/sim_config.h"
-#include "reach_trajopt/sim/whole_body_controller.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/step/step_verdict.h"
 #include "reach_trajopt/walk/walking_policy.h"
 
 namespace reach_trajopt {
@@ -85,14 +87,13 @@ struct StepRecord {
   double touchdown_error = 0.0;                           ///< |executed_xy - planned| [m]
   bool offset_clipped = false;                            ///< heuristic bounds moved the TVR step
   bool touched_down = false;
-  std::string verdict = "not_checked";  ///< the check's verdict (policies with a check)
-  /// The check failed and the policy's on_fail part chose the foothold ("clip_to_bounds",
-  /// "nearest_feasible", "relaxed_ocp"); "" otherwise.
-  std::string failed_check_action;
+  /// The check's verdict (policies with a check); kCheckError when the check threw.
+  StepVerdict verdict = StepVerdict::kNotChecked;
+  /// The check failed and the policy's on_fail part chose the foothold; none otherwise.
+  std::optional<WalkingPolicy::OnFailedCheck> failed_check_action;
   double hausdorff_distance = -1.0;  ///< [m], -1 when not computed
-  /// What certifies a "reachable" verdict: "bridge" or "local_solve"
-  /// (FootstepTransition::certificate), "" otherwise.
-  std::string certificate;
+  /// What certifies a kReachable verdict (FootstepTransition::certificate).
+  Certificate certificate = Certificate::kNone;
   /// The check's bridged witness (reachability check, kinematically feasible footholds): its
   /// largest violation along the path (reach/witness_path.h), the full-state gap of its
   /// junction pair before bridging and where it ended against x_f (|q|_inf [m, rad],
@@ -104,8 +105,20 @@ struct StepRecord {
   double ocp_time_s = 0.0;    ///< OCP wall time
   int check_passes =
       0;  ///< 0: no check; 1; 2: the quick pass certified nothing (see FootstepTransition)
-  std::string ocp_status = "none";  ///< "converged", "relaxed", "failed"; "none": not solved
-  std::string reason;               ///< the check's and the OCP's explanations
+  std::optional<OcpStatus> ocp_status;  ///< none: the policy solves no OCP
+  std::string reason;                   ///< the check's and the OCP's explanations
+
+  /// The enum fields' names at the edges (CSV, messages, WALK lines).
+  const char* verdictName() const { return stepVerdictName(verdict); }
+  const char* certificateName() const { return reach_trajopt::certificateName(certificate); }
+  /// "clip_to_bounds", "nearest_feasible", "relaxed_ocp"; "" when the check did not fail.
+  const char* failedCheckActionName() const {
+    return failed_check_action ? WalkingPolicy::actionName(*failed_check_action) : "";
+  }
+  /// "converged", "relaxed", "failed"; "none" when no OCP was solved.
+  const char* ocpStatusName() const {
+    return ocp_status ? reach_trajopt::ocpStatusName(*ocp_status) : "none";
+  }
 };
 
 /// What the loop sees at one control tick (for recorders and the ROS layer).

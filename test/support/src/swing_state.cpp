@@ -1,7 +1,7 @@
 /// \file swing_state.cpp
 /// A mid-swing single-support state (see the header).
 
-#include "reach_trajopt/reach/swing_state.h"
+#include "reach_trajopt/testing/swing_state.h"
 
 #include <Eigen/LU>
 #include <Eigen/QR>

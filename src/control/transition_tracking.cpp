@@ -1,7 +1,7 @@
 /// \file transition_tracking.cpp
 /// Swing references from an OCP trajectory (see the header).
 
-#include "reach_trajopt/walk/transition_tracking.h"
+#include "reach_trajopt/control/transition_tracking.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
 /// \file reference_cases.cpp
 /// The shared reference footsteps (see the header).
 
-#include "reach_trajopt/step/reference_cases.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
-#include "reach_trajopt/reach/swing_state.h"
+#include "reach_trajopt/testing/swing_state.h"
 
 namespace reach_trajopt {
 

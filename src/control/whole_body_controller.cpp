@@ -1,7 +1,7 @@
 /// \file whole_body_controller.cpp
 /// Inverse-dynamics QP whole-body controller (see the header for the QP).
 
-#include "reach_trajopt/sim/whole_body_controller.h"
+#include "reach_trajopt/control/whole_body_controller.h"
 
 #include <cmath>
 
@@ -32,7 +32,7 @@ void WbcConfig::validate() const {
 const ConfigFields<WbcConfig>& WbcConfig::fields() {
   using C = WbcConfig;
   static const ConfigFields<C> f =
-      ConfigFields<C>("WbcConfig", "wbc", "include/reach_trajopt/sim/whole_body_controller.h",
+      ConfigFields<C>("WbcConfig", "wbc", "include/reach_trajopt/control/whole_body_controller.h",
                       "Whole-body controller: task weights (>= 0; larger wins over the other "
                       "tasks) and PD gains (>= 0; larger tracks faster but amplifies the "
                       "simulator's contact noise).")

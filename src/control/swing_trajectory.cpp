@@ -1,4 +1,4 @@
-#include "reach_trajopt/walk/swing_trajectory.h"
+#include "reach_trajopt/control/swing_trajectory.h"
 
 #include <cmath>
 

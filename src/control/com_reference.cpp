@@ -1,7 +1,7 @@
 /// \file com_reference.cpp
 /// The LIPM CoM reference of the walking loop (see the header).
 
-#include "reach_trajopt/walk/com_reference.h"
+#include "reach_trajopt/control/com_reference.h"
 
 namespace reach_trajopt {
 

@@ -6,9 +6,9 @@
 /// trajectory as posture feed-forward. Past the horizon without touchdown the sole keeps
 /// descending at 0.2 m/s and the feed-forward stops.
 
+#include "reach_trajopt/control/whole_body_controller.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/transition_result.h"
-#include "reach_trajopt/sim/whole_body_controller.h"
 
 namespace reach_trajopt {
 

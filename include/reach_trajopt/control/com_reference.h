@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "reach_trajopt/control/whole_body_controller.h"
 #include "reach_trajopt/planner/lipm.h"
-#include "reach_trajopt/sim/whole_body_controller.h"
 
 namespace reach_trajopt {
 

@@ -1,0 +1,36 @@
+#pragma once
+/// \file step_verdict.h
+/// What the check of one footstep concluded, and what certifies a "reachable" verdict, as
+/// enums; their names (nameOf(stepVerdictNames(), ...)) appear only at the edges: step records
+/// (CSV), WALK lines, messages, JSON.
+
+#include "reach_trajopt/common/enum_names.h"
+
+namespace reach_trajopt {
+
+/// The verdict of a footstep's check.
+enum class StepVerdict {
+  kNotChecked,               ///< "not_checked": the policy checks nothing
+  kKinematicallyFeasible,    ///< "kinematically_feasible": the kinematic check (Sec. III-B)
+                             ///< passed and no reachability check was asked for
+  kKinematicallyInfeasible,  ///< "kinematically_infeasible": no joint-limited IK posture holds
+                             ///< both soles on their footholds (Sec. III-B)
+  kReachable,                ///< "reachable": a checked path x_0 -> x_f exists (Certificate)
+  kUnreachable,              ///< "unreachable": not shown reachable (no certificate)
+  kCheckError,               ///< "check_error": the check threw (bad state, a worker's error);
+                             ///< the step goes on as the policy's on_fail part says
+};
+const EnumNames<StepVerdict>& stepVerdictNames();
+inline const char* stepVerdictName(StepVerdict v) { return nameOf(stepVerdictNames(), v); }
+
+/// What certifies a kReachable verdict.
+enum class Certificate {
+  kNone,        ///< "": not shown reachable
+  kBridge,      ///< "bridge": the check's bridged witness path (ReachResult::reachable)
+  kLocalSolve,  ///< "local_solve": the strict OCP seeded with the check's closest bridged path
+                ///< and held in its sets, converged through its 1 ms re-check
+};
+const EnumNames<Certificate>& certificateNames();
+inline const char* certificateName(Certificate c) { return nameOf(certificateNames(), c); }
+
+}  // namespace reach_trajopt
