@@ -80,6 +80,93 @@ std::vector<int> convexHull2d(const Eigen::Ref<const Eigen::Matrix2Xd>& points) 
   return hull;
 }
 
+namespace {
+
+/// One output: for each tau, the extremes of y + tau y_rate and `angular_bins` samples spread
+/// evenly over its sorted order.
+std::vector<std::vector<int>> candidateLists1d(const Eigen::Ref<const Eigen::MatrixXd>& y,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& y_rate,
+                                               const BoundaryRule& rule) {
+  const int n = static_cast<int>(y.cols());
+  std::vector<std::vector<int>> lists;
+  Eigen::MatrixXd yh(1, n);
+  for (double tau : rule.lookahead) {
+    yh = y + tau * y_rate;
+    std::vector<int> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return yh(0, a) < yh(0, b); });
+    std::vector<int> picks = {order.front(), order.back()};
+    const int extra = std::max(rule.angular_bins, 0);
+    for (int k = 1; k <= extra; ++k) picks.push_back(order[(k * (n - 1)) / (extra + 1)]);
+    lists.push_back(picks);
+  }
+  return lists;
+}
+
+/// Two or three outputs: one task per (tau, plane), its hull and its angular bins. The tasks
+/// are independent and their lists land at fixed places, so the merge sees the serial order.
+std::vector<std::vector<int>> candidateListsPlanes(const Eigen::Ref<const Eigen::MatrixXd>& y,
+                                                   const Eigen::Ref<const Eigen::MatrixXd>& y_rate,
+                                                   const BoundaryRule& rule) {
+  const int ny = static_cast<int>(y.rows());
+  const int n = static_cast<int>(y.cols());
+  const int planes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  const int n_planes = ny == 2 ? 1 : 3;
+  const int tasks = static_cast<int>(rule.lookahead.size()) * n_planes;
+  std::vector<std::vector<int>> hulls(tasks), bins(tasks);
+  const auto plane_task = [&](int t) {
+    const double tau = rule.lookahead[t / n_planes];
+    const int pl = t % n_planes;
+    Eigen::Matrix2Xd p(2, n);
+    p.row(0) = y.row(planes[pl][0]) + tau * y_rate.row(planes[pl][0]);
+    p.row(1) = y.row(planes[pl][1]) + tau * y_rate.row(planes[pl][1]);
+    hulls[t] = convexHull2d(p);
+    if (rule.angular_bins > 0) bins[t] = angularBins(p, rule.angular_bins);
+  };
+  const bool parallel = tasks > 1 && rule.threads > 1 && n >= kParallelBoundaryMin;
+  if (!parallel) {
+    for (int t = 0; t < tasks; ++t) plane_task(t);
+  } else if (omp_in_parallel()) {
+    // Called from a task of the check's parallel region (set_propagation.cpp), where a
+    // nested parallel region would get one thread: tasks let the team's other threads
+    // take planes. The implicit taskgroup waits for this loop's tasks only.
+#pragma omp taskloop grainsize(1) default(shared)
+    for (int t = 0; t < tasks; ++t) plane_task(t);
+  } else {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(rule.threads)
+    for (int t = 0; t < tasks; ++t) plane_task(t);
+  }
+  std::vector<std::vector<int>> lists;
+  for (int t = 0; t < tasks; ++t) {
+    lists.push_back(std::move(hulls[t]));
+    if (rule.angular_bins > 0) lists.push_back(std::move(bins[t]));
+  }
+  return lists;
+}
+
+/// Round-robin merge of the candidate lists up to `cap` distinct samples of `n`, sorted.
+std::vector<int> mergeRoundRobin(const std::vector<std::vector<int>>& lists, int n, int cap) {
+  std::vector<char> taken(n, 0);
+  std::vector<int> out;
+  for (std::size_t pos = 0; static_cast<int>(out.size()) < cap; ++pos) {
+    bool any = false;
+    for (const auto& l : lists) {
+      if (pos >= l.size()) continue;
+      any = true;
+      const int i = l[pos];
+      if (!taken[i] && static_cast<int>(out.size()) < cap) {
+        taken[i] = 1;
+        out.push_back(i);
+      }
+    }
+    if (!any) break;
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
 std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
                                 const Eigen::Ref<const Eigen::MatrixXd>& y_rate,
                                 const BoundaryRule& rule) {
@@ -95,72 +182,9 @@ std::vector<int> selectBoundary(const Eigen::Ref<const Eigen::MatrixXd>& y,
     std::iota(all.begin(), all.end(), 0);
     return all;
   }
-  std::vector<std::vector<int>> lists;
-  if (ny == 1) {
-    Eigen::MatrixXd yh(ny, n);
-    for (double tau : rule.lookahead) {
-      yh = y + tau * y_rate;
-      std::vector<int> order(n);
-      std::iota(order.begin(), order.end(), 0);
-      std::stable_sort(order.begin(), order.end(),
-                       [&](int a, int b) { return yh(0, a) < yh(0, b); });
-      std::vector<int> picks = {order.front(), order.back()};
-      const int extra = std::max(rule.angular_bins, 0);
-      for (int k = 1; k <= extra; ++k) picks.push_back(order[(k * (n - 1)) / (extra + 1)]);
-      lists.push_back(picks);
-    }
-  } else {
-    // One task per (tau, plane): its hull and its angular bins. The tasks are independent and
-    // their lists land at fixed places, so the merge below sees the serial order.
-    const int planes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
-    const int n_planes = ny == 2 ? 1 : 3;
-    const int tasks = static_cast<int>(rule.lookahead.size()) * n_planes;
-    std::vector<std::vector<int>> hulls(tasks), bins(tasks);
-    const auto plane_task = [&](int t) {
-      const double tau = rule.lookahead[t / n_planes];
-      const int pl = t % n_planes;
-      Eigen::Matrix2Xd p(2, n);
-      p.row(0) = y.row(planes[pl][0]) + tau * y_rate.row(planes[pl][0]);
-      p.row(1) = y.row(planes[pl][1]) + tau * y_rate.row(planes[pl][1]);
-      hulls[t] = convexHull2d(p);
-      if (rule.angular_bins > 0) bins[t] = angularBins(p, rule.angular_bins);
-    };
-    const bool parallel = tasks > 1 && rule.threads > 1 && n >= kParallelBoundaryMin;
-    if (!parallel) {
-      for (int t = 0; t < tasks; ++t) plane_task(t);
-    } else if (omp_in_parallel()) {
-      // Called from a task of the check's parallel region (set_propagation.cpp), where a
-      // nested parallel region would get one thread: tasks let the team's other threads
-      // take planes. The implicit taskgroup waits for this loop's tasks only.
-#pragma omp taskloop grainsize(1) default(shared)
-      for (int t = 0; t < tasks; ++t) plane_task(t);
-    } else {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(rule.threads)
-      for (int t = 0; t < tasks; ++t) plane_task(t);
-    }
-    for (int t = 0; t < tasks; ++t) {
-      lists.push_back(std::move(hulls[t]));
-      if (rule.angular_bins > 0) lists.push_back(std::move(bins[t]));
-    }
-  }
-  // Round-robin merge up to the cap.
-  std::vector<char> taken(n, 0);
-  std::vector<int> out;
-  for (std::size_t pos = 0; static_cast<int>(out.size()) < rule.max_boundary; ++pos) {
-    bool any = false;
-    for (const auto& l : lists) {
-      if (pos >= l.size()) continue;
-      any = true;
-      const int i = l[pos];
-      if (!taken[i] && static_cast<int>(out.size()) < rule.max_boundary) {
-        taken[i] = 1;
-        out.push_back(i);
-      }
-    }
-    if (!any) break;
-  }
-  std::sort(out.begin(), out.end());
-  return out;
+  const std::vector<std::vector<int>> lists =
+      ny == 1 ? candidateLists1d(y, y_rate, rule) : candidateListsPlanes(y, y_rate, rule);
+  return mergeRoundRobin(lists, n, rule.max_boundary);
 }
 
 }  // namespace reach_trajopt

@@ -97,20 +97,7 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
   model.update(ws_, q_, qd_);
   model.massMatrix(ws_, M_);
   model.bias(ws_, b_);
-  // K = [M, -J^T; J_phi, 0]; right-hand side of the contact rows a_c.
-  K_.topLeftCorner(n_, n_) = M_;
-  r0_.head(n_) = -b_;
-  const double beta = cfg.contact_stabilization;
-  for (int c = 0; c < ctx_.nc; ++c) {
-    const ContactConstraint& cc = ctx_.contacts[c];
-    cc.evaluate(model, ws_, terms_);
-    model.frameJacobian(ws_, cc.frame(), J_);
-    K_.block(0, n_ + 6 * c, n_, 6) = -J_.transpose();
-    K_.block(n_ + 6 * c, 0, 6, n_) = terms_.J_phi;
-    r0_.segment<6>(n_ + 6 * c) =
-        -terms_.drift - beta * (terms_.phi / (dt * dt) + 2.0 * terms_.phidot / dt);
-    ctx_.cone.worldMatrix(model.framePose(ws_, cc.frame()).linear(), cone_world_[c]);
-  }
+  fillDynamicsAndContactRows();
   lu_.compute(K_);
   // A singular K (contact Jacobian losing rank): no child from this parent.
   const double piv = lu_.matrixLU().diagonal().cwiseAbs().minCoeff();
@@ -123,6 +110,34 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
   G_.noalias() = 2.0 * PtW_ * P_;
   G_.diagonal().array() += 2.0 * cost_.w_du;
   if (!factor_.compute(G_)) return false;
+  fillInequalityRows();
+  parent_ok_ = true;
+  return true;
+}
+
+void ForwardStep::fillDynamicsAndContactRows() {
+  const RobotModel& model = *ctx_.model;
+  const double dt = ctx_.config.dt;
+  // K = [M, -J^T; J_phi, 0]; right-hand side of the contact rows a_c.
+  K_.topLeftCorner(n_, n_) = M_;
+  r0_.head(n_) = -b_;
+  const double beta = ctx_.config.contact_stabilization;
+  for (int c = 0; c < ctx_.nc; ++c) {
+    const ContactConstraint& cc = ctx_.contacts[c];
+    cc.evaluate(model, ws_, terms_);
+    model.frameJacobian(ws_, cc.frame(), J_);
+    K_.block(0, n_ + 6 * c, n_, 6) = -J_.transpose();
+    K_.block(n_ + 6 * c, 0, 6, n_) = terms_.J_phi;
+    r0_.segment<6>(n_ + 6 * c) =
+        -terms_.drift - beta * (terms_.phi / (dt * dt) + 2.0 * terms_.phidot / dt);
+    ctx_.cone.worldMatrix(model.framePose(ws_, cc.frame()).linear(), cone_world_[c]);
+  }
+}
+
+void ForwardStep::fillInequalityRows() {
+  const RobotModel& model = *ctx_.model;
+  const ReachConfig& cfg = ctx_.config;
+  const double dt = cfg.dt;
   // Inequality matrix (rows depend on the parent only; right-hand sides on the child).
   int r = 0;
   A_in_.block(r, 0, nu_, nu_).setIdentity();
@@ -154,8 +169,6 @@ bool ForwardStep::setParent(const Eigen::Ref<const Eigen::VectorXd>& q,
     ground_rhs_ = ((ground - z) / dt - zdot) / dt - model.frameJdotQd(ws_, ctx_.swing_frame)[2];
     A_in_.row(r++).noalias() = swing_jz_ * P_.topRows(n_);
   }
-  parent_ok_ = true;
-  return true;
 }
 
 bool ForwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& u,

@@ -86,6 +86,66 @@ std::vector<JunctionCandidate> sliceCandidates(const ReachContext& ctx,
   return best;
 }
 
+/// The backward set's chain `bchain` (slice, sample) from b to x_f as the bridge's reference:
+/// configurations and velocities (n x N+1) and torques (nu x N).
+BackwardChain backwardChainOf(const std::vector<SampleSlice>& backward,
+                              const std::vector<std::pair<int, int>>& bchain, int n, int nu,
+                              double dt) {
+  const int N = static_cast<int>(bchain.size()) - 1;  // bridge steps
+  BackwardChain chain;
+  chain.q.resize(n, N + 1);
+  chain.qd.resize(n, N + 1);
+  chain.u.resize(nu, N);
+  for (int k = 0; k <= N; ++k) {
+    const auto [s, i] = bchain[k];
+    chain.q.col(k) =
+        sampleConfigurationOf(backward, PropagationDirection::kBackward, dt, true, s, i);
+    chain.qd.col(k) = backward[s].qd.col(i);
+    // A backward sample's torque acts during its step toward its parent (one step later).
+    if (k < N) chain.u.col(k) = backward[s].u.col(i);
+  }
+  return chain;
+}
+
+/// The witness's samples: the forward chain `fchain` (x_0 -> a, configurations `q_fwd`), then
+/// the bridge's `seg` from a. Sizes w's arrays; gaps and flags are the caller's.
+void fillWitnessSamples(const ReachContext& ctx, const std::vector<SampleSlice>& forward,
+                        const std::vector<std::pair<int, int>>& fchain,
+                        const Eigen::MatrixXd& q_fwd, const BridgeSegment& seg, bool semi_implicit,
+                        WitnessPath& w) {
+  const double dt = ctx.config.dt;
+  const int F = static_cast<int>(fchain.size());
+  const int L = F + seg.steps_done;
+  w.q.resize(ctx.n, L);
+  w.qd.resize(ctx.n, L);
+  w.output.resize(ctx.ny(), L);
+  w.u = Eigen::MatrixXd::Zero(ctx.nu, L - 1);
+  w.lambda = Eigen::MatrixXd::Zero(ctx.m(), L - 1);
+  w.semi_implicit_step.assign(L - 1, ctx.config.semiImplicit() ? 1 : 0);
+  for (int k = 0; k < F; ++k) {
+    const auto [s, i] = fchain[k];
+    w.time.push_back(forward[s].time);
+    w.q.col(k) = q_fwd.col(k);
+    w.qd.col(k) = forward[s].qd.col(i);
+    w.output.col(k) = forward[s].output.col(i);
+    if (k > 0) {
+      w.u.col(k - 1) = forward[s].u.col(i);
+      w.lambda.col(k - 1) = forward[s].lambda.col(i);
+      w.semi_implicit_step[k - 1] = semi_implicit ? 1 : 0;
+    }
+  }
+  const double t_a = forward[fchain.back().first].time;
+  for (int j = 1; j <= seg.steps_done; ++j) {
+    const int k = F - 1 + j;
+    w.time.push_back(t_a + j * dt);
+    w.q.col(k) = seg.q.col(j);
+    w.qd.col(k) = seg.qd.col(j);
+    w.output.col(k) = seg.output.col(j);
+    w.u.col(k - 1) = seg.u.col(j - 1);
+    w.lambda.col(k - 1) = seg.lambda.col(j - 1);
+  }
+}
+
 /// x_0 -> a through the forward set, then the bridge from a along the backward chain from b
 /// (direct: along the cubic from a to x_f); `measured`: its steps were re-checked (only when
 /// x(t_f) lands on x_f, see below).
@@ -103,18 +163,7 @@ WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
   const std::vector<std::pair<int, int>> bchain =
       chainToRoot(backward, c.backward_slice, cand.backward_sample);
   const int N = static_cast<int>(bchain.size()) - 1;  // bridge steps
-  BackwardChain chain;
-  chain.q.resize(n, N + 1);
-  chain.qd.resize(n, N + 1);
-  chain.u.resize(ctx.nu, N);
-  for (int k = 0; k <= N; ++k) {
-    const auto [s, i] = bchain[k];
-    chain.q.col(k) =
-        sampleConfigurationOf(backward, PropagationDirection::kBackward, dt, true, s, i);
-    chain.qd.col(k) = backward[s].qd.col(i);
-    // A backward sample's torque acts during its step toward its parent (one step later).
-    if (k < N) chain.u.col(k) = backward[s].u.col(i);
-  }
+  BackwardChain chain = backwardChainOf(backward, bchain, n, ctx.nu, dt);
   const int F = static_cast<int>(fchain.size());
   WitnessPath w;
   Eigen::MatrixXd q_fwd(n, F);
@@ -130,34 +179,8 @@ WitnessPath bridgedPath(const ReachContext& ctx, ForwardStep& step,
                          N, dt, forward[sa].u.col(ia));
   const BridgeSegment seg =
       bridgeJunction(ctx, step, q_fwd.col(F - 1), forward[sa].qd.col(ia), chain);
+  fillWitnessSamples(ctx, forward, fchain, q_fwd, seg, semi_implicit, w);
   const int L = F + seg.steps_done;
-  w.q.resize(n, L);
-  w.qd.resize(n, L);
-  w.output.resize(ctx.ny(), L);
-  w.u = Eigen::MatrixXd::Zero(ctx.nu, L - 1);
-  w.lambda = Eigen::MatrixXd::Zero(ctx.m(), L - 1);
-  w.semi_implicit_step.assign(L - 1, ctx.config.semiImplicit() ? 1 : 0);
-  for (int k = 0; k < F; ++k) {
-    const auto [s, i] = fchain[k];
-    w.time.push_back(forward[s].time);
-    w.q.col(k) = q_fwd.col(k);
-    w.qd.col(k) = forward[s].qd.col(i);
-    w.output.col(k) = forward[s].output.col(i);
-    if (k > 0) {
-      w.u.col(k - 1) = forward[s].u.col(i);
-      w.lambda.col(k - 1) = forward[s].lambda.col(i);
-      w.semi_implicit_step[k - 1] = semi_implicit ? 1 : 0;
-    }
-  }
-  for (int j = 1; j <= seg.steps_done; ++j) {
-    const int k = F - 1 + j;
-    w.time.push_back(forward[sa].time + j * dt);
-    w.q.col(k) = seg.q.col(j);
-    w.qd.col(k) = seg.qd.col(j);
-    w.output.col(k) = seg.output.col(j);
-    w.u.col(k - 1) = seg.u.col(j - 1);
-    w.lambda.col(k - 1) = seg.lambda.col(j - 1);
-  }
   w.junction = -1;
   w.bridge_start = F - 1;
   const SampleSlice& b = backward[c.backward_slice];

@@ -83,6 +83,12 @@ class ForwardStep {
   long qpCount() const { return qp_count_; }
 
  private:
+  /// setParent's K = [M, -J^T; J_phi, 0] and the contact rows' right-hand side r0 (eq. 5 with
+  /// the drift stabilization), and each held sole's cone in the world; after update, M, b.
+  void fillDynamicsAndContactRows();
+  /// setParent's inequality rows in u (torque bounds, cones, velocity and position limits, the
+  /// bridge's ground row); after P = d[qdd; lambda]/du is known.
+  void fillInequalityRows();
   /// child() and trackChild() (target: [qdd_target; 0], or null for zero).
   bool solveChild(const Eigen::Ref<const Eigen::VectorXd>& u, const Eigen::VectorXd* target,
                   Eigen::Ref<Eigen::VectorXd> q_child, Eigen::Ref<Eigen::VectorXd> qd_child,
