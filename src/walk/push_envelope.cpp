@@ -73,10 +73,20 @@ std::string PushEnvelope::benchLine() const {
   os.precision(3);
   double wall = 0.0;
   for (const PushWalk& w : walks) wall += w.repeated ? 0.0 : w.wall_s;
-  os << "BENCH walk.envelope preset=" << policy.name << " pushes=" << pushes()
+  os << "BENCH walk.envelope preset=" << policy.name << " protocol=standing pushes=" << pushes()
      << " survived=" << survived() << " max_lateral_mps=" << maxLateral()
      << " max_forward_mps=" << maxForward() << " radii_mps=";
   for (int d = 0; d < grid.directions; ++d) os << (d ? "/" : "") << radius(d);
+  if (static_cast<int>(capture.size()) == grid.directions) {
+    const auto list = [&](const char* key, auto value) {
+      os << " " << key << "=";
+      for (int d = 0; d < grid.directions; ++d) os << (d ? "/" : "") << value(d);
+    };
+    list("capture0_mps", [&](int d) { return capture[d].zero_step; });
+    list("capture1_mps", [&](int d) { return capture[d].one_step; });
+    list("captureN_mps", [&](int d) { return capture[d].n_step; });
+    list("fraction_of_capture1", [&](int d) { return radius(d) / capture[d].one_step; });
+  }
   os << " directions=" << grid.directions << " magnitudes_mps=";
   for (std::size_t m = 0; m < grid.magnitudes.size(); ++m)
     os << (m ? "/" : "") << grid.magnitudes[m];
@@ -93,6 +103,10 @@ PushEnvelope sweepPushes(const WalkSetup& setup, const std::string& urdf_path,
   PushEnvelope env;
   env.policy = policy;
   env.grid = grid;
+  const CaptureModel capture_model =
+      CaptureModel::fromConfigs(setup.tvr, setup.contact, setup.walk.single_support_duration);
+  for (int d = 0; d < grid.directions; ++d)
+    env.capture.push_back(captureLimits(capture_model, grid.angle(d)));
   const int n_dir = grid.directions, n_mag = static_cast<int>(grid.magnitudes.size()),
             n_seed = static_cast<int>(grid.seeds.size());
   // Only the reachability check draws random samples: other policies repeat bit for bit.

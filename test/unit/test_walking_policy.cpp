@@ -138,8 +138,17 @@ TEST(PushEnvelope, RadiusIsTheLargestPushBelowTheFirstFall) {
   EXPECT_EQ(e.pushes(), 24);
   EXPECT_EQ(e.survived(), 24 - 1 - 2 - 6);
   const std::string line = e.benchLine();
-  EXPECT_EQ(line.rfind("BENCH walk.envelope preset=baseline pushes=24 survived=15 ", 0), 0u)
+  EXPECT_EQ(line.rfind("BENCH walk.envelope preset=baseline protocol=standing pushes=24 "
+                       "survived=15 ",
+                       0),
+            0u)
       << line;
+  // With the capture limits of each direction: the radius as a fraction of the one-step limit.
+  for (int d = 0; d < 4; ++d) e.capture.push_back(CaptureLimits{0.0, 0.5, 0.8, 1.6});
+  const std::string with_capture = e.benchLine();
+  EXPECT_NE(with_capture.find(" capture1_mps=0.8/0.8/0.8/0.8 "), std::string::npos) << with_capture;
+  EXPECT_NE(with_capture.find(" fraction_of_capture1=0.5/0/0.75/0 "), std::string::npos)
+      << with_capture;
   const std::string svg = envelopeSvg({e});
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("15/24 survived"), std::string::npos);

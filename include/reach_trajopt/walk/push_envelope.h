@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/planner/capture_limits.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
 namespace reach_trajopt {
@@ -43,6 +44,9 @@ struct PushEnvelope {
   WalkingPolicy policy;
   PushGrid grid;
   std::vector<PushWalk> walks;  ///< direction-major, then magnitude, then seed
+  /// The LIPM capture limits of each direction (planner/capture_limits.h), from the walk's
+  /// configs: what any stepping strategy could recover, beside what this policy did.
+  std::vector<CaptureLimits> capture;
   int pushes() const { return static_cast<int>(walks.size()); }
   int survived() const;
   /// The envelope radius of a direction [m/s] (0 when its smallest push fell).
@@ -51,8 +55,10 @@ struct PushEnvelope {
   /// has no such direction (directions not a multiple of 4).
   double maxLateral() const;
   double maxForward() const;
-  /// `BENCH walk.envelope preset=<p> pushes=N survived=K max_lateral_mps=.. max_forward_mps=..
-  /// radii_mps=r0/r1/... wall_s=..` plus the policy's definition.
+  /// `BENCH walk.envelope preset=<p> protocol=standing pushes=N survived=K max_lateral_mps=..
+  /// max_forward_mps=.. radii_mps=r0/r1/... capture0_mps=.. capture1_mps=.. captureN_mps=..
+  /// fraction_of_capture1=r0/c0/... walks_wall_s=..` plus the policy's definition (the
+  /// capture limits per direction, as the radii).
   std::string benchLine() const;
 };
 
