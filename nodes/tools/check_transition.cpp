@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
@@ -32,7 +33,7 @@
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/ocp/transition_check.h"
 #include "reach_trajopt/ocp/transition_request_json.h"
-#include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/step/footstep_planner_setup.h"
 #include "violations_json.h"
 
 using json = nlohmann::json;
@@ -74,49 +75,48 @@ reach_trajopt::TransitionResult readTrajectory(const reach_trajopt::JsonReader& 
   return t;
 }
 
+/// The tool's options (--help prints them).
+const reach_trajopt::CliTool kTool(
+    "check_transition", "request.json trajectory.json",
+    "Re-checks a sampled transition trajectory with the OCP's full-model checker and prints the\n"
+    "violations as JSON.",
+    {{"--config", "path", "config file (robot, contact, ocp)", "config/biped.yaml"},
+     {"--urdf", "path", "URDF to use instead of the config's robot.urdf", ""},
+     {"--threshold", "v",
+      "violation above which a sample time / slice is listed (default: the config's "
+      "ocp.tolerance)",
+      ""}});
+
+/// The two input files of the command line. \throws RequestError for another count.
+void requireTwoFiles(const std::vector<std::string>& files) {
+  if (files.size() != 2)
+    throw reach_trajopt::RequestError(
+        "check_transition: expected request.json and trajectory.json (got " +
+        std::to_string(files.size()) + " files)");
+}
+
+/// --threshold: the option's value, or the config's ocp.tolerance when not given.
+double thresholdOption(const reach_trajopt::CliArgs& args,
+                       const reach_trajopt::FootstepPlannerSetup& setup) {
+  if (!args.given("--threshold")) return setup.planner.ocp.tolerance;
+  return reach_trajopt::parseDoubleOption("--threshold", args.value("--threshold"), 0.0, 1e9);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace reach_trajopt;
   try {
-    std::string urdf, config = "config/biped.yaml";
-    std::vector<std::string> files;
-    double threshold = std::numeric_limits<double>::quiet_NaN();
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw RequestError(a + ": missing value");
-        return argv[++i];
-      };
-      if (a == "--urdf") {
-        urdf = next();
-      } else if (a == "--config") {
-        config = next();
-      } else if (a == "--threshold") {
-        threshold = parseDoubleOption("--threshold", next(), 0.0, 1e9);
-      } else if (a == "-h" || a == "--help") {
-        std::cout << "usage: check_transition request.json trajectory.json [--config path] "
-                     "[--urdf path] [--threshold v]\n";
-        return 0;
-      } else {
-        files.push_back(a);
-      }
+    const CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
-    if (files.size() != 2)
-      throw RequestError("check_transition: expected request.json and trajectory.json (got " +
-                         std::to_string(files.size()) + " files)");
-
-    ContactConfig contact_cfg;
-    TransitionOcpConfig ocp_cfg;
-    RobotConfig robot;
-    if (!config.empty()) {
-      const YamlSection yaml = YamlSection::loadFile(config);
-      robot = RobotConfig::fromConfigFile(yaml);
-      if (yaml.has("contact")) contact_cfg = ContactConfig::fromYaml(yaml.section("contact"));
-      ocp_cfg = FootstepPlannerConfig::fromYaml(yaml).ocp;
-    }
-    if (!(threshold >= 0.0)) threshold = ocp_cfg.tolerance;
-    const auto model = robot.loadModel(urdf);
+    const std::vector<std::string>& files = args.positional();
+    requireTwoFiles(files);
+    const FootstepPlannerSetup setup = FootstepPlannerSetup::fromYamlFile(args.value("--config"));
+    const double threshold = thresholdOption(args, setup);
+    const auto model = setup.loadModel(args.value("--urdf"));
 
     const json request_doc = JsonReader::parseFile(files[0]);
     const JsonReader request_reader(request_doc, files[0]);
@@ -126,7 +126,8 @@ int main(int argc, char** argv) {
     const TransitionResult traj =
         readTrajectory(JsonReader(traj_doc, files[1]), model->nq(), model->nu());
 
-    const TransitionCheck check = checkTransition(*model, contact_cfg, in.request, traj, threshold);
+    const TransitionCheck check =
+        checkTransition(*model, setup.contact, in.request, traj, threshold);
     json out;
     out["violation"] = violationsJson(check.violation);
     out["violating_times"] = check.violating_times;

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/state_json.h"
@@ -35,11 +36,17 @@ using Json = nlohmann::json;
 
 namespace {
 
-void usage() {
-  std::cerr
-      << "usage: model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]\n"
-         "       model_info --config FILE [...] (the robot section's URDF and locked joints)\n";
-}
+/// The tool's options (--help prints them).
+const reach_trajopt::CliTool kTool(
+    "model_info", "<urdf>",
+    "Inspect a robot as reach_trajopt sees it: a summary, or with --state the dynamics and\n"
+    "frame kinematics at given states (JSON). With --config the URDF may be omitted (the\n"
+    "robot section's URDF and locked joints).",
+    {{"--fixed-base", "", "load the robot with a fixed base", ""},
+     {"--json", "", "print the summary as one JSON object", ""},
+     {"--state", "FILE", "states {\"q\", \"qd\"} or {\"states\": [...]} to evaluate", ""},
+     {"--frames", "a,b,...", "frames whose pose and Jacobians --state prints", ""},
+     {"--config", "FILE", "config file whose robot section gives the URDF and locked joints", ""}});
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
@@ -164,77 +171,80 @@ Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws,
   return out;
 }
 
+/// The model of the command line: the URDF argument or the config's robot.urdf, with the
+/// config's locked joints and --fixed-base.
+std::shared_ptr<const RobotModel> loadModel(const reach_trajopt::CliArgs& args) {
+  reach_trajopt::ModelOptions options;
+  if (args.given("--fixed-base")) options.base = reach_trajopt::ModelOptions::Base::kFixed;
+  std::string urdf = args.positional().empty() ? "" : args.positional()[0];
+  // --config: the robot section's URDF (unless one is given) and its locked joints.
+  if (!args.value("--config").empty()) {
+    const reach_trajopt::RobotConfig robot = reach_trajopt::RobotConfig::fromConfigFile(
+        reach_trajopt::YamlSection::loadFile(args.value("--config")));
+    if (urdf.empty()) urdf = robot.urdfPath();
+    options.locked_joints = robot.locked_joints;
+  }
+  return RobotModel::fromUrdfFile(urdf, options);
+}
+
+/// --state: the model's sizes, joints and limits, and evaluate() of each state, as JSON.
+Json statesJson(const RobotModel& model, const reach_trajopt::CliArgs& args) {
+  const std::string state_file = args.value("--state");
+  const Json input = reach_trajopt::JsonReader::parseFile(state_file);
+  const auto states =
+      reach_trajopt::readStates(reach_trajopt::JsonReader(input, state_file), model.nq());
+  const std::vector<std::string> frames = split(args.value("--frames"), ',');
+  for (const auto& f : frames) model.frameId(f);  // unknown frames fail before any output
+  Json out;
+  out["nq"] = model.nq();
+  out["nu"] = model.nu();
+  out["mass"] = model.totalMass();
+  Json names = Json::array();
+  for (const auto& j : model.joints()) names.push_back(j.name);
+  out["joint_names"] = names;
+  out["q_min"] = vectorToJson(model.positionLowerLimits());
+  out["q_max"] = vectorToJson(model.positionUpperLimits());
+  reach_trajopt::Workspace ws(model);
+  Json results = Json::array();
+  for (const auto& s : states) results.push_back(evaluate(model, ws, s, frames));
+  out["results"] = results;
+  return out;
+}
+
+/// The command line's arguments: at most one URDF, and a URDF or --config. Prints what is
+/// wrong and the usage line to stderr. \return false when they do not fit.
+bool argumentsFit(const reach_trajopt::CliArgs& args) {
+  const std::vector<std::string>& p = args.positional();
+  if (p.size() > 1) {
+    std::cerr << "model_info: unexpected argument '" << p[1] << "'\n";
+  } else if (p.empty() && args.value("--config").empty()) {
+    std::cerr << "model_info: give a URDF or --config FILE\n";
+  } else {
+    return true;
+  }
+  std::cerr << kTool.usageLine() << "\n";
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string urdf, state_file, frames_arg, config_path;
-  bool json_summary = false;
-  reach_trajopt::ModelOptions options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--fixed-base") {
-      options.base = reach_trajopt::ModelOptions::Base::kFixed;
-    } else if (a == "--json") {
-      json_summary = true;
-    } else if (a == "--state" && i + 1 < argc) {
-      state_file = argv[++i];
-    } else if (a == "--frames" && i + 1 < argc) {
-      frames_arg = argv[++i];
-    } else if (a == "--config" && i + 1 < argc) {
-      config_path = argv[++i];
-    } else if (a == "-h" || a == "--help") {
-      usage();
-      return 0;
-    } else if (!a.empty() && a[0] != '-' && urdf.empty()) {
-      urdf = a;
-    } else {
-      std::cerr << "model_info: unexpected argument '" << a << "'\n";
-      usage();
-      return 2;
-    }
-  }
-  if (urdf.empty() && config_path.empty()) {
-    usage();
-    return 2;
-  }
   try {
-    // --config: the robot section's URDF (unless one is given) and its locked joints.
-    if (!config_path.empty()) {
-      const reach_trajopt::RobotConfig robot = reach_trajopt::RobotConfig::fromConfigFile(
-          reach_trajopt::YamlSection::loadFile(config_path));
-      if (urdf.empty()) urdf = robot.urdfPath();
-      options.locked_joints = robot.locked_joints;
+    const reach_trajopt::CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
-    const auto model = reach_trajopt::RobotModel::fromUrdfFile(urdf, options);
-    if (state_file.empty()) {
-      if (json_summary)
+    if (!argumentsFit(args)) return 2;
+    const auto model = loadModel(args);
+    if (args.value("--state").empty()) {
+      if (args.given("--json"))
         printSummaryJson(*model);
       else
         printSummary(*model);
       return 0;
     }
-    const Json input = reach_trajopt::JsonReader::parseFile(state_file);
-    const auto states =
-        reach_trajopt::readStates(reach_trajopt::JsonReader(input, state_file), model->nq());
-    const std::vector<std::string> frames = split(frames_arg, ',');
-    for (const auto& f : frames) model->frameId(f);  // unknown frames fail before any output
-    Json out;
-    out["nq"] = model->nq();
-    out["nu"] = model->nu();
-    out["mass"] = model->totalMass();
-    Json names = Json::array();
-    for (const auto& j : model->joints()) names.push_back(j.name);
-    out["joint_names"] = names;
-    out["q_min"] = vectorToJson(model->positionLowerLimits());
-    out["q_max"] = vectorToJson(model->positionUpperLimits());
-    reach_trajopt::Workspace ws(*model);
-    Json results = Json::array();
-    for (const auto& s : states) results.push_back(evaluate(*model, ws, s, frames));
-    out["results"] = results;
-    std::cout << out.dump() << "\n";
-  } catch (const ReachError& e) {
-    std::cerr << "model_info: " << e.what() << "\n";
-    return 2;
+    std::cout << statesJson(*model, args).dump() << "\n";
   } catch (const std::exception& e) {  // e.g. a name that is not UTF-8 in the JSON output
     std::cerr << "model_info: " << e.what() << "\n";
     return 2;

@@ -7,14 +7,31 @@
 
 #include <iostream>
 
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/testing/parameter_tables.h"
 
+namespace {
+
+/// The tool's options (--help prints them): none but --help.
+const reach_trajopt::CliTool kTool(
+    "parameter_table", "> docs/parameters.md",
+    "Prints the parameter table of every config section (docs/parameters.md) from the config\n"
+    "structs' field tables.",
+    {});
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  if (argc > 1) {
-    std::cerr << "usage: " << argv[0] << " > docs/parameters.md\n";
-    return 2;
-  }
   try {
+    const reach_trajopt::CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
+    }
+    if (!args.positional().empty()) {
+      std::cerr << kTool.usageLine() << "\n";
+      return 2;
+    }
     std::cout << reach_trajopt::parameterTableMarkdown(reach_trajopt::parameterTables());
   } catch (const std::exception& e) {
     std::cerr << "parameter_table: " << e.what() << "\n";

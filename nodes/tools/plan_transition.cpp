@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
@@ -40,7 +41,7 @@
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
-#include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/step/footstep_planner_setup.h"
 #include "violations_json.h"
 
 using reach_trajopt::ReachError;
@@ -64,95 +65,90 @@ json matrixRows(const Eigen::MatrixXd& m, int stride) {
   return rows;
 }
 
+/// The tool's options (--help prints them).
+const reach_trajopt::CliTool kTool(
+    "plan_transition", "[request.json | -]",
+    "Solves one transition OCP (eq. 22-23) from a JSON request (standard input: -) and prints\n"
+    "the trajectory as JSON.",
+    {{"--urdf", "path", "URDF to use instead of the config's robot.urdf", ""},
+     {"--config", "path", "config file (robot, contact, kinematic_feasibility, ocp)",
+      "config/biped.yaml"},
+     {"--stride", "k", "keep every k-th sample (and the last) in the output arrays", "1"}});
+
+/// The solve's result as plan_transition's output JSON (header comment), samples by `stride`.
+json resultJson(const reach_trajopt::TransitionResult& res,
+                const reach_trajopt::TransitionRequest& r, int stride) {
+  json out;
+  out["status"] = reach_trajopt::ocpStatusName(res.status);
+  out["reason"] = res.reason;
+  out["nlopt_status"] = res.nlopt_status;
+  out["relaxed"] = res.relaxed;
+  out["eps"] = {res.eps.x(), res.eps.y()};
+  out["landing_position"] = {res.landing_position.x(), res.landing_position.y(),
+                             res.landing_position.z()};
+  out["dt"] = res.dt;
+  json times = json::array();
+  for (Eigen::Index k : strided(res.time.size(), stride)) times.push_back(res.time[k]);
+  out["time"] = times;
+  out["q"] = matrixRows(res.q, stride);
+  out["qd"] = matrixRows(res.qd, stride);
+  out["qdd"] = matrixRows(res.qdd, stride);
+  out["u"] = matrixRows(res.u, stride);
+  out["lambda"] = matrixRows(res.lambda, stride);
+  out["violation"] = violationsJson(res.violation);
+  out["cost"] = res.cost;
+  out["iterations"] = res.iterations;
+  out["solves"] = res.solves;
+  out["variables"] = res.variables;
+  out["constraints"] = res.constraints;
+  out["solve_time"] = res.solve_time;
+  // x_f the OCP was given (the request's, or the Sec. III-B IK solution): a reference solver
+  // and check_transition can start from the same one.
+  out["qf"] = std::vector<double>(r.qf.data(), r.qf.data() + r.qf.size());
+  out["qdf"] = std::vector<double>(r.qdf.data(), r.qdf.data() + r.qdf.size());
+  return out;
+}
+
+/// Without "qf" in the request: x_f from the kinematic feasibility check (Sec. III-B).
+void solveTerminalState(const reach_trajopt::FootstepPlannerSetup& setup,
+                        std::shared_ptr<const reach_trajopt::RobotModel> model,
+                        reach_trajopt::TransitionRequestJson& in) {
+  using namespace reach_trajopt;
+  const KinematicFeasibility kf(model, setup.planner.kinematics, setup.contact);
+  const auto ik = kf.check(in.request.stance, in.stance, in.target);
+  // Planning to a foothold the IK rejected (e.g. inside the stance sole) would "succeed"
+  // with a relaxed landing elsewhere: refuse it, as the services do.
+  if (!ik.feasible)
+    throw RequestError("swing_target: kinematically infeasible foothold: " + ik.reason);
+  in.request.qf = ik.q_f;
+  in.request.qdf = ik.qd_f;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace reach_trajopt;
   try {
-    std::string input = "-", urdf, config = "config/biped.yaml";
-    int stride = 1;
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw RequestError(a + ": missing value");
-        return argv[++i];
-      };
-      if (a == "--urdf") {
-        urdf = next();
-      } else if (a == "--config") {
-        config = next();
-      } else if (a == "--stride") {
-        stride = static_cast<int>(parseIntOption("--stride", next(), 1, 1000000));
-      } else if (a == "-h" || a == "--help") {
-        std::cout << "usage: plan_transition [request.json | -] [--urdf path] [--config path] "
-                     "[--stride k]\n";
-        return 0;
-      } else {
-        input = a;
-      }
+    const CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
+    if (args.positional().size() > 1)
+      throw RequestError("expected one request file (got " +
+                         std::to_string(args.positional().size()) + ")");
+    const std::string input = args.positional().empty() ? "-" : args.positional()[0];
+    const int stride =
+        static_cast<int>(parseIntOption("--stride", args.value("--stride"), 1, 1000000));
     const json doc = JsonReader::parseFile(input);
-
-    ContactConfig contact_cfg;
-    TransitionOcpConfig ocp_cfg;
-    KinematicFeasibilityConfig kf_cfg;
-    RobotConfig robot;
-    if (!config.empty()) {
-      const YamlSection yaml = YamlSection::loadFile(config);
-      robot = RobotConfig::fromConfigFile(yaml);
-      if (yaml.has("contact")) contact_cfg = ContactConfig::fromYaml(yaml.section("contact"));
-      // The OCP's landing height is the IK's pelvis height (FootstepPlannerConfig::fromYaml).
-      const FootstepPlannerConfig stages = FootstepPlannerConfig::fromYaml(yaml);
-      ocp_cfg = stages.ocp;
-      kf_cfg = stages.kinematics;
-    }
-    const auto model = robot.loadModel(urdf);
-
+    // The OCP's landing height is the IK's pelvis height (FootstepPlannerConfig::fromYaml).
+    const FootstepPlannerSetup setup = FootstepPlannerSetup::fromYamlFile(args.value("--config"));
+    const auto model = setup.loadModel(args.value("--urdf"));
     TransitionRequestJson in = readTransitionRequest(JsonReader(doc, input), model->nq());
-    TransitionRequest& r = in.request;
-    if (!in.has_qf) {
-      const KinematicFeasibility kf(model, kf_cfg, contact_cfg);
-      const auto ik = kf.check(r.stance, in.stance, in.target);
-      // Planning to a foothold the IK rejected (e.g. inside the stance sole) would "succeed"
-      // with a relaxed landing elsewhere: refuse it, as the services do.
-      if (!ik.feasible)
-        throw RequestError("swing_target: kinematically infeasible foothold: " + ik.reason);
-      r.qf = ik.q_f;
-      r.qdf = ik.qd_f;
-    }
-
-    const TransitionOcp ocp(model, ocp_cfg, contact_cfg);
-    const TransitionResult res = ocp.solve(r);
-    const ConstraintViolations& v = res.violation;
-    json out;
-    out["status"] = ocpStatusName(res.status);
-    out["reason"] = res.reason;
-    out["nlopt_status"] = res.nlopt_status;
-    out["relaxed"] = res.relaxed;
-    out["eps"] = {res.eps.x(), res.eps.y()};
-    out["landing_position"] = {res.landing_position.x(), res.landing_position.y(),
-                               res.landing_position.z()};
-    out["dt"] = res.dt;
-    json times = json::array();
-    for (Eigen::Index k : strided(res.time.size(), stride)) times.push_back(res.time[k]);
-    out["time"] = times;
-    out["q"] = matrixRows(res.q, stride);
-    out["qd"] = matrixRows(res.qd, stride);
-    out["qdd"] = matrixRows(res.qdd, stride);
-    out["u"] = matrixRows(res.u, stride);
-    out["lambda"] = matrixRows(res.lambda, stride);
-    out["violation"] = violationsJson(v);
-    out["cost"] = res.cost;
-    out["iterations"] = res.iterations;
-    out["solves"] = res.solves;
-    out["variables"] = res.variables;
-    out["constraints"] = res.constraints;
-    out["solve_time"] = res.solve_time;
-    // x_f the OCP was given (the request's, or the Sec. III-B IK solution): a reference solver
-    // and check_transition can start from the same one.
-    out["qf"] = std::vector<double>(r.qf.data(), r.qf.data() + r.qf.size());
-    out["qdf"] = std::vector<double>(r.qdf.data(), r.qdf.data() + r.qdf.size());
-    std::cout << out.dump() << "\n";
+    if (!in.has_qf) solveTerminalState(setup, model, in);
+    const TransitionOcp ocp(model, setup.planner.ocp, setup.contact);
+    const TransitionResult res = ocp.solve(in.request);
+    std::cout << resultJson(res, in.request, stride).dump() << "\n";
     return res.status == OcpStatus::kFailed ? 1 : 0;
   } catch (const std::exception& e) {
     json out = {{"status", "error"}, {"reason", e.what()}};

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/cli_options.h"
 
 using namespace reach_trajopt;
 
@@ -45,84 +46,113 @@ std::vector<WalkingPolicy> parsePolicies(const std::string& text) {
   return out;
 }
 
+/// The tool's options (--help prints them).
+const CliTool kTool("push_envelope", "",
+                    "The push-recovery envelope of walking policies: one line per walk, one BENCH\n"
+                    "walk.envelope line per policy.",
+                    {{"--config", "FILE", "the robot and its parameters", "config/biped.yaml"},
+                     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+                     {"--policies", "LIST", "walking policies separated by ';', or presets by ','",
+                      "baseline,unbounded,kinematic,proposed"},
+                     {"--directions", "N", "push directions, 1..64", "8"},
+                     {"--magnitudes", "LIST", "push magnitudes [m/s], increasing", "0.2,0.4,0.6"},
+                     {"--fine", "", "magnitudes 0.1 to 0.8 m/s by 0.1 (instead of --magnitudes)",
+                      ""},
+                     {"--seeds", "LIST", "seeds of each push", "1,2"},
+                     {"--steps", "N", "steps per walk, 1..1000", "20"},
+                     {"--jobs", "N", "walks run side by side, each on one thread", "2"},
+                     {"--svg", "FILE.svg", "write the polar figure", ""},
+                     {"--csv", "FILE.csv", "write every walk", ""}});
+
+/// The push grid of the command line, validated. \throws RequestError naming the option.
+PushGrid pushGrid(const CliArgs& args) {
+  PushGrid grid;
+  grid.directions =
+      static_cast<int>(parseIntOption("--directions", args.value("--directions"), 1, 64));
+  if (args.given("--fine") && args.given("--magnitudes"))
+    throw RequestError("--fine and --magnitudes: give one of them");
+  grid.magnitudes.clear();
+  if (args.given("--fine"))
+    grid.magnitudes = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
+  else
+    for (const std::string& m : split(args.value("--magnitudes"), ','))
+      grid.magnitudes.push_back(parseDoubleOption("--magnitudes", m, 1e-3, 10.0));
+  grid.seeds.clear();
+  for (const std::string& s : split(args.value("--seeds"), ','))
+    grid.seeds.push_back(static_cast<unsigned>(parseIntOption("--seeds", s, 0, 4294967295LL)));
+  grid.steps = static_cast<int>(parseIntOption("--steps", args.value("--steps"), 1, 1000));
+  grid.validate();
+  return grid;
+}
+
+/// The output files, opened before hours of walking; not open when not asked for.
+struct Outputs {
+  std::ofstream svg, csv;
+};
+
+Outputs openOutputs(const CliArgs& args) {
+  Outputs out;
+  const std::string svg_path = args.value("--svg"), csv_path = args.value("--csv");
+  if (!svg_path.empty()) {
+    out.svg.open(svg_path);
+    if (!out.svg) throw ReachError("cannot write --svg file '" + svg_path + "'");
+  }
+  if (!csv_path.empty()) {
+    out.csv.open(csv_path);
+    if (!out.csv) throw ReachError("cannot write --csv file '" + csv_path + "'");
+    out.csv << "policy,direction_deg,magnitude_mps,push_x_mps,push_y_mps,seed,fell,steps,"
+               "repeated,wall_s,end\n";
+  }
+  return out;
+}
+
+/// The walks of one policy's envelope as CSV rows.
+void writeCsv(std::ostream& csv, const WalkingPolicy& policy, const PushGrid& grid,
+              const PushEnvelope& env) {
+  for (const PushWalk& w : env.walks)
+    csv << policy.name << "," << grid.angle(w.direction) * 180.0 / M_PI << ","
+        << grid.magnitudes[w.magnitude] << "," << w.push.x() << "," << w.push.y() << ","
+        << grid.seeds[w.seed] << "," << w.fell << "," << w.steps << "," << w.repeated << ","
+        << w.wall_s << ",\"" << w.end_reason << "\"\n";
+}
+
+/// One policy's envelope: a line per walk as it ends, then its BENCH line.
+PushEnvelope sweepPolicy(const WalkSetup& setup, const std::string& urdf,
+                         const WalkingPolicy& policy, const PushGrid& grid, int jobs) {
+  const PushEnvelope env = sweepPushes(setup, urdf, policy, grid, jobs, [&](const PushWalk& w) {
+    std::printf("walk %s push=(%.3f, %.3f) seed=%u steps=%d fell=%s wall_s=%.1f end=%s\n",
+                policy.name.c_str(), w.push.x(), w.push.y(), grid.seeds[w.seed], w.steps,
+                w.fell ? "yes" : "no", w.wall_s, w.end_reason.c_str());
+    std::fflush(stdout);
+  });
+  std::printf("%s\n", env.benchLine().c_str());
+  std::fflush(stdout);
+  return env;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string config_path = "config/biped.yaml", urdf, svg_path, csv_path;
-  std::string policies = "baseline,unbounded,kinematic,proposed";
-  PushGrid grid;
-  int jobs = 2;
   try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw RequestError("missing value after " + a);
-        return argv[++i];
-      };
-      if (a == "--config") {
-        config_path = next();
-      } else if (a == "--urdf") {
-        urdf = next();
-      } else if (a == "--policies") {
-        policies = next();
-      } else if (a == "--directions") {
-        grid.directions = static_cast<int>(parseIntOption(a, next(), 1, 64));
-      } else if (a == "--magnitudes") {
-        grid.magnitudes.clear();
-        for (const std::string& m : split(next(), ','))
-          grid.magnitudes.push_back(parseDoubleOption(a, m, 1e-3, 10.0));
-      } else if (a == "--fine") {
-        grid.magnitudes = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
-      } else if (a == "--seeds") {
-        grid.seeds.clear();
-        for (const std::string& s : split(next(), ','))
-          grid.seeds.push_back(static_cast<unsigned>(parseIntOption(a, s, 0, 4294967295LL)));
-      } else if (a == "--steps") {
-        grid.steps = static_cast<int>(parseIntOption(a, next(), 1, 1000));
-      } else if (a == "--jobs") {
-        jobs = static_cast<int>(parseIntOption(a, next(), 1, hardwareThreads()));
-      } else if (a == "--svg") {
-        svg_path = next();
-      } else if (a == "--csv") {
-        csv_path = next();
-      } else {
-        throw RequestError("unknown argument '" + a + "'");
-      }
+    const CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
-    grid.validate();
-    const std::vector<WalkingPolicy> list = parsePolicies(policies);
-    const WalkSetup setup = WalkSetup::fromYamlFile(config_path);
-    // Open the outputs before hours of walking.
-    std::ofstream svg, csv;
-    if (!svg_path.empty()) {
-      svg.open(svg_path);
-      if (!svg) throw ReachError("cannot write --svg file '" + svg_path + "'");
-    }
-    if (!csv_path.empty()) {
-      csv.open(csv_path);
-      if (!csv) throw ReachError("cannot write --csv file '" + csv_path + "'");
-      csv << "policy,direction_deg,magnitude_mps,push_x_mps,push_y_mps,seed,fell,steps,"
-             "repeated,wall_s,end\n";
-    }
+    if (!args.positional().empty())
+      throw RequestError("unknown argument '" + args.positional()[0] + "'");
+    const PushGrid grid = pushGrid(args);
+    const int jobs =
+        static_cast<int>(parseIntOption("--jobs", args.value("--jobs"), 1, hardwareThreads()));
+    const std::vector<WalkingPolicy> list = parsePolicies(args.value("--policies"));
+    const WalkSetup setup = WalkSetup::fromYamlFile(args.value("--config"));
+    Outputs out = openOutputs(args);
     std::vector<PushEnvelope> envelopes;
     for (const WalkingPolicy& policy : list) {
-      const PushEnvelope env = sweepPushes(setup, urdf, policy, grid, jobs, [&](const PushWalk& w) {
-        std::printf("walk %s push=(%.3f, %.3f) seed=%u steps=%d fell=%s wall_s=%.1f end=%s\n",
-                    policy.name.c_str(), w.push.x(), w.push.y(), grid.seeds[w.seed], w.steps,
-                    w.fell ? "yes" : "no", w.wall_s, w.end_reason.c_str());
-        std::fflush(stdout);
-      });
-      std::printf("%s\n", env.benchLine().c_str());
-      std::fflush(stdout);
-      for (const PushWalk& w : env.walks)
-        if (csv.is_open())
-          csv << policy.name << "," << grid.angle(w.direction) * 180.0 / M_PI << ","
-              << grid.magnitudes[w.magnitude] << "," << w.push.x() << "," << w.push.y() << ","
-              << grid.seeds[w.seed] << "," << w.fell << "," << w.steps << "," << w.repeated << ","
-              << w.wall_s << ",\"" << w.end_reason << "\"\n";
-      envelopes.push_back(env);
+      envelopes.push_back(sweepPolicy(setup, args.value("--urdf"), policy, grid, jobs));
+      if (out.csv.is_open()) writeCsv(out.csv, policy, grid, envelopes.back());
     }
-    if (svg.is_open()) svg << envelopeSvg(envelopes);
+    if (out.svg.is_open()) out.svg << envelopeSvg(envelopes);
   } catch (const std::exception& e) {
     std::cerr << "push_envelope: " << e.what() << "\n";
     return 2;

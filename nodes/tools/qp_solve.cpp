@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"
@@ -89,16 +90,33 @@ json solveOne(const JsonReader& reader) {
   }
 }
 
+/// The tool's options (--help prints them): none but --help.
+const reach_trajopt::CliTool kTool(
+    "qp_solve", "[problem.json]",
+    "Solves QPs with the bundled dual active-set solver: one problem object, or a JSON list\n"
+    "of them (a list of results is printed). Reads standard input when no file is given.",
+    {});
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string arg1 = argc == 2 ? argv[1] : "";
-  if (argc > 2 || arg1 == "-h" || arg1 == "--help") {
-    std::cerr << "usage: qp_solve [problem.json]   (stdin when no file; a list = batch)\n";
+  reach_trajopt::CliArgs args;
+  try {
+    args = kTool.parse(argc, argv);
+  } catch (const std::exception& e) {  // an unknown option: not a malformed problem
+    std::cerr << "qp_solve: " << e.what() << "\n";
+    return 2;
+  }
+  if (args.help()) {
+    std::cout << kTool.usage();
+    return 0;
+  }
+  if (args.positional().size() > 1) {
+    std::cerr << kTool.usageLine() << "\n";
     return 2;
   }
   try {
-    const std::string source = argc == 2 ? argv[1] : "-";
+    const std::string source = args.positional().empty() ? "-" : args.positional()[0];
     const json input = JsonReader::parseFile(source);
     const JsonReader top(input, source == "-" ? "<stdin>" : source);
     if (input.is_array()) {

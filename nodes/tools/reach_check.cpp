@@ -4,8 +4,8 @@
 ///
 ///   reach_check <robot.urdf> <config.yaml> <request.json> [--threads N] [--samples]
 ///
-/// config.yaml: the sections `contact:`, `reach:` and `kinematic_feasibility:` are read when
-/// present (config/biped.yaml has all three); missing sections keep the defaults.
+/// config.yaml: the sections `contact:` (required), `reach:` and `kinematic_feasibility:`
+/// (optional: defaults) as every tool reads them (step/footstep_planner_setup.h).
 /// Request (JSON; angles in radians, SI units):
 ///   "mode":    "SS-L" | "SS-R" (single support, the other sole swings) | "none" (fixed base,
 ///              no contacts)
@@ -31,16 +31,19 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reach_request_json.h"
+#include "reach_trajopt/step/footstep_planner_setup.h"
 #include "reach_trajopt/testing/swing_state.h"
 
 using namespace reach_trajopt;
@@ -65,197 +68,243 @@ json columns(const Eigen::Ref<const Eigen::MatrixXd>& M) {
   return a;
 }
 
+/// The tool's options (--help prints them).
+const CliTool kTool(
+    "reach_check",
+    "<robot.urdf> <config.yaml> <request.json> | --config <config.yaml> <request.json>",
+    "Runs one reachability check (eq. 13-21) and prints the result as JSON. With --config the\n"
+    "URDF is the config's robot.urdf.",
+    {{"--config", "FILE", "config file, the URDF then being its robot.urdf", ""},
+     {"--threads", "N", "threads of the check, 0..hardware threads (default: reach.threads)", ""},
+     {"--samples", "", "print every sample's output and velocity per slice", ""}});
+
+/// The three input files: URDF ("" with --config: the config's robot.urdf), config, request.
+struct InputFiles {
+  std::string urdf, config, request;
+};
+
+/// The input files of the command line; nothing when they do not match the usage.
+std::optional<InputFiles> inputFiles(const CliArgs& args) {
+  const std::vector<std::string>& p = args.positional();
+  if (args.given("--config")) {
+    if (p.size() != 1) return std::nullopt;
+    return InputFiles{"", args.value("--config"), p[0]};
+  }
+  if (p.size() != 3) return std::nullopt;
+  return InputFiles{p[0], p[1], p[2]};
+}
+
+/// --samples would print about config.estimatedQps() samples: refused over the output limit.
+void requirePrintableSamples(const ReachConfig& config) {
+  if (config.estimatedQps() <= kMaxPrintedSamples) return;
+  std::ostringstream os;
+  os << "--samples: the check would print about " << config.estimatedQps()
+     << " samples, over the limit of " << kMaxPrintedSamples
+     << " (docs/limits.md): lower initial_samples or max_boundary";
+  throw RequestError(os.str());
+}
+
+/// The check's inputs: the setup of the config file, the model, the request and its config
+/// (the file's reach: section, the request's overrides, --threads).
+struct CheckInputs {
+  FootstepPlannerSetup setup;
+  std::shared_ptr<const RobotModel> model;
+  ReachCheckRequest request;
+  ReachConfig config;
+};
+
+CheckInputs readInputs(const InputFiles& files, const CliArgs& args) {
+  CheckInputs in;
+  in.setup = FootstepPlannerSetup::fromYamlFile(files.config);
+  in.model = in.setup.loadModel(files.urdf);
+  const json doc = JsonReader::parseFile(files.request);
+  in.request =
+      readReachCheckRequest(JsonReader(doc, files.request), in.model->nq(), in.setup.planner.reach);
+  in.config = in.request.config;
+  if (args.given("--threads"))
+    in.config.threads = parseThreadsOption("--threads", args.value("--threads"));
+  in.config.validate();
+  in.config.requireResourcesWithinLimits(in.model->nq());  // before the IK and any sample
+  if (args.given("--samples")) requirePrintableSamples(in.config);
+  return in;
+}
+
+/// The request's problem: its mode and footholds, x_0 given or built from the swing sole.
+ReachProblem problemOf(const CheckInputs& in) {
+  const ReachCheckRequest& req = in.request;
+  const bool contacts = req.mode != "none";
+  ReachProblem p;
+  p.mode = contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};
+  if (contacts) {
+    p.footholds[p.mode.stance() == Side::kLeft ? 0 : 1] = req.stance.pose();
+    p.target = req.target.pose();
+  }
+  if (req.has_x0) {
+    p.q0 = req.q0;
+    p.qd0 = req.qd0;
+  } else {
+    const RobotState x0 =
+        swingState(in.model, in.setup.planner.kinematics, in.setup.contact, p.mode.stance(),
+                   req.stance, req.swing_position, req.swing_yaw, req.swing_velocity, req.q_init);
+    p.q0 = x0.q;
+    p.qd0 = x0.qd;
+  }
+  if (req.has_xf) {
+    p.qf = req.qf;
+    p.qdf = req.qdf;
+  }
+  return p;
+}
+
+json countsJson(const ReachResult& r) {
+  return {{"forward_samples", r.counts.forward_samples},
+          {"backward_samples", r.counts.backward_samples},
+          {"forward_qps", r.counts.forward_qps},
+          {"backward_qps", r.counts.backward_qps},
+          {"forward_rejected", r.counts.forward_rejected},
+          {"backward_rejected", r.counts.backward_rejected},
+          {"backward_prefiltered", r.counts.backward_prefiltered},
+          {"threads", r.counts.threads}};
+}
+
+json timingsJson(const ReachResult& r) {
+  return {{"forward_s", r.timings.forward},   {"backward_s", r.timings.backward},
+          {"boundary_s", r.timings.boundary}, {"hausdorff_s", r.timings.hausdorff},
+          {"witness_s", r.timings.witness},   {"total_s", r.timings.total}};
+}
+
+json windowJson(const ReachResult& r) {
+  json window = json::array();
+  for (const SliceComparison& c : r.window)
+    window.push_back({{"t", c.time},
+                      {"hausdorff", number(c.distance.hausdorff)},
+                      {"forward_to_backward", number(c.distance.a_to_b)},
+                      {"backward_to_forward", number(c.distance.b_to_a)},
+                      {"resolution", number(c.distance.resolution())},
+                      {"closest", number(c.distance.closest)},
+                      {"overlap_tolerance", number(c.overlap_tolerance)},
+                      {"backward_inside_forward", c.backward_inside_forward},
+                      {"forward_inside_backward", c.forward_inside_backward},
+                      {"overlap", c.overlap},
+                      {"within_delta", c.within_delta}});
+  return window;
+}
+
+json violationJson(const PathViolation& v) {
+  return {{"dynamics", v.dynamics},
+          {"cone", v.cone},
+          {"torque", v.torque},
+          {"position_limit", v.position_limit},
+          {"velocity_limit", v.velocity_limit},
+          {"contact", v.contact},
+          {"contact_velocity", v.contact_velocity},
+          {"integration", v.integration},
+          {"ground", v.ground}};
+}
+
+json witnessJson(const WitnessPath& w) {
+  return {{"time", w.time},
+          {"output", columns(w.output)},
+          {"q", columns(w.q)},
+          {"qd", columns(w.qd)},
+          {"u", columns(w.u)},
+          {"lambda", columns(w.lambda)},
+          {"junction", w.junction},
+          {"output_gap", w.output_gap},
+          {"position_gap", w.position_gap},
+          {"velocity_gap", w.velocity_gap},
+          {"certified", w.certified},
+          {"bridge_start", w.bridge_start},
+          {"candidates_tried", w.candidates_tried},
+          {"terminal_position_gap", number(w.terminal_position_gap)},
+          {"terminal_velocity_gap", number(w.terminal_velocity_gap)},
+          {"terminal_output_gap", number(w.terminal_output_gap)},
+          {"max_violation", w.violation.max()},
+          {"violation", violationJson(w.violation)}};
+}
+
+/// One direction's slices: time, count, boundary outputs (+ every sample with `samples`).
+json slicesJson(const std::vector<SampleSlice>& slices, bool samples) {
+  json list = json::array();
+  for (const SampleSlice& s : slices) {
+    json e = {{"t", s.time}, {"count", s.size()}};
+    Eigen::MatrixXd b(s.output.rows(), s.boundary.size());
+    for (std::size_t k = 0; k < s.boundary.size(); ++k) b.col(k) = s.output.col(s.boundary[k]);
+    e["boundary"] = columns(b);
+    if (samples) {
+      e["outputs"] = columns(s.output);
+      e["qd"] = columns(s.qd);
+    }
+    list.push_back(e);
+  }
+  return list;
+}
+
+/// The check's result into `out` (the keys of the header comment).
+void addResult(const ReachResult& r, bool samples, json& out) {
+  out["reachable"] = r.reachable;
+  out["reason"] = r.reason;
+  out["budgets"] = r.budgets;
+  out["gave_up"] = r.gave_up;
+  out["dt"] = r.dt;
+  out["joint_names"] = r.joint_names;
+  out["counts"] = countsJson(r);
+  out["timings"] = timingsJson(r);
+  out["window"] = windowJson(r);
+  out["best"] = r.best;
+  if (r.witness.valid) out["witness"] = witnessJson(r.witness);
+  out["slices"]["forward"] = slicesJson(r.forward, samples);
+  out["slices"]["backward"] = slicesJson(r.backward, samples);
+}
+
+/// Runs the check: with the request's x_f, or with x_f from the kinematic feasibility check of
+/// the target (then "kinematically_feasible" is in the output; an infeasible target ends it).
+json runCheck(const CheckInputs& in, const ReachProblem& p, bool samples) {
+  json out;
+  const auto analyzer =
+      std::make_shared<ReachabilityAnalyzer>(in.model, in.setup.contact, in.config);
+  if (in.request.has_xf) {
+    addResult(analyzer->check(p), samples, out);
+    return out;
+  }
+  FootstepRequest fr;
+  fr.stance = p.mode.stance();
+  fr.stance_foothold = in.request.stance;
+  fr.target = in.request.target;
+  fr.q0 = p.q0;
+  fr.qd0 = p.qd0;
+  const FootstepReachability check(
+      analyzer, std::make_shared<KinematicFeasibility>(in.model, in.setup.planner.kinematics,
+                                                       in.setup.contact));
+  const FootstepResult f = check.check(fr);
+  out["kinematically_feasible"] = f.kinematically_feasible;
+  if (!f.kinematically_feasible) {
+    out["reachable"] = false;
+    out["reason"] = f.reason;
+    return out;
+  }
+  addResult(f.reach, samples, out);
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string paths[3];
-  int n_paths = 0;
-  std::string threads_arg, config_arg;
-  bool samples = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--threads" && i + 1 < argc) {
-      threads_arg = argv[++i];
-    } else if (a == "--config" && i + 1 < argc) {
-      config_arg = argv[++i];
-    } else if (a == "--samples") {
-      samples = true;
-    } else if (n_paths < 3) {
-      paths[n_paths++] = a;
-    } else {
-      n_paths = 4;
-    }
-  }
-  // --config FILE request.json: the URDF is the config's robot.urdf.
-  if (!config_arg.empty() && n_paths == 1) {
-    paths[2] = paths[0];
-    paths[1] = config_arg;
-    paths[0].clear();
-    n_paths = 3;
-  } else if (!config_arg.empty()) {
-    n_paths = 0;
-  }
-  if (n_paths != 3) {
-    std::cerr << "usage: reach_check <robot.urdf> <config.yaml> <request.json> [--threads N] "
-                 "[--samples]\n"
-                 "       reach_check --config <config.yaml> <request.json> [...] (the URDF: "
-                 "robot.urdf)\n";
-    return 2;
-  }
   try {
-    const YamlSection yaml = YamlSection::loadFile(paths[1]);
-    const auto model = RobotConfig::fromConfigFile(yaml).loadModel(paths[0]);
-    ContactConfig contact;
-    if (yaml.has("contact")) contact = ContactConfig::fromYaml(yaml.section("contact"));
-    ReachConfig config;
-    if (yaml.has("reach")) config = ReachConfig::fromYaml(yaml.section("reach"));
-    KinematicFeasibilityConfig kf_config;
-    if (yaml.has("kinematic_feasibility"))
-      kf_config = KinematicFeasibilityConfig::fromYaml(yaml.section("kinematic_feasibility"));
-    const json doc = JsonReader::parseFile(paths[2]);
-    const ReachCheckRequest req =
-        readReachCheckRequest(JsonReader(doc, paths[2]), model->nq(), config);
-    config = req.config;
-    if (!threads_arg.empty()) config.threads = parseThreadsOption("--threads", threads_arg);
-    config.validate();
-    config.requireResourcesWithinLimits(model->nq());  // before the IK and any sample
-    if (samples && config.estimatedQps() > kMaxPrintedSamples) {
-      std::ostringstream os;
-      os << "--samples: the check would print about " << config.estimatedQps()
-         << " samples, over the limit of " << kMaxPrintedSamples
-         << " (docs/limits.md): lower initial_samples or max_boundary";
-      throw RequestError(os.str());
+    const CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
-    const bool contacts = req.mode != "none";
-    const ContactMode mode = contacts ? ContactMode::fromName(req.mode) : ContactMode{false, false};
-
-    ReachProblem p;
-    p.mode = mode;
-    const FlatContact& stance = req.stance;
-    const FlatContact& target = req.target;
-    if (contacts) {
-      p.footholds[mode.stance() == Side::kLeft ? 0 : 1] = stance.pose();
-      p.target = target.pose();
+    const std::optional<InputFiles> files = inputFiles(args);
+    if (!files) {
+      std::cerr << kTool.usageLine() << "\n";
+      return 2;
     }
-    if (req.has_x0) {
-      p.q0 = req.q0;
-      p.qd0 = req.qd0;
-    } else {
-      const RobotState x0 =
-          swingState(model, kf_config, contact, mode.stance(), stance, req.swing_position,
-                     req.swing_yaw, req.swing_velocity, req.q_init);
-      p.q0 = x0.q;
-      p.qd0 = x0.qd;
-    }
-    json out;
-    const auto analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, config);
-    ReachResult r;
-    if (req.has_xf) {
-      p.qf = req.qf;
-      p.qdf = req.qdf;
-      r = analyzer->check(p);
-    } else {
-      FootstepRequest fr;
-      fr.stance = mode.stance();
-      fr.stance_foothold = stance;
-      fr.target = target;
-      fr.q0 = p.q0;
-      fr.qd0 = p.qd0;
-      const FootstepReachability check(
-          analyzer, std::make_shared<KinematicFeasibility>(model, kf_config, contact));
-      FootstepResult f = check.check(fr);
-      out["kinematically_feasible"] = f.kinematically_feasible;
-      if (!f.kinematically_feasible) {
-        out["reachable"] = false;
-        out["reason"] = f.reason;
-        std::cout << out.dump() << "\n";
-        return 0;
-      }
-      r = std::move(f.reach);
-    }
-    out["reachable"] = r.reachable;
-    out["reason"] = r.reason;
-    out["budgets"] = r.budgets;
-    out["gave_up"] = r.gave_up;
-    out["dt"] = r.dt;
-    out["joint_names"] = r.joint_names;
-    out["counts"] = {{"forward_samples", r.counts.forward_samples},
-                     {"backward_samples", r.counts.backward_samples},
-                     {"forward_qps", r.counts.forward_qps},
-                     {"backward_qps", r.counts.backward_qps},
-                     {"forward_rejected", r.counts.forward_rejected},
-                     {"backward_rejected", r.counts.backward_rejected},
-                     {"backward_prefiltered", r.counts.backward_prefiltered},
-                     {"threads", r.counts.threads}};
-    out["timings"] = {{"forward_s", r.timings.forward},   {"backward_s", r.timings.backward},
-                      {"boundary_s", r.timings.boundary}, {"hausdorff_s", r.timings.hausdorff},
-                      {"witness_s", r.timings.witness},   {"total_s", r.timings.total}};
-    json window = json::array();
-    for (const SliceComparison& c : r.window)
-      window.push_back({{"t", c.time},
-                        {"hausdorff", number(c.distance.hausdorff)},
-                        {"forward_to_backward", number(c.distance.a_to_b)},
-                        {"backward_to_forward", number(c.distance.b_to_a)},
-                        {"resolution", number(c.distance.resolution())},
-                        {"closest", number(c.distance.closest)},
-                        {"overlap_tolerance", number(c.overlap_tolerance)},
-                        {"backward_inside_forward", c.backward_inside_forward},
-                        {"forward_inside_backward", c.forward_inside_backward},
-                        {"overlap", c.overlap},
-                        {"within_delta", c.within_delta}});
-    out["window"] = window;
-    out["best"] = r.best;
-    if (r.witness.valid) {
-      const WitnessPath& w = r.witness;
-      const PathViolation& v = w.violation;
-      out["witness"] = {{"time", w.time},
-                        {"output", columns(w.output)},
-                        {"q", columns(w.q)},
-                        {"qd", columns(w.qd)},
-                        {"u", columns(w.u)},
-                        {"lambda", columns(w.lambda)},
-                        {"junction", w.junction},
-                        {"output_gap", w.output_gap},
-                        {"position_gap", w.position_gap},
-                        {"velocity_gap", w.velocity_gap},
-                        {"certified", w.certified},
-                        {"bridge_start", w.bridge_start},
-                        {"candidates_tried", w.candidates_tried},
-                        {"terminal_position_gap", number(w.terminal_position_gap)},
-                        {"terminal_velocity_gap", number(w.terminal_velocity_gap)},
-                        {"terminal_output_gap", number(w.terminal_output_gap)},
-                        {"max_violation", v.max()},
-                        {"violation",
-                         {{"dynamics", v.dynamics},
-                          {"cone", v.cone},
-                          {"torque", v.torque},
-                          {"position_limit", v.position_limit},
-                          {"velocity_limit", v.velocity_limit},
-                          {"contact", v.contact},
-                          {"contact_velocity", v.contact_velocity},
-                          {"integration", v.integration},
-                          {"ground", v.ground}}}};
-    }
-    for (int dir = 0; dir < 2; ++dir) {
-      json list = json::array();
-      for (const SampleSlice& s : dir == 0 ? r.forward : r.backward) {
-        json e = {{"t", s.time}, {"count", s.size()}};
-        Eigen::MatrixXd b(s.output.rows(), s.boundary.size());
-        for (std::size_t k = 0; k < s.boundary.size(); ++k) b.col(k) = s.output.col(s.boundary[k]);
-        e["boundary"] = columns(b);
-        if (samples) {
-          e["outputs"] = columns(s.output);
-          e["qd"] = columns(s.qd);
-        }
-        list.push_back(e);
-      }
-      out["slices"][dir == 0 ? "forward" : "backward"] = list;
-    }
-    std::cout << out.dump() << "\n";
+    const CheckInputs in = readInputs(*files, args);
+    const ReachProblem problem = problemOf(in);
+    std::cout << runCheck(in, problem, args.given("--samples")).dump() << "\n";
     return 0;
-  } catch (const ReachError& e) {
-    std::cerr << "reach_check: " << e.what() << "\n";
-    return 2;
   } catch (const std::exception& e) {
     std::cerr << "reach_check: " << e.what() << "\n";
     return 2;

@@ -47,7 +47,6 @@
 /// Exit status: 0 ran, 2 bad input.
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -56,389 +55,340 @@
 #include <vector>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/json_reader.h"
-#include "reach_trajopt/contact/contact_wrench_cone.h"
-#include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
+#include "reach_trajopt/step/footstep_planner_setup.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/testing/reference_cases.h"
+#include "verdict_recheck.h"
 
 using namespace reach_trajopt;
+using verdict::Recheck;
+using verdict::recheckCertificate;
 
 namespace {
 
 constexpr long long kMaxGrid = 41;      ///< --grid (docs/limits.md): N^2 checks per state
 constexpr long long kMaxStates = 1000;  ///< --max-states
 
-/// A path to re-check: samples k = 0..L-1 at time[k]; step k (k < L-1) has the acceleration
-/// qdd[k], torques u[k] and the stance wrench lambda[k] (world orientation at the sole centre).
-struct CheckedPath {
-  std::vector<double> time;
-  Eigen::MatrixXd q, qd, qdd, u, lambda;
-  bool euler = false;  ///< a 1 ms Euler path (the bridge): q_{k+1} = q_k + dt qd_{k+1} (or qd_k)
-  std::vector<char> semi_implicit;
+/// The tool's options (--help prints them).
+const CliTool kTool(
+    "verdict_grid", "",
+    "The oracle of the reachability verdict: probes a grid of footholds around each state's\n"
+    "target with the check and the strict OCP and re-checks every reachable verdict.",
+    {{"--config", "FILE", "config file (robot, contact, the planner's sections)",
+      "config/biped.yaml"},
+     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+     {"--requests", "FILE.jsonl", "footstep requests, one JSON per line", ""},
+     {"--bench-case", "", "add bench/reach's SS-L -> DS case", ""},
+     {"--grid", "N", "N x N footholds per state (1.." + std::to_string(kMaxGrid) + ")", "7"},
+     {"--half-width", "M", "the grid's half-width around the target [m, 0..1]", "0.15"},
+     {"--max-states", "K", "at most K states of --requests", std::to_string(kMaxStates)},
+     {"--details", "", "print a CASE line per foothold (DISAGREE lines with a reference)", ""},
+     {"--reach-config", "FILE", "the reach: section of FILE replaces --config's", ""},
+     {"--reference-config", "FILE",
+      "also check every foothold with the reach: section of FILE and compare", ""}});
+
+/// The command line's values.
+struct GridOptions {
+  std::string config_path, urdf, requests_path, reach_path, reference_path;
+  bool bench_case = false, details = false;
+  int grid = 7;
+  double half = 0.15;  ///< [m]
+  long long max_states = kMaxStates;
 };
 
-/// The re-check's verdict: a sentence naming the first family beyond its tolerance.
-struct Recheck {
-  bool passed = true;
-  std::string failure;
-  void require(const char* family, double value, double tolerance) {
-    if (passed && !(value <= tolerance)) {
-      passed = false;
-      failure =
-          std::string(family) + " " + std::to_string(value) + " > " + std::to_string(tolerance);
-    }
-  }
+/// The options' values, each checked against its range. \throws RequestError naming it.
+GridOptions gridOptions(const CliArgs& args) {
+  GridOptions o;
+  o.config_path = args.value("--config");
+  o.urdf = args.value("--urdf");
+  o.requests_path = args.value("--requests");
+  o.reach_path = args.value("--reach-config");
+  o.reference_path = args.value("--reference-config");
+  o.bench_case = args.given("--bench-case");
+  o.details = args.given("--details");
+  o.grid = static_cast<int>(parseIntOption("--grid", args.value("--grid"), 1, kMaxGrid));
+  o.half = parseDoubleOption("--half-width", args.value("--half-width"));
+  if (!(o.half >= 0.0 && o.half <= 1.0)) throw ReachError("--half-width: expected [0, 1] m");
+  o.max_states = parseIntOption("--max-states", args.value("--max-states"), 1, kMaxStates);
+  return o;
+}
+
+/// The reach: section of the file of `option` on top of `base`. \throws ReachError naming the
+/// option and file when the file has no such section.
+ReachConfig reachSectionOf(const std::string& path, const std::string& option,
+                           const ReachConfig& base) {
+  const YamlSection file = YamlSection::loadFile(path);
+  if (!file.has("reach")) throw ReachError(option + " '" + path + "' has no reach: section");
+  return ReachConfig::fromYaml(file.section("reach"), base);
+}
+
+/// The run's configs, model and planner; the reference's reach config with
+/// --reference-config.
+struct GridSetup {
+  FootstepPlannerSetup setup;
+  std::shared_ptr<const RobotModel> model;
+  std::unique_ptr<FootstepTransitionPlanner> planner;
+  std::optional<ReachConfig> reference;
 };
 
-/// The bridge's witness as a CheckedPath (step k: qdd = (qd_{k+1} - qd_k) / dt).
-CheckedPath fromWitness(const WitnessPath& w, double dt) {
-  CheckedPath p;
-  p.time = w.time;
-  p.q = w.q;
-  p.qd = w.qd;
-  p.u = w.u;
-  p.lambda = w.lambda.topRows(6);
-  p.qdd.resize(w.q.rows(), w.u.cols());
-  for (int k = 0; k + 1 < w.q.cols(); ++k) p.qdd.col(k) = (w.qd.col(k + 1) - w.qd.col(k)) / dt;
-  p.euler = true;
-  p.semi_implicit = w.semi_implicit_step;
-  return p;
+GridSetup gridSetup(const GridOptions& o) {
+  GridSetup g;
+  g.setup = FootstepPlannerSetup::fromYamlFile(o.config_path);
+  FootstepPlannerConfig& cfg = g.setup.planner;
+  if (!o.reach_path.empty()) cfg.reach = reachSectionOf(o.reach_path, "--reach-config", cfg.reach);
+  g.model = g.setup.loadModel(o.urdf);
+  g.planner = std::make_unique<FootstepTransitionPlanner>(g.model, g.setup.contact, cfg);
+  if (!o.reference_path.empty())
+    g.reference = reachSectionOf(o.reference_path, "--reference-config", cfg.reach);
+  return g;
 }
 
-/// The OCP's trajectory as a CheckedPath (its 1 ms samples, analytic qdd).
-CheckedPath fromTrajectory(const TransitionResult& t, Side stance) {
-  CheckedPath p;
-  p.time.assign(t.time.data(), t.time.data() + t.time.size());
-  p.q = t.q;
-  p.qd = t.qd;
-  const Eigen::Index steps = t.q.cols() - 1;
-  p.qdd = t.qdd.leftCols(steps);
-  p.u = t.u.leftCols(steps);
-  p.lambda = t.lambda.block(stance == Side::kLeft ? 0 : 6, 0, 6, steps);
-  return p;
-}
-
-/// The oracle's own 1 ms re-check: eq. (1) assembled from M, b and the sole Jacobian; the
-/// stance cone (8) in the held sole's orientation; torque, position and velocity limits; the
-/// held sole's pose and velocity and the swing sole's height from the forward kinematics; the
-/// Euler steps of an Euler path; x(0) = x_0, t_f and x(t_f) against x_f.
-Recheck recheckPath(const RobotModel& model, const ContactConfig& contact, const ReachConfig& reach,
-                    double dynamics_tolerance, const FootstepTransition& step,
-                    const CheckedPath& p) {
-  Recheck out;
-  const int L = static_cast<int>(p.time.size()), nq = model.nq(), nu = model.nu();
-  if (L < 2) {
-    out.require("samples", 0, 2);
-    return out;
-  }
-  const double dt = L > 1 ? p.time[1] - p.time[0] : 0.0;
-  const FrameId stance = model.frameId(contact.soleFrame(step.stance));
-  const FrameId swing = model.frameId(contact.soleFrame(opposite(step.stance)));
-  const Eigen::Isometry3d held = step.stance_contact.pose();
-  const ContactWrenchCone::Matrix C = ContactWrenchCone(contact).worldMatrix(held.linear());
-  const Eigen::VectorXd u_max = model.effortLimits(), qd_max = model.velocityLimits();
-  const Eigen::VectorXd q_lo = model.positionLowerLimits(), q_hi = model.positionUpperLimits();
-  Workspace ws(model);
-  Eigen::MatrixXd M(nq, nq), J(6, nq);
-  Eigen::VectorXd b(nq);
-  double dyn = 0, cone = 0, torque = 0, pos = 0, vel = 0, sole = 0, sole_v = 0, depth = 0,
-         euler = 0;
-  for (int k = 0; k < L; ++k) {
-    const auto q = p.q.col(k), qd = p.qd.col(k);
-    model.update(ws, q, qd);
-    const Eigen::Isometry3d X = model.framePose(ws, stance);
-    const Eigen::AngleAxisd rot(held.linear().transpose() * X.linear());
-    sole = std::max({sole, (X.translation() - held.translation()).norm(), std::abs(rot.angle())});
-    model.frameJacobian(ws, stance, J);
-    sole_v = std::max(sole_v, (J * qd).cwiseAbs().maxCoeff());
-    depth =
-        std::max(depth, step.target.position.z() - model.framePose(ws, swing).translation().z());
-    pos = std::max({pos, (q_lo - q).maxCoeff(), (q - q_hi).maxCoeff()});
-    for (int i = 0; i < nq; ++i)
-      if (std::isfinite(qd_max[i]) && qd_max[i] > 0)
-        vel = std::max(vel, std::abs(qd[i]) - qd_max[i]);
-    if (k + 1 == L) break;
-    model.massMatrix(ws, M);
-    model.bias(ws, b);
-    Eigen::VectorXd r = M * p.qdd.col(k) + b - J.transpose() * p.lambda.col(k);
-    r.tail(nu) -= p.u.col(k);
-    dyn = std::max(dyn, r.cwiseAbs().maxCoeff());
-    cone = std::max(cone, -(C * p.lambda.col(k)).minCoeff());
-    torque = std::max(torque, (p.u.col(k).cwiseAbs() - u_max).maxCoeff());
-    if (p.euler) {
-      const Eigen::VectorXd v = p.semi_implicit[k] ? p.qd.col(k + 1) : p.qd.col(k);
-      euler = std::max(euler, (p.q.col(k + 1) - q - dt * v).cwiseAbs().maxCoeff());
+/// The states x_0: bench/reach's case (--bench-case), then --requests' lines (at most
+/// --max-states in all). \throws ReachError naming the file and line of a bad request.
+std::vector<FootstepPlanRequest> loadStates(const GridOptions& o, const GridSetup& g) {
+  std::vector<FootstepPlanRequest> states;
+  const FootstepPlannerConfig& cfg = g.setup.planner;
+  if (o.bench_case) states.push_back(benchSwingCase(g.model, cfg, g.setup.contact));
+  if (!o.requests_path.empty()) {
+    std::ifstream in(o.requests_path);
+    if (!in) throw ReachError("cannot read --requests file '" + o.requests_path + "'");
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line) && static_cast<long long>(states.size()) < o.max_states) {
+      ++n;
+      if (line.empty()) continue;
+      const std::string where = o.requests_path + ":" + std::to_string(n);
+      const nlohmann::json j = JsonReader::parse(line, where);
+      states.push_back(readFootstepPlanRequest(JsonReader(j, where), g.model->nq(), cfg.reach));
     }
   }
-  const double W = model.totalMass() * model.gravity().norm();
-  out.require("eq. (1) [N, Nm]", dyn, dynamics_tolerance);
-  // The cone is written in the held (planned) sole orientation; the sole may be tilted from
-  // it by up to the contact tolerance, which moves a row by at most |lambda| times that.
-  out.require("stance cone [N]", cone, dynamics_tolerance + 2.0 * W * reach.contact_tolerance);
-  out.require("torque limits [Nm]", torque, 1e-6);
-  out.require("position limits [m, rad]", pos, 1e-6);
-  out.require("velocity limits [m/s, rad/s]", vel, 1e-6);
-  out.require("held sole pose [m, rad]", sole, 2.0 * reach.contact_tolerance);
-  out.require("held sole velocity [m/s, rad/s]", sole_v,
-              reach.certificate_contact_velocity_tolerance);
-  out.require("swing sole below the ground [m]", depth, reach.certificate_tolerance);
-  out.require("Euler steps [m, rad]", euler, 1e-9);
-  out.require("x(0) - x_0",
-              std::max((p.q.col(0) - step.q0).cwiseAbs().maxCoeff(),
-                       (p.qd.col(0) - step.qd0).cwiseAbs().maxCoeff()),
-              1e-9);
-  out.require("t_f", std::abs(p.time[L - 1] - step.horizon), 1e-9);
-  out.require("|q(t_f) - q_f|", (p.q.col(L - 1) - step.check.kinematics.q_f).cwiseAbs().maxCoeff(),
-              reach.terminal_position_tolerance);
-  out.require("|qd(t_f) - qd_f|", (p.qd.col(L - 1) - step.check.qdf).cwiseAbs().maxCoeff(),
-              reach.terminal_velocity_tolerance);
-  return out;
+  if (states.empty()) throw ReachError("no states: give --requests FILE and/or --bench-case");
+  return states;
 }
 
-/// The re-check of a "reachable" step's certificate: the bridged witness, or the local solve.
-Recheck recheckCertificate(const RobotModel& model, const ContactConfig& contact,
-                           const FootstepPlannerConfig& cfg, const ReachConfig& reach,
-                           const FootstepTransition& step) {
-  if (step.certificate == Certificate::kBridge)
-    return recheckPath(model, contact, reach, reach.certificate_tolerance, step,
-                       fromWitness(step.check.reach.witness, reach.dt));
-  // The OCP's tolerance is relative to m g and u_max; in newtons that is at most this.
-  const double W = model.totalMass() * model.gravity().norm();
-  const double tol = cfg.ocp.tolerance * std::max(W, model.effortLimits().maxCoeff());
-  return recheckPath(model, contact, reach, tol, step,
-                     fromTrajectory(step.trajectory, step.stance));
+/// One foothold of the grid: its state, offset and request (the state's target moved).
+struct Probe {
+  std::size_t state;
+  double dx, dy;
+  FootstepPlanRequest request;
+};
+
+/// The grid's verdicts against the oracles, counted foothold by foothold, and the BENCH lines.
+class VerdictGrid {
+ public:
+  VerdictGrid(const GridSetup& g, bool details) : g_(g), cfg_(g.setup.planner), details_(details) {}
+
+  /// The check (the strict OCP seeded with its witness when it says reachable), compared with
+  /// the reference configuration's, the check on its own and the unseeded strict OCP.
+  void probe(const Probe& p) {
+    ++cases_;
+    FootstepPlanRequest request = p.request;
+    request.ocp_policy = OcpPolicy::kStrict;
+    const FootstepTransition checked = g_.planner->plan(request);
+    check_time_ += checked.check_time_s;
+    if (g_.reference) compareReference(p, request, checked);
+    if (g_.reference && checked.kinematically_feasible) compareCheck(p, request, checked);
+    if (!checked.kinematically_feasible) {
+      ++infeasible_;
+      if (details_)
+        std::printf("CASE state=%zu dx=%.3f dy=%.3f verdict=kinematically_infeasible\n", p.state,
+                    p.dx, p.dy);
+      return;
+    }
+    compareOcp(p, request, checked);
+  }
+
+  void printBench(std::size_t states) const;
+
+ private:
+  /// The same foothold with the reference sampling (the request's horizon kept).
+  void compareReference(const Probe& p, const FootstepPlanRequest& request,
+                        const FootstepTransition& checked) {
+    FootstepPlanRequest ref_request = request;
+    ReachConfig rc = *g_.reference;
+    if (request.reach) rc.horizon = request.reach->horizon;
+    ref_request.reach = rc;
+    const FootstepTransition ref = g_.planner->plan(ref_request);
+    ref_check_time_ += ref.check_time_s;
+    agree_ += ref.verdict == checked.verdict;
+    agree_feasible_ += ref.verdict == checked.verdict && checked.kinematically_feasible;
+    ref_reachable_ += ref.reachable;
+    fast_only_ += checked.reachable && !ref.reachable;
+    ref_only_ += ref.reachable && !checked.reachable;
+    if (details_ && ref.verdict != checked.verdict)
+      std::printf("DISAGREE state=%zu dx=%.3f dy=%.3f fast=%s(%s) reference=%s(%s)\n", p.state,
+                  p.dx, p.dy, stepVerdictName(checked.verdict),
+                  certificateName(checked.certificate), stepVerdictName(ref.verdict),
+                  certificateName(ref.certificate));
+  }
+
+  void compareCheck(const Probe& p, const FootstepPlanRequest& request,
+                    const FootstepTransition& checked);
+  void compareOcp(const Probe& p, const FootstepPlanRequest& request,
+                  const FootstepTransition& checked);
+  void printCase(const Probe& p, const FootstepTransition& checked, const std::string& recheck,
+                 const FootstepTransition& ocp) const;
+
+  /// The check on its own (reach.verdict_check).
+  struct OwnCheck {
+    int cases = 0, agree = 0, reachable = 0, ref_reachable = 0, only = 0, ref_only = 0, fr = 0,
+        gave_up = 0, both = 0;
+    double time_s = 0.0, ref_time_s = 0.0;
+  };
+
+  const GridSetup& g_;
+  const FootstepPlannerConfig& cfg_;
+  const bool details_;
+  int cases_ = 0, infeasible_ = 0, reachable_ = 0, certified_ = 0, bridge_ = 0, converged_ = 0,
+      fr_ = 0, fu_ = 0, seeded_ = 0;
+  double check_time_ = 0.0, ref_check_time_ = 0.0;
+  int agree_ = 0, agree_feasible_ = 0, ref_reachable_ = 0, fast_only_ = 0, ref_only_ = 0;
+  OwnCheck own_;
+};
+
+/// The same x_0 and x_f (the planner's IK) through the check alone, with the request's and
+/// the reference's config; a reachable verdict's bridge re-checked.
+void VerdictGrid::compareCheck(const Probe& p, const FootstepPlanRequest& request,
+                               const FootstepTransition& checked) {
+  const ReachProblem problem = footstepProblem(FootstepTransitionPlanner::checkRequest(checked),
+                                               checked.check.kinematics.q_f, checked.check.qdf);
+  ReachConfig own_config = request.reach ? *request.reach : cfg_.reach;
+  ReachConfig ref_config = *g_.reference;
+  ref_config.horizon = own_config.horizon;
+  const ReachResult a = g_.planner->analyzer().check(problem, own_config);
+  const ReachResult b = g_.planner->analyzer().check(problem, ref_config);
+  ++own_.cases;
+  own_.agree += a.reachable == b.reachable;
+  own_.reachable += a.reachable;
+  own_.ref_reachable += b.reachable;
+  own_.only += a.reachable && !b.reachable;
+  own_.ref_only += b.reachable && !a.reachable;
+  own_.gave_up += a.gave_up;
+  own_.both += a.budgets == 2;
+  own_.time_s += a.timings.total;
+  own_.ref_time_s += b.timings.total;
+  if (a.reachable) {
+    FootstepTransition bridged = checked;
+    bridged.check.reach = a;
+    bridged.certificate = Certificate::kBridge;
+    own_.fr += !recheckCertificate(*g_.model, g_.setup.contact, cfg_, own_config, bridged).passed;
+  }
+  if (details_ && a.reachable != b.reachable)
+    std::printf("DISAGREE_CHECK state=%zu dx=%.3f dy=%.3f own=%d(budgets %d%s) reference=%d\n",
+                p.state, p.dx, p.dy, a.reachable ? 1 : 0, a.budgets, a.gave_up ? ", gave up" : "",
+                b.reachable ? 1 : 0);
+}
+
+/// The unseeded strict OCP of a kinematically feasible foothold; the re-check of a reachable
+/// verdict's certificate.
+void VerdictGrid::compareOcp(const Probe& p, const FootstepPlanRequest& request,
+                             const FootstepTransition& checked) {
+  FootstepPlanRequest plain = p.request;
+  plain.check_reachability = false;
+  plain.ocp_policy = OcpPolicy::kStrict;
+  const FootstepTransition ocp = g_.planner->plan(plain);
+  // Converged within the joint velocity limits: a feasible path (as a certificate).
+  const bool ocp_ok = ocp.trajectory.reachesTargetWithinLimits(cfg_.ocp.tolerance);
+  converged_ += ocp_ok;
+  std::string recheck = "-";
+  if (checked.reachable) {
+    ++reachable_;
+    bridge_ += checked.certificate == Certificate::kBridge;
+    seeded_ += checked.trajectory.status == OcpStatus::kConverged;
+    const ReachConfig& reach = request.reach ? *request.reach : cfg_.reach;
+    const Recheck rc = recheckCertificate(*g_.model, g_.setup.contact, cfg_, reach, checked);
+    (rc.passed ? certified_ : fr_) += 1;
+    recheck = rc.passed ? "passed" : "failed(" + rc.failure + ")";
+  } else if (ocp_ok) {
+    ++fu_;
+  }
+  if (details_) printCase(p, checked, recheck, ocp);
+}
+
+void VerdictGrid::printCase(const Probe& p, const FootstepTransition& checked,
+                            const std::string& recheck, const FootstepTransition& ocp) const {
+  const WitnessPath& w = checked.check.reach.witness;
+  std::printf(
+      "CASE state=%zu dx=%.3f dy=%.3f verdict=%s certificate=%s recheck=%s seeded_ocp=%s "
+      "ocp=%s "
+      "witness_violation=%.3g (dynamics %.2g cone %.2g torque %.2g limits %.2g/%.2g "
+      "contact %.2g/%.2g ground %.2g) x_f_gap=%.3g/%.3g check_s=%.2f reason: %s\n",
+      p.state, p.dx, p.dy, stepVerdictName(checked.verdict),
+      checked.certificate == Certificate::kNone ? "none" : certificateName(checked.certificate),
+      recheck.c_str(), ocpStatusName(checked.trajectory.status),
+      ocpStatusName(ocp.trajectory.status), w.valid ? w.violation.max() : -1.0,
+      w.violation.dynamics, w.violation.cone, w.violation.torque, w.violation.position_limit,
+      w.violation.velocity_limit, w.violation.contact, w.violation.contact_velocity,
+      w.violation.ground, w.terminal_position_gap, w.terminal_velocity_gap, checked.check_time_s,
+      checked.check.reach.reason.c_str());
+  std::fflush(stdout);
+}
+
+void VerdictGrid::printBench(std::size_t states) const {
+  std::printf(
+      "BENCH reach.verdict cases=%d states=%zu kinematically_infeasible=%d reachable=%d "
+      "certified=%d ocp_converged=%d false_reachable=%d false_unreachable=%d "
+      "bridge_certified=%d reachable_strict_converged=%d check_mean_s=%.3f\n",
+      cases_, states, infeasible_, reachable_, certified_, converged_, fr_, fu_, bridge_, seeded_,
+      check_time_ / std::max(1, cases_));
+  if (!g_.reference) return;
+  std::printf(
+      "BENCH reach.verdict_fast ref=reference cases=%d agreement=%.4f disagreements=%d "
+      "feasible_agreement=%.4f "
+      "fast_reachable=%d ref_reachable=%d fast_only_reachable=%d ref_only_reachable=%d "
+      "false_reachable=%d fast_check_mean_s=%.3f ref_check_mean_s=%.3f speedup=%.2f\n",
+      cases_, static_cast<double>(agree_) / std::max(1, cases_), cases_ - agree_,
+      static_cast<double>(agree_feasible_) / std::max(1, cases_ - infeasible_), reachable_,
+      ref_reachable_, fast_only_, ref_only_, fr_, check_time_ / std::max(1, cases_),
+      ref_check_time_ / std::max(1, cases_), ref_check_time_ / std::max(1e-12, check_time_));
+  std::printf(
+      "BENCH reach.verdict_check ref=reference cases=%d agreement=%.4f own_reachable=%d "
+      "ref_reachable=%d own_only_reachable=%d ref_only_reachable=%d false_reachable=%d "
+      "gave_up=%d both_budgets=%d check_mean_s=%.3f ref_check_mean_s=%.3f speedup=%.2f\n",
+      own_.cases, static_cast<double>(own_.agree) / std::max(1, own_.cases), own_.reachable,
+      own_.ref_reachable, own_.only, own_.ref_only, own_.fr, own_.gave_up, own_.both,
+      own_.time_s / std::max(1, own_.cases), own_.ref_time_s / std::max(1, own_.cases),
+      own_.ref_time_s / std::max(1e-12, own_.time_s));
+}
+
+/// The grid's footholds of state `s`: N x N offsets within +-half of its target, row by row.
+std::vector<Probe> gridProbes(std::size_t s, const FootstepPlanRequest& state,
+                              const GridOptions& o) {
+  std::vector<Probe> probes;
+  for (int ix = 0; ix < o.grid; ++ix) {
+    for (int iy = 0; iy < o.grid; ++iy) {
+      const double dx = o.grid > 1 ? -o.half + 2.0 * o.half * ix / (o.grid - 1) : 0.0;
+      const double dy = o.grid > 1 ? -o.half + 2.0 * o.half * iy / (o.grid - 1) : 0.0;
+      Probe p{s, dx, dy, state};
+      p.request.target += Eigen::Vector3d(dx, dy, 0.0);
+      probes.push_back(std::move(p));
+    }
+  }
+  return probes;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
-    std::string config_path = "config/biped.yaml", urdf, requests_path;
-    std::string grid_s, half_s, max_s, reference_path, reach_path;
-    bool bench_case = false, details = false;
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw ReachError(a + ": missing value");
-        return argv[++i];
-      };
-      if (a == "--config")
-        config_path = next();
-      else if (a == "--urdf")
-        urdf = next();
-      else if (a == "--requests")
-        requests_path = next();
-      else if (a == "--bench-case")
-        bench_case = true;
-      else if (a == "--grid")
-        grid_s = next();
-      else if (a == "--half-width")
-        half_s = next();
-      else if (a == "--max-states")
-        max_s = next();
-      else if (a == "--details")
-        details = true;
-      else if (a == "--reference-config")
-        reference_path = next();
-      else if (a == "--reach-config")
-        reach_path = next();
-      else
-        throw ReachError("unknown option '" + a + "'");
+    const CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
-    const int grid =
-        grid_s.empty() ? 7 : static_cast<int>(parseIntOption("--grid", grid_s, 1, kMaxGrid));
-    const double half = half_s.empty() ? 0.15 : parseDoubleOption("--half-width", half_s);
-    if (!(half >= 0.0 && half <= 1.0)) throw ReachError("--half-width: expected [0, 1] m");
-    const long long max_states =
-        max_s.empty() ? kMaxStates : parseIntOption("--max-states", max_s, 1, kMaxStates);
-    const YamlSection file = YamlSection::loadFile(config_path);
-    const ContactConfig contact =
-        file.has("contact") ? ContactConfig::fromYaml(file.section("contact")) : ContactConfig();
-    FootstepPlannerConfig cfg = FootstepPlannerConfig::fromYaml(file);
-    if (!reach_path.empty()) {
-      const YamlSection reach_file = YamlSection::loadFile(reach_path);
-      if (!reach_file.has("reach"))
-        throw ReachError("--reach-config '" + reach_path + "' has no reach: section");
-      cfg.reach = ReachConfig::fromYaml(reach_file.section("reach"), cfg.reach);
-    }
-    const auto model = RobotConfig::fromConfigFile(file).loadModel(urdf);
-    const FootstepTransitionPlanner planner(model, contact, cfg);
-    std::optional<ReachConfig> reference;
-    if (!reference_path.empty()) {
-      const YamlSection ref_file = YamlSection::loadFile(reference_path);
-      if (!ref_file.has("reach"))
-        throw ReachError("--reference-config '" + reference_path + "' has no reach: section");
-      reference = ReachConfig::fromYaml(ref_file.section("reach"), cfg.reach);
-    }
-
-    std::vector<FootstepPlanRequest> states;
-    if (bench_case) states.push_back(benchSwingCase(model, cfg, contact));
-    if (!requests_path.empty()) {
-      std::ifstream in(requests_path);
-      if (!in) throw ReachError("cannot read --requests file '" + requests_path + "'");
-      std::string line;
-      int n = 0;
-      while (std::getline(in, line) && static_cast<long long>(states.size()) < max_states) {
-        ++n;
-        if (line.empty()) continue;
-        const nlohmann::json j = JsonReader::parse(line, requests_path + ":" + std::to_string(n));
-        states.push_back(readFootstepPlanRequest(
-            JsonReader(j, requests_path + ":" + std::to_string(n)), model->nq(), cfg.reach));
-      }
-    }
-    if (states.empty()) throw ReachError("no states: give --requests FILE and/or --bench-case");
-
-    int cases = 0, infeasible = 0, reachable = 0, certified = 0, bridge = 0, converged = 0, fr = 0,
-        fu = 0, seeded = 0;
-    double check_time = 0.0, ref_check_time = 0.0;
-    int agree = 0, agree_feasible = 0, ref_reachable = 0, fast_only = 0, ref_only = 0;
-    // The check on its own (reach.verdict_check).
-    struct OwnCheck {
-      int cases = 0, agree = 0, reachable = 0, ref_reachable = 0, only = 0, ref_only = 0, fr = 0,
-          gave_up = 0, both = 0;
-      double time_s = 0.0, ref_time_s = 0.0;
-    } own;
-    for (size_t s = 0; s < states.size(); ++s) {
-      for (int ix = 0; ix < grid; ++ix) {
-        for (int iy = 0; iy < grid; ++iy) {
-          const double dx = grid > 1 ? -half + 2.0 * half * ix / (grid - 1) : 0.0;
-          const double dy = grid > 1 ? -half + 2.0 * half * iy / (grid - 1) : 0.0;
-          FootstepPlanRequest r = states[s];
-          r.target += Eigen::Vector3d(dx, dy, 0.0);
-          ++cases;
-          // The check; the strict OCP seeded with its witness when it says reachable.
-          FootstepPlanRequest probe = r;
-          probe.ocp_policy = OcpPolicy::kStrict;
-          const FootstepTransition checked = planner.plan(probe);
-          check_time += checked.check_time_s;
-          if (reference) {
-            // The same foothold with the reference sampling (the request's horizon kept).
-            FootstepPlanRequest ref_probe = probe;
-            ReachConfig rc = *reference;
-            if (probe.reach) rc.horizon = probe.reach->horizon;
-            ref_probe.reach = rc;
-            const FootstepTransition ref = planner.plan(ref_probe);
-            ref_check_time += ref.check_time_s;
-            agree += ref.verdict == checked.verdict;
-            agree_feasible += ref.verdict == checked.verdict && checked.kinematically_feasible;
-            ref_reachable += ref.reachable;
-            fast_only += checked.reachable && !ref.reachable;
-            ref_only += ref.reachable && !checked.reachable;
-            if (details && ref.verdict != checked.verdict)
-              std::printf("DISAGREE state=%zu dx=%.3f dy=%.3f fast=%s(%s) reference=%s(%s)\n", s,
-                          dx, dy, stepVerdictName(checked.verdict),
-                          certificateName(checked.certificate), stepVerdictName(ref.verdict),
-                          certificateName(ref.certificate));
-          }
-          if (reference && checked.kinematically_feasible) {
-            // The same x_0 and x_f (the planner's IK) through the check alone.
-            const ReachProblem problem =
-                footstepProblem(FootstepTransitionPlanner::checkRequest(checked),
-                                checked.check.kinematics.q_f, checked.check.qdf);
-            ReachConfig own_config = probe.reach ? *probe.reach : cfg.reach;
-            ReachConfig ref_config = *reference;
-            ref_config.horizon = own_config.horizon;
-            const ReachResult a = planner.analyzer().check(problem, own_config);
-            const ReachResult b = planner.analyzer().check(problem, ref_config);
-            ++own.cases;
-            own.agree += a.reachable == b.reachable;
-            own.reachable += a.reachable;
-            own.ref_reachable += b.reachable;
-            own.only += a.reachable && !b.reachable;
-            own.ref_only += b.reachable && !a.reachable;
-            own.gave_up += a.gave_up;
-            own.both += a.budgets == 2;
-            own.time_s += a.timings.total;
-            own.ref_time_s += b.timings.total;
-            if (a.reachable) {
-              FootstepTransition bridged = checked;
-              bridged.check.reach = a;
-              bridged.certificate = Certificate::kBridge;
-              own.fr += !recheckCertificate(*model, contact, cfg, own_config, bridged).passed;
-            }
-            if (details && a.reachable != b.reachable)
-              std::printf(
-                  "DISAGREE_CHECK state=%zu dx=%.3f dy=%.3f own=%d(budgets %d%s) "
-                  "reference=%d\n",
-                  s, dx, dy, a.reachable ? 1 : 0, a.budgets, a.gave_up ? ", gave up" : "",
-                  b.reachable ? 1 : 0);
-          }
-          if (!checked.kinematically_feasible) {
-            ++infeasible;
-            if (details)
-              std::printf("CASE state=%zu dx=%.3f dy=%.3f verdict=kinematically_infeasible\n", s,
-                          dx, dy);
-            continue;
-          }
-          // The unseeded strict OCP.
-          FootstepPlanRequest plain = r;
-          plain.check_reachability = false;
-          plain.ocp_policy = OcpPolicy::kStrict;
-          const FootstepTransition ocp = planner.plan(plain);
-          // Converged within the joint velocity limits: a feasible path (as a certificate).
-          const bool ocp_ok = ocp.trajectory.reachesTargetWithinLimits(cfg.ocp.tolerance);
-          converged += ocp_ok;
-          std::string recheck = "-";
-          if (checked.reachable) {
-            ++reachable;
-            bridge += checked.certificate == Certificate::kBridge;
-            seeded += checked.trajectory.status == OcpStatus::kConverged;
-            const ReachConfig& reach = probe.reach ? *probe.reach : cfg.reach;
-            const Recheck rc = recheckCertificate(*model, contact, cfg, reach, checked);
-            (rc.passed ? certified : fr) += 1;
-            recheck = rc.passed ? "passed" : "failed(" + rc.failure + ")";
-          } else if (ocp_ok) {
-            ++fu;
-          }
-          if (details) {
-            const WitnessPath& w = checked.check.reach.witness;
-            std::printf(
-                "CASE state=%zu dx=%.3f dy=%.3f verdict=%s certificate=%s recheck=%s seeded_ocp=%s "
-                "ocp=%s "
-                "witness_violation=%.3g (dynamics %.2g cone %.2g torque %.2g limits %.2g/%.2g "
-                "contact %.2g/%.2g ground %.2g) x_f_gap=%.3g/%.3g check_s=%.2f reason: %s\n",
-                s, dx, dy, stepVerdictName(checked.verdict),
-                checked.certificate == Certificate::kNone ? "none"
-                                                          : certificateName(checked.certificate),
-                recheck.c_str(), ocpStatusName(checked.trajectory.status),
-                ocpStatusName(ocp.trajectory.status), w.valid ? w.violation.max() : -1.0,
-                w.violation.dynamics, w.violation.cone, w.violation.torque,
-                w.violation.position_limit, w.violation.velocity_limit, w.violation.contact,
-                w.violation.contact_velocity, w.violation.ground, w.terminal_position_gap,
-                w.terminal_velocity_gap, checked.check_time_s, checked.check.reach.reason.c_str());
-            std::fflush(stdout);
-          }
-        }
-      }
-    }
-    std::printf(
-        "BENCH reach.verdict cases=%d states=%zu kinematically_infeasible=%d reachable=%d "
-        "certified=%d ocp_converged=%d false_reachable=%d false_unreachable=%d "
-        "bridge_certified=%d reachable_strict_converged=%d check_mean_s=%.3f\n",
-        cases, states.size(), infeasible, reachable, certified, converged, fr, fu, bridge, seeded,
-        check_time / std::max(1, cases));
-    if (reference)
-      std::printf(
-          "BENCH reach.verdict_fast ref=reference cases=%d agreement=%.4f disagreements=%d "
-          "feasible_agreement=%.4f "
-          "fast_reachable=%d ref_reachable=%d fast_only_reachable=%d ref_only_reachable=%d "
-          "false_reachable=%d fast_check_mean_s=%.3f ref_check_mean_s=%.3f speedup=%.2f\n",
-          cases, static_cast<double>(agree) / std::max(1, cases), cases - agree,
-          static_cast<double>(agree_feasible) / std::max(1, cases - infeasible), reachable,
-          ref_reachable, fast_only, ref_only, fr, check_time / std::max(1, cases),
-          ref_check_time / std::max(1, cases), ref_check_time / std::max(1e-12, check_time));
-    if (reference)
-      std::printf(
-          "BENCH reach.verdict_check ref=reference cases=%d agreement=%.4f own_reachable=%d "
-          "ref_reachable=%d own_only_reachable=%d ref_only_reachable=%d false_reachable=%d "
-          "gave_up=%d both_budgets=%d check_mean_s=%.3f ref_check_mean_s=%.3f speedup=%.2f\n",
-          own.cases, static_cast<double>(own.agree) / std::max(1, own.cases), own.reachable,
-          own.ref_reachable, own.only, own.ref_only, own.fr, own.gave_up, own.both,
-          own.time_s / std::max(1, own.cases), own.ref_time_s / std::max(1, own.cases),
-          own.ref_time_s / std::max(1e-12, own.time_s));
+    if (!args.positional().empty())
+      throw ReachError("unknown option '" + args.positional()[0] + "'");
+    const GridOptions options = gridOptions(args);
+    const GridSetup setup = gridSetup(options);
+    const std::vector<FootstepPlanRequest> states = loadStates(options, setup);
+    VerdictGrid grid(setup, options.details);
+    for (std::size_t s = 0; s < states.size(); ++s)
+      for (const Probe& p : gridProbes(s, states[s], options)) grid.probe(p);
+    grid.printBench(states.size());
   } catch (const std::exception& e) {
     std::cerr << "verdict_grid: " << e.what() << "\n";
     return 2;

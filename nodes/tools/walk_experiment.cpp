@@ -24,148 +24,160 @@
 #include <string>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
 
+namespace {
+
 /// Upper bound of --steps (docs/limits.md): each proposed step costs seconds of checks.
 constexpr long long kMaxWalkSteps = 1000;
 /// Upper bound of --settle [s] (a standing test of an hour is a typo, not a test).
 constexpr double kMaxSettleSeconds = 600.0;
 
-int main(int argc, char** argv) {
-  std::string config_path = "config/biped.yaml", urdf, records_path, requests_path,
-              ocp_requests_path;
-  std::string mode, push, steps, seed, speed, settle;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::runtime_error("missing value after " + a);
-      return argv[++i];
-    };
-    try {
-      if (a == "--config")
-        config_path = next();
-      else if (a == "--urdf")
-        urdf = next();
-      else if (a == "--policy" || a == "--mode")
-        mode = next();
-      else if (a == "--steps")
-        steps = next();
-      else if (a == "--seed")
-        seed = next();
-      else if (a == "--push")
-        push = next();
-      else if (a == "--forward-speed")
-        speed = next();
-      else if (a == "--settle")
-        settle = next();
-      else if (a == "--records")
-        records_path = next();
-      else if (a == "--plan-requests")
-        requests_path = next();
-      else if (a == "--ocp-requests")
-        ocp_requests_path = next();
-      else
-        throw std::runtime_error("unknown argument '" + a + "'");
-    } catch (const std::exception& e) {
-      std::cerr << "walk_experiment: " << e.what() << "\n";
-      return 2;
-    }
+/// The tool's options (--help prints them).
+const CliTool kTool(
+    "walk_experiment", "",
+    "The walking experiment of the paper's Sec. IV, headless: one line per step, then the WALK\n"
+    "summary line and the policy's definition.",
+    {{"--config", "FILE", "the robot and its parameters", "config/biped.yaml"},
+     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+     {"--policy", "P",
+      "walking policy: baseline | unbounded | kinematic | proposed[,part=value...] (default: "
+      "the config's walk.policy)",
+      "", 1, "--mode"},
+     {"--steps", "N", "steps to walk, 0.." + std::to_string(kMaxWalkSteps) + " (0: stand only)",
+      ""},
+     {"--seed", "S", "seed of the walk's random perturbations", ""},
+     {"--push", "vx,vy", "initial CoM velocity [m/s]", ""},
+     {"--forward-speed", "v", "commanded forward speed [m/s]", ""},
+     {"--settle", "S", "stand S seconds before the first step", ""},
+     {"--records", "FILE.csv", "write every step's record", ""},
+     {"--plan-requests", "FILE.jsonl", "write each checked footstep's request (verdict_grid)", ""},
+     {"--ocp-requests", "FILE.jsonl",
+      "write each checked feasible footstep's strict OCP request (plan_transition)", ""}});
+
+/// The walk config of the file with the command line's changes, validated.
+/// \throws ReachError naming a bad option value.
+void applyOptions(const CliArgs& args, WalkConfig& walk) {
+  if (args.given("--policy")) walk.policy = WalkingPolicy::parse(args.value("--policy"));
+  if (args.given("--steps"))
+    walk.steps =
+        static_cast<int>(parseIntOption("--steps", args.value("--steps"), 0, kMaxWalkSteps));
+  if (args.given("--seed"))
+    walk.seed =
+        static_cast<unsigned>(parseIntOption("--seed", args.value("--seed"), 0, 4294967295LL));
+  if (args.given("--forward-speed"))
+    walk.forward_speed = parseDoubleOption("--forward-speed", args.value("--forward-speed"));
+  // Standing before the first lift-off [s]; with --steps 0 the run is a standing test.
+  if (args.given("--settle")) {
+    walk.settle_duration =
+        parseDoubleOption("--settle", args.value("--settle"), 0.0, kMaxSettleSeconds);
+    walk.max_sim_time = std::max(walk.max_sim_time, walk.settle_duration + 1.0);
   }
+  if (args.given("--push")) {
+    const std::string push = args.value("--push");
+    const auto comma = push.find(',');
+    if (comma == std::string::npos)
+      throw RequestError("--push: expected vx,vy [m/s], got '" + push + "'");
+    walk.initial_com_velocity =
+        Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
+                        parseDoubleOption("--push", push.substr(comma + 1)));
+  }
+  walk.validate();
+}
+
+/// An output file of `option`, opened before the walk; not open when the option is not given.
+std::ofstream openOutput(const CliArgs& args, const std::string& option) {
+  std::ofstream out;
+  const std::string path = args.value(option);
+  if (path.empty()) return out;
+  out.open(path);
+  if (!out) throw ReachError("cannot write " + option + " file '" + path + "'");
+  return out;
+}
+
+/// The strict transition OCP request of a checked, kinematically feasible footstep (x_0 as
+/// used, x_f and qd_f of the check, no hulls, no seed).
+TransitionRequest ocpRequest(const FootstepTransition& step) {
+  TransitionRequest ocp;
+  ocp.stance = step.stance;
+  ocp.stance_pose = step.stance_contact.pose();
+  ocp.swing_target = step.target.pose();
+  ocp.horizon = step.horizon;
+  ocp.q0 = step.q0;
+  ocp.qd0 = step.qd0;
+  ocp.qf = step.check.kinematics.q_f;
+  ocp.qdf = step.check.qdf;
+  ocp.relaxation = RelaxationMode::kStrict;
+  return ocp;
+}
+
+/// One line per executed step on stdout.
+void printStep(const StepRecord& s) {
+  std::printf(
+      "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
+      "executed=(%.3f, %.3f) err=%.4f m verdict=%s certificate=%s witness_violation=%.3g "
+      "junction_gap=%.3g/%.3g x_f_gap=%.3g/%.3g d_H=%.4g check_s=%.3f passes=%d "
+      "ocp_s=%.3f ocp=%s%s%s\n",
+      s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
+      s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
+      s.executed.y(), s.touchdown_error, s.verdictName(),
+      s.certificate == Certificate::kNone ? "none" : s.certificateName(), s.witness_violation,
+      s.junction_position_gap, s.junction_velocity_gap, s.terminal_position_gap,
+      s.terminal_velocity_gap, s.hausdorff_distance, s.check_time_s, s.check_passes, s.ocp_time_s,
+      s.ocpStatusName(), s.reason.empty() ? "" : " reason: ", s.reason.c_str());
+  std::fflush(stdout);
+}
+
+/// --records: every step's record as CSV.
+void writeRecords(const std::string& path, const std::vector<StepRecord>& records) {
+  std::ofstream out(path);
+  if (!out) throw ReachError("cannot write records file '" + path + "'");
+  out << "index,swing,plan_time,touchdown_time,planned_tvr_x,planned_tvr_y,planned_x,"
+         "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict,certificate,"
+         "witness_violation,junction_position_gap,junction_velocity_gap,"
+         "terminal_position_gap,terminal_velocity_gap\n";
+  for (const StepRecord& s : records)
+    out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
+        << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
+        << s.planned.y() << "," << s.executed.x() << "," << s.executed.y() << ","
+        << s.touchdown_error << "," << s.offset_clipped << "," << s.verdictName() << ","
+        << s.certificateName() << "," << s.witness_violation << "," << s.junction_position_gap
+        << "," << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
+        << s.terminal_velocity_gap << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
   try {
-    WalkSetup setup = WalkSetup::fromYamlFile(config_path);
-    WalkConfig& walk = setup.walk;
-    if (!mode.empty()) walk.policy = WalkingPolicy::parse(mode);
-    if (!steps.empty())
-      walk.steps = static_cast<int>(parseIntOption("--steps", steps, 0, kMaxWalkSteps));
-    if (!seed.empty())
-      walk.seed = static_cast<unsigned>(parseIntOption("--seed", seed, 0, 4294967295LL));
-    if (!speed.empty()) walk.forward_speed = parseDoubleOption("--forward-speed", speed);
-    // Standing before the first lift-off [s]; with --steps 0 the run is a standing test.
-    if (!settle.empty()) {
-      walk.settle_duration = parseDoubleOption("--settle", settle, 0.0, kMaxSettleSeconds);
-      walk.max_sim_time = std::max(walk.max_sim_time, walk.settle_duration + 1.0);
+    const CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
-    if (!push.empty()) {
-      const auto comma = push.find(',');
-      if (comma == std::string::npos)
-        throw RequestError("--push: expected vx,vy [m/s], got '" + push + "'");
-      walk.initial_com_velocity =
-          Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
-                          parseDoubleOption("--push", push.substr(comma + 1)));
-    }
-    walk.validate();
-    const std::unique_ptr<WalkingExperiment> experiment = setup.experiment(urdf);
-    std::ofstream requests_out;
-    if (!requests_path.empty()) {
-      requests_out.open(requests_path);
-      if (!requests_out)
-        throw ReachError("cannot write --plan-requests file '" + requests_path + "'");
-    }
+    if (!args.positional().empty())
+      throw RequestError("unknown argument '" + args.positional()[0] + "'");
+    WalkSetup setup = WalkSetup::fromYamlFile(args.value("--config"));
+    applyOptions(args, setup.walk);
+    const std::unique_ptr<WalkingExperiment> experiment = setup.experiment(args.value("--urdf"));
     // --plan-requests: each checked footstep's request, one JSON per line (verdict_grid input).
-    std::ofstream ocp_requests_out;
-    if (!ocp_requests_path.empty()) {
-      ocp_requests_out.open(ocp_requests_path);
-      if (!ocp_requests_out)
-        throw ReachError("cannot write --ocp-requests file '" + ocp_requests_path + "'");
-    }
+    std::ofstream requests_out = openOutput(args, "--plan-requests");
+    std::ofstream ocp_requests_out = openOutput(args, "--ocp-requests");
     const auto on_check = [&](const StepRecord&, const FootstepTransition& step) {
-      if (ocp_requests_out.is_open() && step.check.kinematically_feasible) {
-        TransitionRequest ocp;
-        ocp.stance = step.stance;
-        ocp.stance_pose = step.stance_contact.pose();
-        ocp.swing_target = step.target.pose();
-        ocp.horizon = step.horizon;
-        ocp.q0 = step.q0;
-        ocp.qd0 = step.qd0;
-        ocp.qf = step.check.kinematics.q_f;
-        ocp.qdf = step.check.qdf;
-        ocp.relaxation = RelaxationMode::kStrict;
-        ocp_requests_out << transitionRequestToJson(ocp).dump() << "\n";
-      }
+      if (ocp_requests_out.is_open() && step.check.kinematically_feasible)
+        ocp_requests_out << transitionRequestToJson(ocpRequest(step)).dump() << "\n";
       if (!requests_out.is_open()) return;
       nlohmann::json j = footstepPlanRequestJson(step.request);
       j["reach_horizon"] = step.horizon;  // the walk's check horizon
       requests_out << j.dump() << "\n";
     };
-    const WalkResult r = experiment->run(
-        {},
-        [](const StepRecord& s) {
-          std::printf(
-              "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
-              "executed=(%.3f, %.3f) err=%.4f m verdict=%s certificate=%s witness_violation=%.3g "
-              "junction_gap=%.3g/%.3g x_f_gap=%.3g/%.3g d_H=%.4g check_s=%.3f passes=%d "
-              "ocp_s=%.3f ocp=%s%s%s\n",
-              s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
-              s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
-              s.executed.y(), s.touchdown_error, s.verdictName(),
-              s.certificate == Certificate::kNone ? "none" : s.certificateName(),
-              s.witness_violation, s.junction_position_gap, s.junction_velocity_gap,
-              s.terminal_position_gap, s.terminal_velocity_gap, s.hausdorff_distance,
-              s.check_time_s, s.check_passes, s.ocp_time_s, s.ocpStatusName(),
-              s.reason.empty() ? "" : " reason: ", s.reason.c_str());
-          std::fflush(stdout);
-        },
-        on_check);
-    if (!records_path.empty()) {
-      std::ofstream out(records_path);
-      if (!out) throw ReachError("cannot write records file '" + records_path + "'");
-      out << "index,swing,plan_time,touchdown_time,planned_tvr_x,planned_tvr_y,planned_x,"
-             "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict,certificate,"
-             "witness_violation,junction_position_gap,junction_velocity_gap,"
-             "terminal_position_gap,terminal_velocity_gap\n";
-      for (const StepRecord& s : r.records)
-        out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
-            << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
-            << s.planned.y() << "," << s.executed.x() << "," << s.executed.y() << ","
-            << s.touchdown_error << "," << s.offset_clipped << "," << s.verdictName() << ","
-            << s.certificateName() << "," << s.witness_violation << "," << s.junction_position_gap
-            << "," << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
-            << s.terminal_velocity_gap << "\n";
-    }
+    const WalkResult r = experiment->run({}, printStep, on_check);
+    if (!args.value("--records").empty()) writeRecords(args.value("--records"), r.records);
     std::printf("%s\n", r.summaryLine().c_str());
   } catch (const std::exception& e) {
     std::cerr << "walk_experiment: " << e.what() << "\n";

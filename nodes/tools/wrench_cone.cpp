@@ -11,8 +11,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "reach_trajopt/common/cli_args.h"
+#include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 
@@ -34,38 +36,39 @@ nlohmann::json toJson(const M& m) {
   return rows;
 }
 
+/// The tool's options (--help prints them).
+const reach_trajopt::CliTool kTool(
+    "wrench_cone", "",
+    "Prints the contact wrench cone of eq. (7)-(8) as JSON: the sole's and the world's C.",
+    {{"--mu", "M", "friction coefficient", "0.7"},
+     {"--half-length", "X", "sole half-length [m]", "0.135"},
+     {"--half-width", "Y", "sole half-width [m]", "0.08"},
+     {"--rpy", "roll pitch yaw", "the sole's orientation in the world [rad]", "0 0 0", 3}});
+
+/// --rpy's three angles (zeros when not given).
+Eigen::Vector3d rpyOption(const reach_trajopt::CliArgs& args) {
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  const std::vector<std::string>& v = args.values("--rpy");
+  for (std::size_t k = 0; k < v.size() && k < 3; ++k) rpy[k] = parseNumber("--rpy", v[k].c_str());
+  reach_trajopt::requireFinite("--rpy", rpy);
+  return rpy;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
-    double mu = 0.7, X = 0.135, Y = 0.08;
-    Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      const auto need = [&](int n) {
-        if (i + n >= argc) throw reach_trajopt::ReachError(a + ": missing value");
-      };
-      if (a == "--mu") {
-        need(1);
-        mu = parseNumber(a, argv[++i]);
-      } else if (a == "--half-length") {
-        need(1);
-        X = parseNumber(a, argv[++i]);
-      } else if (a == "--half-width") {
-        need(1);
-        Y = parseNumber(a, argv[++i]);
-      } else if (a == "--rpy") {
-        need(3);
-        for (int k = 0; k < 3; ++k) rpy[k] = parseNumber(a, argv[++i]);
-      } else if (a == "-h" || a == "--help") {
-        std::cout << "usage: wrench_cone [--mu M] [--half-length X] [--half-width Y] "
-                     "[--rpy roll pitch yaw]\n";
-        return 0;
-      } else {
-        throw reach_trajopt::ReachError("unknown argument '" + a + "'");
-      }
+    const reach_trajopt::CliArgs args = kTool.parse(argc, argv);
+    if (args.help()) {
+      std::cout << kTool.usage();
+      return 0;
     }
-    reach_trajopt::requireFinite("--rpy", rpy);
+    if (!args.positional().empty())
+      throw reach_trajopt::ReachError("unknown argument '" + args.positional()[0] + "'");
+    const double mu = parseNumber("--mu", args.value("--mu").c_str());
+    const double X = parseNumber("--half-length", args.value("--half-length").c_str());
+    const double Y = parseNumber("--half-width", args.value("--half-width").c_str());
+    const Eigen::Vector3d rpy = rpyOption(args);
     const reach_trajopt::ContactWrenchCone cone(mu, X, Y);
     const Eigen::Matrix3d R = (Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
                                Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
@@ -80,9 +83,6 @@ int main(int argc, char** argv) {
     out["world"] = toJson(cone.worldMatrix(R));
     std::cout << out.dump() << "\n";
     return 0;
-  } catch (const reach_trajopt::ReachError& e) {
-    std::cerr << "wrench_cone: " << e.what() << "\n";
-    return 2;
   } catch (const std::exception& e) {
     std::cerr << "wrench_cone: " << e.what() << "\n";
     return 2;

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/step/footstep_planner_setup.h"
 #include "reach_trajopt/walk/standing_pose.h"
 #include "reach_trajopt/walk/walking_experiment.h"
 
@@ -50,18 +51,20 @@ FootholdServiceSetup FootholdServiceSetup::load(const ros::NodeHandle& nh,
   FootholdRequestLimits limits;
   pnh.getParam("ground_tolerance", limits.ground_tolerance);
   const YamlSection file = YamlSection::loadFile(config_path);
-  const RobotConfig robot = RobotConfig::fromConfigFile(file);
+  // The services need these sections (throw naming the file when missing); the rest is the
+  // planner setup every tool reads (contact: required).
+  file.section("reach");
+  file.section("kinematic_feasibility");
+  const FootstepPlannerSetup setup = FootstepPlannerSetup::fromYaml(file);
+  const RobotConfig& robot = setup.robot;
   const std::shared_ptr<const RobotModel> model =
       robot.modelFromUrdfString(urdf, "robot_description");
-  const ContactConfig contact = ContactConfig::fromYaml(file.section("contact"));
-  const ReachConfig reach = ReachConfig::fromYaml(file.section("reach"));
+  const ContactConfig& contact = setup.contact;
   const WalkConfig walk =
       file.has("walk") ? WalkConfig::fromYaml(file.section("walk")) : WalkConfig{};
-  FootholdServiceSetup s{file, config_path, model, contact, reach, limits, nullptr, {}};
-  file.section("kinematic_feasibility");  // required here (throws naming the file when missing)
-  FootstepPlannerConfig planner = FootstepPlannerConfig::fromYaml(file);
-  planner.reach = reach;
-  s.planner = std::make_shared<FootstepTransitionPlanner>(model, contact, planner);
+  FootholdServiceSetup s{file,   config_path, model, contact, setup.planner.reach,
+                         limits, nullptr,     {}};
+  s.planner = std::make_shared<FootstepTransitionPlanner>(model, contact, setup.planner);
   s.standing_q = standingConfiguration(*model, walk.knee_bend, contact.left_sole_frame, robot);
   return s;
 }

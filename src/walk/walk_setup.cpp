@@ -4,18 +4,21 @@
 #include "reach_trajopt/walk/walk_setup.h"
 
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/step/footstep_planner_setup.h"
 
 namespace reach_trajopt {
 
 WalkSetup WalkSetup::fromYaml(const YamlSection& root) {
   WalkSetup s;
-  s.robot = RobotConfig::fromConfigFile(root);
+  // The robot, contact: and the step planner's sections as every tool reads them.
+  const FootstepPlannerSetup planner = FootstepPlannerSetup::fromYaml(root);
+  s.robot = planner.robot;
+  s.contact = planner.contact;
+  s.footsteps = planner.planner;
   if (root.has("walk")) s.walk = WalkConfig::fromYaml(root.section("walk"));
   s.tvr = TvrConfig::fromYaml(root.section("planner"));
-  s.contact = ContactConfig::fromYaml(root.section("contact"));
   if (root.has("wbc")) s.wbc = WbcConfig::fromYaml(root.section("wbc"));
   if (root.has("sim")) s.sim = SimConfig::fromYaml(root.section("sim"));
-  s.footsteps = FootstepPlannerConfig::fromYaml(root);
   return s;
 }
 

@@ -32,7 +32,13 @@ DI_URDF = """<robot name="double_integrator">
 MASS, FORCE, DT = 2.0, 10.0, 1e-3
 ACC = FORCE / MASS
 
-DI_CONFIG = """reach:
+# contact: is required in every config file (step/footstep_planner_setup.h); the double
+# integrator has no contacts (mode "none"), so its values are never used.
+DI_CONFIG = """contact:
+  mu: 0.7
+  half_length: 0.135
+  half_width: 0.08
+reach:
   horizon: 0.05
   window_start: 0.0
   window_end: 0.05

@@ -3,7 +3,8 @@
 /// Every configuration of a walking run, read from one robot config file (config/biped.yaml):
 /// its sections contact and planner (required), walk, wbc, sim (optional: defaults) and those
 /// of the footstep pipeline (kinematic_feasibility, reach, ocp, nearest_foothold; optional).
-/// The tools and nodes that walk read it here, once.
+/// The tools and nodes that walk read it here, once; the robot, contact and pipeline sections
+/// through FootstepPlannerSetup (step/footstep_planner_setup.h), as the tools that plan a step.
 
 #include <memory>
 #include <string>
