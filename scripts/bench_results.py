@@ -237,14 +237,26 @@ def git_commit():
         return "unknown"
 
 
-def render(lines, commit, date):
+def sections(text):
+    """(benchmarks run, benchmarks failed) from the `=== bench: X ===` and `[bench] X failed`
+    lines of scripts/bench."""
+    ran = re.findall(r"^=== bench: (\S+) ===", text, re.M)
+    failed = re.findall(r"^\[bench\] (\S+) failed", text, re.M)
+    return ran, failed
+
+
+def render(lines, commit, date, ran=(), failed=()):
     L = ["# Benchmark results", "",
          "Written by `make bench` (`scripts/bench_results.py` from the BENCH lines of the run);",
          "do not edit by hand. What each benchmark measures: [README.md](README.md).", "",
          "Run: commit %s, %s, on %s (%d cores, load average %s at the end)." % (
              commit, date, os.uname().machine, os.cpu_count() or 0,
              "%.2f" % os.getloadavg()[0]), "",
-         "| figure | measured | target | met | command |", "|---|---|---|---|---|"]
+         ]
+    if ran:
+        L += ["Benchmarks in this run: %s%s." % (", ".join(ran), "; failed: " + ", ".join(failed)
+                                                  if failed else ""), ""]
+    L += ["| figure | measured | target | met | command |", "|---|---|---|---|---|"]
     met_n = total = 0
     for label, get, target, cmd in figures(lines):
         r = get(lines)
@@ -276,12 +288,13 @@ def main(argv):
         print("bench_results: no log file '%s'" % a.log, file=sys.stderr)
         return 2
     with open(a.log, errors="replace") as f:
-        lines = parse(f.read())
+        log_text = f.read()
+    lines = parse(log_text)
     if not lines:
         print("bench_results: '%s' holds no BENCH line" % a.log, file=sys.stderr)
         return 2
     date = a.date or datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    text = render(lines, a.commit or git_commit(), date)
+    text = render(lines, a.commit or git_commit(), date, *sections(log_text))
     with open(a.out, "w") as f:
         f.write(text)
     print("bench_results: %s (%d BENCH lines)" % (a.out, len(lines)))

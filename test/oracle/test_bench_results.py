@@ -37,6 +37,8 @@ def test_sample_figures_and_verdicts(tmp_path):
     r, text = run(tmp_path)
     assert r.returncode == 0, r.stderr
     assert "commit 0123abc, 2000-01-02 03:04 UTC" in text
+    assert ("Benchmarks in this run: dynamics, qp, reach, walk_check, verdict, ocp, ocp_talos, "
+            "envelope, ros_walk, sim.controller; failed: ros_walk.") in text
     t = rows(text)
     # measured, target, met: 0.0712 s <= 0.1 s (the 2-thread line, not the 1-thread 0.1412)
     assert t["one reachability check, bench case, 2 threads"][:3] == ["0.0712 s", "<= 0.1 s",
