@@ -103,7 +103,12 @@ def run_data(run):
             "hausdorff": [[_r(sl.time, 4), float("%.4g" % sl.hausdorff_distance)]
                           for sl in r.slices if 0 <= sl.hausdorff_distance < float("inf")],
         })
-    return {"name": run.name, "mode": run.mode, "fell": bool(run.fell),
+    start_soles = []
+    if run.tf_pos:
+        for f in ("l_sole", "r_sole", "left_sole_link", "right_sole_link"):
+            if f in run.tf_pos[0]:
+                start_soles.append([_r(v) for v in run.tf_pos[0][f]])
+    return {"name": run.name, "mode": run.mode, "start_soles": start_soles, "fell": bool(run.fell),
             "end": run.fields.get("end", ""), "links": links, "edges": edge_idx,
             "frames": frames, "com": com, "steps": steps, "checks": checks,
             "summary": [[k, v] for k, v in run.summary()]}
@@ -136,7 +141,7 @@ t = <span id="time">0.000</span> s, frame <span id="frame" data-frame="0">0</spa
 <div class="legend">
 <span><i class="sw" style="background:#1f77b4"></i>robot (left leg darker)</span>
 <span><i class="sw" style="border:2px solid #2ca02c;width:9px;height:7px"></i>foothold planned</span>
-<span><i class="sw" style="background:#ff7f0e"></i>foothold executed</span>
+<span><i class="sw" style="background:#ff7f0e"></i>foothold executed (and the start)</span>
 <span><i class="sw" style="background:#9467bd"></i>CoM</span>
 <span><i class="sw" style="background:#8c564b"></i>capture point</span>
 <span><i class="sw" style="background:#e377c2"></i>forward set</span>
@@ -191,7 +196,7 @@ function dot(v, p, color, r) {
   c.arc(v.X(p[0]), v.Y(p[1]), r, 0, 2 * Math.PI); c.fill();
 }
 function sole(v, p, color, filled) {
-  const hl = 0.1, hw = 0.05, c = v.ctx;
+  const hl = DATA.sole[0], hw = DATA.sole[1], c = v.ctx;
   const x0 = v.X(p[0] - hl), y0 = v.Y(p[1] + hw), w = 2 * hl * v.s, h = 2 * hw * v.s;
   if (filled) { c.fillStyle = color; c.fillRect(x0, y0, w, h); }
   else { c.strokeStyle = color; c.lineWidth = 2.5; c.strokeRect(x0, y0, w, h); }
@@ -246,6 +251,7 @@ function drawTop(tv, t) {
   for (const s of run.steps) {
     if (s.touched && s.touchdown_time <= t + 1e-9) sole(v, s.executed, C.executed, true);
   }
+  for (const p of run.start_soles) sole(v, p, C.executed, true);  // where the feet start
   for (const s of run.steps) sole(v, s.planned, C.planned, false);
   line(v, run.com.filter(c => c[0] <= t).map(c => [c[1], c[2]]), C.com, 1.5);
   const c = comAt(run, t);
@@ -408,9 +414,10 @@ setInterval(tick, 20);
 """
 
 
-def write_html(runs, path):
-    """Writes the page of one or two runs to `path`."""
-    data = {"runs": [run_data(r) for r in runs]}
+def write_html(runs, path, sole=(0.1, 0.05)):
+    """Writes the page of one or two runs to `path`; sole: the half length and half width of
+    the sole rectangle drawn for a foothold [m]."""
+    data = {"runs": [run_data(r) for r in runs], "sole": [float(sole[0]), float(sole[1])]}
     text = json.dumps(data, separators=(",", ":"), allow_nan=False)
     text = text.replace("</", "<\\/")  # no "</script>" inside the data
     with open(path, "w") as f:

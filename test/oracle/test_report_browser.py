@@ -10,7 +10,8 @@ Then analyze_bag writes the report of both side by side, and Chromium
     into the DOM (#frame data-frame) has advanced, and so has the time;
   - renders the robot and the footholds: in the screenshot, pixels of the robot's colour in
     both runs' views and of the executed and planned footholds' colours (exact RGB values the
-    page draws with, counted per half of the page, one half per run).
+    page draws with, counted per half of the page, one half per run; the legend's swatches
+    are far below the thresholds).
 The page is self-contained: it names no http(s) URL, no external script, style or font.
 """
 
@@ -178,8 +179,8 @@ def test_screenshot_shows_robot_and_footholds(report, tmp_path):
     for k, name in enumerate(("baseline", "proposed")):
         c = counts[k]
         robot = c.get(ROBOT, 0) + c.get(ROBOT_LEFT, 0)
-        assert robot > 200, "%s: %d robot pixels" % (name, robot)
-        assert c.get(EXECUTED, 0) > 200, "%s: %d executed-foothold pixels" % (name,
+        assert robot > 1000, "%s: %d robot pixels" % (name, robot)
+        assert c.get(EXECUTED, 0) > 1000, "%s: %d executed-foothold pixels" % (name,
                                                                           c.get(EXECUTED, 0))
-        assert c.get(PLANNED, 0) > 50, "%s: %d planned-foothold pixels" % (name,
+        assert c.get(PLANNED, 0) > 300, "%s: %d planned-foothold pixels" % (name,
                                                                        c.get(PLANNED, 0))
