@@ -129,6 +129,14 @@ def units(code):
     return out
 
 
+LIB_DOCS = {}  # unit name -> the /// comments of the files that define it
+
+
+def doc_comments(code):
+    """Every /// comment of a file, joined into one line."""
+    return " ".join(l.strip()[3:].strip() for l in code.splitlines() if l.strip().startswith("///"))
+
+
 def library_units():
     lib = {}
     for d, ext in (("src/ros", ".cpp"), ("include/reach_trajopt/ros", ".h")):
@@ -137,8 +145,10 @@ def library_units():
             continue
         for f in sorted(os.listdir(folder)):
             if f.endswith(ext):
-                for k, body in units(read(os.path.join(folder, f))).items():
+                code = read(os.path.join(folder, f))
+                for k, body in units(code).items():
                     lib[k] = lib.get(k, "") + body
+                    LIB_DOCS[k] = LIB_DOCS.get(k, "") + " " + doc_comments(code)
     return lib
 
 
@@ -306,6 +316,9 @@ def scan_node(name, node_code, lib):
     code = "\n".join(texts)
     hmap = handles(code)
     doc = header_comment(node_code)
+    # a parameter the node's own header does not describe: the comments of the library files
+    # whose code the node uses (a thin node keeps its interface there)
+    lib_doc = " ".join(sorted({LIB_DOCS[k] for k in lib if lib[k] in texts[1:] and k in LIB_DOCS}))
     pubs, subs, srvs, acts, clients, params = [], [], [], [], [], {}
 
     for m in re.finditer(r"(\w+)\s*(?:\.|->)\s*advertise\s*<\s*([\w:]+)\s*>\s*\(\s*([^,]+?)\s*,"
@@ -394,7 +407,7 @@ def scan_node(name, node_code, lib):
         d = d.replace('ros::package::getPath("reach_trajopt") + "/', "$(find reach_trajopt)/")
         d = re.sub(r'"`$', "`", d)
         if key.startswith("~"):
-            desc = describe(doc, key[1:])
+            desc = describe(doc, key[1:]) or describe(lib_doc, key[1:])
         else:  # a global parameter: "the `name` parameter (meaning)" in the header comment
             gm = re.search(r"`%s`\s+parameter\s+\(([^)]*)\)" % re.escape(key.lstrip("/")), doc)
             desc = gm.group(1) if gm else ""
