@@ -253,6 +253,11 @@ def render(lines, commit, date, ran=(), failed=()):
              commit, date, os.uname().machine, os.cpu_count() or 0,
              "%.2f" % os.getloadavg()[0]), "",
          ]
+    load, cores = os.getloadavg()[0], os.cpu_count() or 1
+    if load > cores:
+        L += ["The machine was busy while this run ended (load average %.1f on %d cores): its"
+              " times are pessimistic; the ratios to references run alongside hold better." % (
+                  load, cores), ""]
     if ran:
         L += ["Benchmarks in this run: %s%s." % (", ".join(ran), "; failed: " + ", ".join(failed)
                                                   if failed else ""), ""]
