@@ -247,8 +247,9 @@ def sections(text):
 
 def render(lines, commit, date, ran=(), failed=()):
     L = ["# Benchmark results", "",
-         "Written by `make bench` (`scripts/bench_results.py` from the BENCH lines of the run);",
-         "do not edit by hand. What each benchmark measures: [README.md](README.md).", "",
+         "Written by `make bench` (`scripts/bench_results.py` from the BENCH lines of the run, all",
+         "of it or the benchmarks named below); do not edit by hand. What each benchmark",
+         "measures: [README.md](README.md).", "",
          "Run: commit %s, %s, on %s (%d cores, load average %s at the end)." % (
              commit, date, os.uname().machine, os.cpu_count() or 0,
              "%.2f" % os.getloadavg()[0]), "",
