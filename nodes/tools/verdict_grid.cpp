@@ -10,13 +10,13 @@
 ///   verdict_grid [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                [--requests FILE.jsonl] [--bench-case] [--grid N] [--half-width M]
 ///                [--max-states K] [--details] [--reach-config FILE]
-///                [--reference-config FILE]
+///                [--reference-config FILE] [--force]
 ///
 /// --requests: footstep requests, one JSON per line (walk_experiment --plan-requests; format
 /// in step/footstep_plan_request_json.h); --bench-case adds bench/reach's SS-L -> DS case
 /// (horizon of the config's reach section). Each x_0 gets N x N footholds within +-M of its
-/// target (default 7 x 7, 0.15 m). Prints one `CASE` line per foothold with --details and
-/// ends with
+/// target (default 7 x 7, 0.15 m); more than 2000 footholds in all need --force. Prints one `CASE`
+/// line per foothold with --details and ends with
 ///   BENCH reach.verdict cases=.. states=.. kinematically_infeasible=.. reachable=..
 ///     certified=.. ocp_converged=.. false_reachable=.. false_unreachable=..
 ///     bridge_certified=.. reachable_strict_converged=.. check_mean_s=..
@@ -70,6 +70,9 @@ namespace {
 
 constexpr long long kMaxGrid = 41;      ///< --grid (docs/limits.md): N^2 checks per state
 constexpr long long kMaxStates = 1000;  ///< --max-states
+/// The most footholds (states x grid^2) one run checks without --force: each is a check (two
+/// with --reference-config) and an OCP, about 2-5 s; the bench runs 4 x 49.
+constexpr long long kMaxGridChecks = 2000;
 
 /// A path to re-check: samples k = 0..L-1 at time[k]; step k (k < L-1) has the acceleration
 /// qdd[k], torques u[k] and the stance wrench lambda[k] (world orientation at the sole centre).
@@ -215,10 +218,13 @@ Recheck recheckCertificate(const RobotModel& model, const ContactConfig& contact
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The state being probed ("FILE:LINE" or "--bench-case"): named in an error it raises (a
+  // target far outside the workspace was reported without it).
+  std::string state_source;
   try {
     std::string config_path = "config/biped.yaml", urdf, requests_path;
     std::string grid_s, half_s, max_s, reference_path, reach_path;
-    bool bench_case = false, details = false;
+    bool bench_case = false, details = false, force = false;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       auto next = [&]() -> std::string {
@@ -241,6 +247,8 @@ int main(int argc, char** argv) {
         max_s = next();
       else if (a == "--details")
         details = true;
+      else if (a == "--force")
+        force = true;
       else if (a == "--reference-config")
         reference_path = next();
       else if (a == "--reach-config")
@@ -275,7 +283,11 @@ int main(int argc, char** argv) {
     }
 
     std::vector<FootstepPlanRequest> states;
-    if (bench_case) states.push_back(benchSwingCase(model, cfg, contact));
+    std::vector<std::string> sources;
+    if (bench_case) {
+      states.push_back(benchSwingCase(model, cfg, contact));
+      sources.push_back("--bench-case");
+    }
     if (!requests_path.empty()) {
       std::ifstream in(requests_path);
       if (!in) throw ReachError("cannot read --requests file '" + requests_path + "'");
@@ -287,9 +299,41 @@ int main(int argc, char** argv) {
         const nlohmann::json j = JsonReader::parse(line, requests_path + ":" + std::to_string(n));
         states.push_back(readFootstepPlanRequest(
             JsonReader(j, requests_path + ":" + std::to_string(n)), model->nq(), cfg.reach));
+        sources.push_back(requests_path + ":" + std::to_string(n));
       }
     }
     if (states.empty()) throw ReachError("no states: give --requests FILE and/or --bench-case");
+    // The reference budget, as each state will run it (its horizon), up front: an over-limit
+    // one named the check's pass mid-run, not the file's key.
+    if (reference) {
+      for (const FootstepPlanRequest& st : states) {
+        ReachConfig rc = *reference;
+        if (st.reach) rc.horizon = st.reach->horizon;
+        const std::string where = "--reference-config '" + reference_path + "': reach";
+        try {
+          rc.validate();
+          rc.requireResourcesWithinLimits(model->nq());
+        } catch (const ReachError& e) {
+          throw ConfigError(where + ": " + e.what());
+        }
+        try {
+          if (rc.hull_pass) rc.hullPassConfig().requireResourcesWithinLimits(model->nq());
+        } catch (const ReachError& e) {
+          throw ConfigError(where + ": the hull pass's budget (hull_initial_samples " +
+                            std::to_string(rc.hull_initial_samples) +
+                            ", hull_children_per_parent " +
+                            std::to_string(rc.hull_children_per_parent) + "): " + e.what());
+        }
+      }
+    }
+    const long long footholds = static_cast<long long>(states.size()) * grid * grid;
+    if (footholds > kMaxGridChecks && !force)
+      throw RequestError(std::to_string(states.size()) + " states x --grid " +
+                         std::to_string(grid) + "^2 = " + std::to_string(footholds) +
+                         " footholds to check, over the limit of " +
+                         std::to_string(kMaxGridChecks) +
+                         " (a check and an OCP each, seconds apiece): lower --grid or "
+                         "--max-states, or add --force");
 
     int cases = 0, infeasible = 0, reachable = 0, certified = 0, bridge = 0, converged = 0, fr = 0,
         fu = 0, seeded = 0;
@@ -302,6 +346,7 @@ int main(int argc, char** argv) {
       double time_s = 0.0, ref_time_s = 0.0;
     } own;
     for (size_t s = 0; s < states.size(); ++s) {
+      state_source = sources[s];
       for (int ix = 0; ix < grid; ++ix) {
         for (int iy = 0; iy < grid; ++iy) {
           const double dx = grid > 1 ? -half + 2.0 * half * ix / (grid - 1) : 0.0;
@@ -438,7 +483,8 @@ int main(int argc, char** argv) {
           own.time_s / std::max(1, own.cases), own.ref_time_s / std::max(1, own.cases),
           own.ref_time_s / std::max(1e-12, own.time_s));
   } catch (const std::exception& e) {
-    std::cerr << "verdict_grid: " << e.what() << "\n";
+    std::cerr << "verdict_grid: " << (state_source.empty() ? "" : state_source + ": ") << e.what()
+              << "\n";
     return 2;
   }
   return 0;

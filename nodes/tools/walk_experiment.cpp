@@ -34,6 +34,8 @@ using namespace reach_trajopt;
 constexpr long long kMaxWalkSteps = 1000;
 /// Upper bound of --settle [s] (a standing test of an hour is a typo, not a test).
 constexpr double kMaxSettleSeconds = 600.0;
+/// The largest --push component [m/s] (push_envelope's --magnitudes go to 10).
+constexpr double kMaxPushMps = 10.0;
 
 int main(int argc, char** argv) {
   std::string config_path = "config/biped.yaml", urdf, records_path, requests_path,
@@ -93,9 +95,11 @@ int main(int argc, char** argv) {
       const auto comma = push.find(',');
       if (comma == std::string::npos)
         throw RequestError("--push: expected vx,vy [m/s], got '" + push + "'");
-      walk.initial_com_velocity =
-          Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
-                          parseDoubleOption("--push", push.substr(comma + 1)));
+      // A push is a CoM velocity: beyond 10 m/s (push_envelope's largest magnitude) the
+      // simulation leaves the ground at once (1e300 was reported as a NaN base position).
+      walk.initial_com_velocity = Eigen::Vector2d(
+          parseDoubleOption("--push", push.substr(0, comma), -kMaxPushMps, kMaxPushMps),
+          parseDoubleOption("--push", push.substr(comma + 1), -kMaxPushMps, kMaxPushMps));
     }
     walk.validate();
     const std::unique_ptr<WalkingExperiment> experiment = setup.experiment(urdf);
