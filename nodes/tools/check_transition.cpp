@@ -21,6 +21,7 @@
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,19 @@ const reach_trajopt::CliTool kTool(
       ""}});
 
 /// The two input files of the command line. \throws RequestError for another count.
+/// The trajectory must span the request's [0, horizon]: a time axis scaled (x10) or shifted
+/// (by 1 s) would be checked against the wrong x_0 and x_f times and pass with 1e-10.
+void requireTimeAxisOfRequest(const reach_trajopt::TransitionResult& traj, double horizon,
+                              const std::string& traj_file, const std::string& request_file) {
+  const double tol = 1e-6 + 1e-6 * std::abs(horizon);
+  const double t0 = traj.time[0], t1 = traj.time[traj.time.size() - 1];
+  if (std::abs(t0) <= tol && std::abs(t1 - horizon) <= tol) return;
+  std::ostringstream os;
+  os << traj_file << ": time: the trajectory spans [" << t0 << ", " << t1
+     << "] s, not the request's [0, " << horizon << "] s (horizon of " << request_file << ")";
+  throw reach_trajopt::RequestError(os.str());
+}
+
 void requireTwoFiles(const std::vector<std::string>& files) {
   if (files.size() != 2)
     throw reach_trajopt::RequestError(
@@ -126,6 +140,7 @@ int main(int argc, char** argv) {
     const TransitionResult traj =
         readTrajectory(JsonReader(traj_doc, files[1]), model->nq(), model->nu());
 
+    requireTimeAxisOfRequest(traj, in.request.horizon, files[1], files[0]);
     const TransitionCheck check =
         checkTransition(*model, setup.contact, in.request, traj, threshold);
     json out;

@@ -137,6 +137,26 @@ void printSummary(const RobotModel& model) {
   }
 }
 
+/// The largest |q| or |qd| a state may hold [m, rad, m/s, rad/s]: beyond, the sines of an angle
+/// are rounding noise and products overflow (q = 1e300 printed null for b).
+constexpr double kMaxStateMagnitude = 1e9;
+
+/// A state beyond kMaxStateMagnitude, or so large that M, b, the CoM or a frame are not finite,
+/// is an error naming its largest coordinate, not a JSON null.
+void requireFiniteOutputs(const reach_trajopt::JointSpaceState& state, bool finite) {
+  if (finite && state.q.cwiseAbs().maxCoeff() <= kMaxStateMagnitude &&
+      state.qd.cwiseAbs().maxCoeff() <= kMaxStateMagnitude)
+    return;
+  Eigen::Index iq = 0, iqd = 0;
+  const double q = state.q.cwiseAbs().maxCoeff(&iq), qd = state.qd.cwiseAbs().maxCoeff(&iqd);
+  std::ostringstream os;
+  os << "the dynamics are not finite at this state: its largest coordinate is "
+     << (q >= qd ? "q[" + std::to_string(iq) + "] = " : "qd[" + std::to_string(iqd) + "] = ")
+     << (q >= qd ? state.q[iq] : state.qd[iqd]) << " (beyond " << kMaxStateMagnitude
+     << ": out of any meaningful range)";
+  throw reach_trajopt::RequestError(os.str());
+}
+
 Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws,
               const reach_trajopt::JointSpaceState& state, const std::vector<std::string>& frames) {
   const Eigen::VectorXd& q = state.q;
@@ -154,12 +174,16 @@ Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws,
   out["b"] = vectorToJson(b);
   out["com"] = vectorToJson(model.centerOfMass(ws));
   out["com_jacobian"] = matrixToJson(Jc);
+  requireFiniteOutputs(state, M.allFinite() && b.allFinite() && Jc.allFinite() &&
+                                  model.centerOfMass(ws).allFinite());
   Json jf = Json::object();
   reach_trajopt::Matrix6Xd J(6, n);
   for (const auto& name : frames) {
     const reach_trajopt::FrameId id = model.frameId(name);
     const Eigen::Isometry3d T = model.framePose(ws, id);
     model.frameJacobian(ws, id, J);
+    requireFiniteOutputs(
+        state, T.matrix().allFinite() && J.allFinite() && model.frameJdotQd(ws, id).allFinite());
     Json f;
     f["position"] = vectorToJson(T.translation());
     f["rotation"] = matrixToJson(T.linear());
@@ -206,7 +230,14 @@ Json statesJson(const RobotModel& model, const reach_trajopt::CliArgs& args) {
   out["q_max"] = vectorToJson(model.positionUpperLimits());
   reach_trajopt::Workspace ws(model);
   Json results = Json::array();
-  for (const auto& s : states) results.push_back(evaluate(model, ws, s, frames));
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    try {
+      results.push_back(evaluate(model, ws, states[i], frames));
+    } catch (const reach_trajopt::RequestError& e) {
+      throw reach_trajopt::RequestError(state_file + ": state " + std::to_string(i) + ": " +
+                                        e.what());
+    }
+  }
   out["results"] = results;
   return out;
 }
@@ -219,6 +250,9 @@ bool argumentsFit(const reach_trajopt::CliArgs& args) {
     std::cerr << "model_info: unexpected argument '" << p[1] << "'\n";
   } else if (p.empty() && args.value("--config").empty()) {
     std::cerr << "model_info: give a URDF or --config FILE\n";
+  } else if (!args.value("--frames").empty() && args.value("--state").empty()) {
+    std::cerr
+        << "model_info: --frames needs --state FILE: the frames are evaluated at its states\n";
   } else {
     return true;
   }

@@ -4,13 +4,15 @@
 ///   push_envelope [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                 [--policies baseline,unbounded,kinematic,proposed] [--directions 8]
 ///                 [--magnitudes 0.2,0.4,0.6] [--seeds 1,2] [--steps 20] [--jobs 2] [--fine]
-///                 [--svg FILE.svg] [--csv FILE.csv]
+///                 [--svg FILE.svg] [--csv FILE.csv] [--force]
 ///
 /// --policies: walking policies separated by ';' or presets by ',' (a policy with parts:
 /// --policies "baseline;kinematic,swing=interpolation"). --fine: magnitudes 0.1 to 0.8 m/s by
 /// 0.1. --jobs: walks run side by side, each on one thread. Prints one line per walk and one
 /// `BENCH walk.envelope preset=<p> pushes=N survived=K max_lateral_mps=.. max_forward_mps=..`
-/// per policy; --svg writes the polar figure, --csv every walk.
+/// per policy; --svg writes the polar figure, --csv every walk. A sweep of more than 20000
+/// footsteps in all is refused unless --force, and --steps whose walks cannot end within the
+/// config's walk.max_sim_time is refused.
 /// Exit status: 0 ran, 2 bad input.
 
 #include "reach_trajopt/walk/push_envelope.h"
@@ -62,7 +64,43 @@ const CliTool kTool("push_envelope", "",
                      {"--steps", "N", "steps per walk, 1..1000", "20"},
                      {"--jobs", "N", "walks run side by side, each on one thread", "2"},
                      {"--svg", "FILE.svg", "write the polar figure", ""},
-                     {"--csv", "FILE.csv", "write every walk", ""}});
+                     {"--csv", "FILE.csv", "write every walk", ""},
+                     {"--force", "", "run a sweep over 20000 footsteps in all", ""}});
+
+/// The most footsteps one sweep may walk without --force (policies x directions x magnitudes
+/// x seeds x steps; the bench's default sweep is 3840, --fine 10240; a proposed footstep
+/// costs about a second of wall time).
+constexpr long long kMaxSweepFootsteps = 20000;
+
+/// Refuses a sweep whose walks cannot end within walk.max_sim_time (the time limit would be
+/// counted as a fall), and, without --force, one over kMaxSweepFootsteps.
+void requireFeasibleSweep(const PushGrid& grid, const WalkConfig& walk, std::size_t policies,
+                          bool force, const std::string& config_path) {
+  const double period = walk.single_support_duration + walk.double_support_duration;
+  const double needed = walk.settle_duration + grid.steps * period;
+  if (needed > walk.max_sim_time) {
+    std::ostringstream os;
+    os << "--steps " << grid.steps << ": a walk of " << grid.steps << " steps needs " << needed
+       << " s of simulated time (settle + steps x " << period
+       << " s), over walk.max_sim_time = " << walk.max_sim_time << " s of " << config_path
+       << " (it would end every walk as a fall): ask fewer steps or raise walk.max_sim_time";
+    throw RequestError(os.str());
+  }
+  const long long walks = static_cast<long long>(policies) * grid.directions *
+                          static_cast<long long>(grid.magnitudes.size()) *
+                          static_cast<long long>(grid.seeds.size());
+  const long long footsteps = walks * grid.steps;
+  if (footsteps > kMaxSweepFootsteps && !force) {
+    std::ostringstream os;
+    os << "the sweep is " << policies << " policies x " << grid.directions << " directions x "
+       << grid.magnitudes.size() << " magnitudes x " << grid.seeds.size() << " seeds = " << walks
+       << " walks of " << grid.steps << " steps: " << footsteps << " footsteps, over the limit of "
+       << kMaxSweepFootsteps
+       << " (about a second each for a checking policy): narrow --policies, --directions, "
+          "--magnitudes, --seeds or --steps, or add --force";
+    throw RequestError(os.str());
+  }
+}
 
 /// The push grid of the command line, validated. \throws RequestError naming the option.
 PushGrid pushGrid(const CliArgs& args) {
@@ -146,6 +184,8 @@ int main(int argc, char** argv) {
         static_cast<int>(parseIntOption("--jobs", args.value("--jobs"), 1, hardwareThreads()));
     const std::vector<WalkingPolicy> list = parsePolicies(args.value("--policies"));
     const WalkSetup setup = WalkSetup::fromYamlFile(args.value("--config"));
+    requireFeasibleSweep(grid, setup.walk, list.size(), args.given("--force"),
+                         args.value("--config"));
     Outputs out = openOutputs(args);
     std::vector<PushEnvelope> envelopes;
     for (const WalkingPolicy& policy : list) {

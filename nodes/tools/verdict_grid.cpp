@@ -10,7 +10,7 @@
 ///   verdict_grid [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                [--requests FILE.jsonl] [--bench-case] [--grid N] [--half-width M]
 ///                [--max-states K] [--details] [--reach-config FILE]
-///                [--reference-config FILE]
+///                [--reference-config FILE] [--force]
 ///
 /// --requests: footstep requests, one JSON per line (walk_experiment --plan-requests; format
 /// in step/footstep_plan_request_json.h); --bench-case adds bench/reach's SS-L -> DS case
@@ -72,6 +72,9 @@ namespace {
 
 constexpr long long kMaxGrid = 41;      ///< --grid (docs/limits.md): N^2 checks per state
 constexpr long long kMaxStates = 1000;  ///< --max-states
+/// The most footholds (states x grid^2) one run checks without --force: each is a check (two
+/// with --reference-config) and an OCP, about 2-5 s; the bench runs 4 x 49.
+constexpr long long kMaxGridChecks = 2000;
 
 /// The tool's options (--help prints them).
 const CliTool kTool(
@@ -88,13 +91,14 @@ const CliTool kTool(
      {"--max-states", "K", "at most K states of --requests", std::to_string(kMaxStates)},
      {"--details", "", "print a CASE line per foothold (DISAGREE lines with a reference)", ""},
      {"--reach-config", "FILE", "the reach: section of FILE replaces --config's", ""},
+     {"--force", "", "check more than " + std::to_string(kMaxGridChecks) + " footholds in all", ""},
      {"--reference-config", "FILE",
       "also check every foothold with the reach: section of FILE and compare", ""}});
 
 /// The command line's values.
 struct GridOptions {
   std::string config_path, urdf, requests_path, reach_path, reference_path;
-  bool bench_case = false, details = false;
+  bool bench_case = false, details = false, force = false;
   int grid = 7;
   double half = 0.15;  ///< [m]
   long long max_states = kMaxStates;
@@ -110,6 +114,7 @@ GridOptions gridOptions(const CliArgs& args) {
   o.reference_path = args.value("--reference-config");
   o.bench_case = args.given("--bench-case");
   o.details = args.given("--details");
+  o.force = args.given("--force");
   o.grid = static_cast<int>(parseIntOption("--grid", args.value("--grid"), 1, kMaxGrid));
   o.half = parseDoubleOption("--half-width", args.value("--half-width"));
   if (!(o.half >= 0.0 && o.half <= 1.0)) throw ReachError("--half-width: expected [0, 1] m");
@@ -147,12 +152,23 @@ GridSetup gridSetup(const GridOptions& o) {
   return g;
 }
 
+/// The states x_0 and where each came from ("FILE:LINE" or "--bench-case", named in the errors
+/// a state raises).
+struct GridStates {
+  std::vector<FootstepPlanRequest> requests;
+  std::vector<std::string> sources;
+};
+
 /// The states x_0: bench/reach's case (--bench-case), then --requests' lines (at most
 /// --max-states in all). \throws ReachError naming the file and line of a bad request.
-std::vector<FootstepPlanRequest> loadStates(const GridOptions& o, const GridSetup& g) {
-  std::vector<FootstepPlanRequest> states;
+GridStates loadStates(const GridOptions& o, const GridSetup& g) {
+  GridStates out;
+  std::vector<FootstepPlanRequest>& states = out.requests;
   const FootstepPlannerConfig& cfg = g.setup.planner;
-  if (o.bench_case) states.push_back(benchSwingCase(g.model, cfg, g.setup.contact));
+  if (o.bench_case) {
+    states.push_back(benchSwingCase(g.model, cfg, g.setup.contact));
+    out.sources.push_back("--bench-case");
+  }
   if (!o.requests_path.empty()) {
     std::ifstream in(o.requests_path);
     if (!in) throw ReachError("cannot read --requests file '" + o.requests_path + "'");
@@ -164,10 +180,47 @@ std::vector<FootstepPlanRequest> loadStates(const GridOptions& o, const GridSetu
       const std::string where = o.requests_path + ":" + std::to_string(n);
       const nlohmann::json j = JsonReader::parse(line, where);
       states.push_back(readFootstepPlanRequest(JsonReader(j, where), g.model->nq(), cfg.reach));
+      out.sources.push_back(where);
     }
   }
   if (states.empty()) throw ReachError("no states: give --requests FILE and/or --bench-case");
-  return states;
+  return out;
+}
+
+/// The reference budget as each state will run it (its horizon), up front: an over-limit one
+/// would otherwise name the check's pass mid-run, not the file's key.
+void requireReferenceWithinLimits(const GridOptions& o, const GridSetup& g,
+                                  const GridStates& states) {
+  if (!g.reference) return;
+  const std::string where = "--reference-config '" + o.reference_path + "': reach";
+  for (const FootstepPlanRequest& st : states.requests) {
+    ReachConfig rc = *g.reference;
+    if (st.reach) rc.horizon = st.reach->horizon;
+    try {
+      rc.validate();
+      rc.requireResourcesWithinLimits(g.model->nq());
+    } catch (const ReachError& e) {
+      throw ConfigError(where + ": " + e.what());
+    }
+    try {
+      if (rc.hull_pass) rc.hullPassConfig().requireResourcesWithinLimits(g.model->nq());
+    } catch (const ReachError& e) {
+      throw ConfigError(where + ": the hull pass's budget (hull_initial_samples " +
+                        std::to_string(rc.hull_initial_samples) + ", hull_children_per_parent " +
+                        std::to_string(rc.hull_children_per_parent) + "): " + e.what());
+    }
+  }
+}
+
+/// Without --force, at most kMaxGridChecks footholds in all. \throws RequestError.
+void requireGridWithinLimit(const GridOptions& o, std::size_t states) {
+  const long long footholds = static_cast<long long>(states) * o.grid * o.grid;
+  if (footholds > kMaxGridChecks && !o.force)
+    throw RequestError(std::to_string(states) + " states x --grid " + std::to_string(o.grid) +
+                       "^2 = " + std::to_string(footholds) +
+                       " footholds to check, over the limit of " + std::to_string(kMaxGridChecks) +
+                       " (a check and an OCP each, seconds apiece): lower --grid or "
+                       "--max-states, or add --force");
 }
 
 /// One foothold of the grid: its state, offset and request (the state's target moved).
@@ -374,6 +427,7 @@ std::vector<Probe> gridProbes(std::size_t s, const FootstepPlanRequest& state,
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::string state_source;  // the state being probed, named in an error it raises
   try {
     const CliArgs args = kTool.parse(argc, argv);
     if (args.help()) {
@@ -384,13 +438,19 @@ int main(int argc, char** argv) {
       throw ReachError("unknown option '" + args.positional()[0] + "'");
     const GridOptions options = gridOptions(args);
     const GridSetup setup = gridSetup(options);
-    const std::vector<FootstepPlanRequest> states = loadStates(options, setup);
+    const GridStates states = loadStates(options, setup);
+    requireReferenceWithinLimits(options, setup, states);
+    requireGridWithinLimit(options, states.requests.size());
     VerdictGrid grid(setup, options.details);
-    for (std::size_t s = 0; s < states.size(); ++s)
-      for (const Probe& p : gridProbes(s, states[s], options)) grid.probe(p);
-    grid.printBench(states.size());
+    for (std::size_t s = 0; s < states.requests.size(); ++s) {
+      state_source = states.sources[s];
+      for (const Probe& p : gridProbes(s, states.requests[s], options)) grid.probe(p);
+    }
+    state_source.clear();
+    grid.printBench(states.requests.size());
   } catch (const std::exception& e) {
-    std::cerr << "verdict_grid: " << e.what() << "\n";
+    std::cerr << "verdict_grid: " << (state_source.empty() ? "" : state_source + ": ") << e.what()
+              << "\n";
     return 2;
   }
   return 0;

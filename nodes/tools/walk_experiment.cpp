@@ -37,6 +37,9 @@ namespace {
 constexpr long long kMaxWalkSteps = 1000;
 /// Upper bound of --settle [s] (a standing test of an hour is a typo, not a test).
 constexpr double kMaxSettleSeconds = 600.0;
+/// The largest --push component [m/s] (push_envelope's --magnitudes go to 10): beyond, the
+/// simulation leaves the ground at once (1e300 was reported as a NaN base position).
+constexpr double kMaxPushMps = 10.0;
 
 /// The tool's options (--help prints them).
 const CliTool kTool(
@@ -83,9 +86,9 @@ void applyOptions(const CliArgs& args, WalkConfig& walk) {
     const auto comma = push.find(',');
     if (comma == std::string::npos)
       throw RequestError("--push: expected vx,vy [m/s], got '" + push + "'");
-    walk.initial_com_velocity =
-        Eigen::Vector2d(parseDoubleOption("--push", push.substr(0, comma)),
-                        parseDoubleOption("--push", push.substr(comma + 1)));
+    walk.initial_com_velocity = Eigen::Vector2d(
+        parseDoubleOption("--push", push.substr(0, comma), -kMaxPushMps, kMaxPushMps),
+        parseDoubleOption("--push", push.substr(comma + 1), -kMaxPushMps, kMaxPushMps));
   }
   walk.validate();
 }

@@ -1,9 +1,12 @@
 #include "reach_trajopt/common/config_yaml.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
@@ -49,6 +52,44 @@ void rejectDuplicateKeys(const YAML::Node& n, const std::string& source, const s
   }
 }
 
+/// Throws at the first alias: `&a [*b, *b]` nine levels deep is 306 bytes that yaml-cpp's node
+/// graph shares but every walk over it (duplicate keys, the section reads) expands 2^9-fold.
+/// The event parser reads the text once, linearly, and stops there.
+class AliasRefuser : public YAML::EventHandler {
+ public:
+  explicit AliasRefuser(const std::string& source) : source_(source) {}
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override {
+    std::ostringstream os;
+    os << source_ << ": line " << mark.line + 1 << ": YAML aliases (*name) are not accepted "
+       << "(an alias can expand a few bytes into gigabytes): write the value out";
+    throw ConfigError(os.str());
+  }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+
+ private:
+  std::string source_;
+};
+
+/// Parses `text` (named `source` in errors) refusing aliases first.
+YAML::Node parseWithoutAliases(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  AliasRefuser refuser(source);
+  while (parser.HandleNextDocument(refuser)) {
+  }
+  return YAML::Load(text);
+}
+
 YAML::Node checkedRoot(const YAML::Node& root, const std::string& source) {
   if (!root.IsMap()) throw ConfigError("YAML " + source + ": top level is not a mapping");
   rejectDuplicateKeys(root, source, "");
@@ -68,10 +109,12 @@ YamlSection::YamlSection(std::shared_ptr<const Impl> impl) : impl_(std::move(imp
 
 YamlSection YamlSection::loadFile(const std::string& path) {
   YAML::Node root;
+  std::ifstream in(path);
+  if (!in) throw ConfigError("cannot open YAML file '" + path + "'");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw ConfigError("cannot read YAML file '" + path + "'");
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError("cannot open YAML file '" + path + "'");
+    root = parseWithoutAliases(text, "YAML file '" + path + "'");
   } catch (const YAML::Exception& e) {
     throw ConfigError("malformed YAML in '" + path + "': " + e.what());
   }
@@ -88,7 +131,7 @@ YamlSection YamlSection::loadFile(const std::string& path) {
 YamlSection YamlSection::loadString(const std::string& text, const std::string& source) {
   YAML::Node root;
   try {
-    root = YAML::Load(text);
+    root = parseWithoutAliases(text, source);
   } catch (const YAML::Exception& e) {
     throw ConfigError("malformed YAML in " + source + ": " + e.what());
   }

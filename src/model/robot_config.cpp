@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <map>
 
 #include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/config_yaml.h"
@@ -88,6 +89,15 @@ std::shared_ptr<const RobotModel> RobotConfig::modelFromUrdfString(
 
 void RobotConfig::validate() const {
   if (urdf.empty()) throw ConfigError("RobotConfig: urdf: empty path");
+  std::map<std::string, const char*> role_of;  // joint -> the first key naming it
+  for (const auto& [key, joint] : roles(*this)) {
+    if (joint->empty()) continue;
+    const auto [it, fresh] = role_of.emplace(*joint, key);
+    if (!fresh)
+      throw ConfigError("RobotConfig: robot." + std::string(it->second) + " and robot." +
+                        std::string(key) + " both name joint '" + *joint +
+                        "' (a joint holds one leg role)");
+  }
   for (const auto& [key, joint] : roles(*this)) {
     if (joint->empty() && requiredRole(key))
       throw ConfigError("RobotConfig: " + std::string(key) + ": the leg needs this joint");

@@ -13,6 +13,7 @@
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/ocp/transition_check.h"
 #include "reach_trajopt/ocp/transition_nlp.h"
+#include "reach_trajopt/qp/dual_active_set_qp.h"
 
 namespace reach_trajopt {
 
@@ -61,11 +62,36 @@ struct NloptBridge {
   const OcpProgressCallback* progress = nullptr;
   bool cancelled = false;
   std::string error;
+  /// The time limit, checked inside the evaluations (SLSQP's own maxtime test runs only
+  /// between them): an evaluation that would start too late stops the run instead.
+  Clock::time_point deadline = Clock::time_point::max();
+  double reserve_s = 0.0;     ///< kept free for sampling and checking the answer [s]
+  double longest_step_s = 0;  ///< the longest wall time between two gradient evaluations [s]
+  Clock::time_point last_gradient{};
+  bool timed_out = false;
+
+  /// True when the next iteration (as long as the longest so far) would end past the
+  /// deadline less the reserve: stops the run there. SLSQP's own work between two evaluations
+  /// (its dense least-squares subproblem: up to 0.95 s for a 5 s swing) cannot be interrupted,
+  /// so the run stops before an iteration it could not finish in time, never after the limit.
+  bool outOfTime(bool gradients) {
+    const Clock::time_point now = Clock::now();
+    if (gradients && last_gradient != Clock::time_point{})
+      longest_step_s =
+          std::max(longest_step_s, std::chrono::duration<double>(now - last_gradient).count());
+    const double left = std::chrono::duration<double>(deadline - now).count() - reserve_s;
+    if (left > longest_step_s) return false;
+    timed_out = true;
+    valid = false;
+    opt->force_stop();
+    return true;
+  }
 
   bool prepare(unsigned n, const double* xp, bool gradients) {
-    if (!error.empty()) return false;
+    if (!error.empty() || timed_out) return false;
     const bool same = valid && std::memcmp(x.data(), xp, n * sizeof(double)) == 0;
     if (same && (has_gradients || !gradients)) return true;
+    if (outOfTime(gradients)) return false;
     x = Eigen::Map<const Eigen::VectorXd>(xp, n);
     try {
       nlp->evaluate(x, gradients, values);
@@ -82,6 +108,7 @@ struct NloptBridge {
     valid = true;
     has_gradients = gradients;
     if (gradients) {
+      last_gradient = Clock::now();
       ++gradient_evaluations;
       if (progress && *progress &&
           !(*progress)({nlp->relaxed(), evaluations_before + gradient_evaluations})) {
@@ -122,12 +149,12 @@ struct NloptBridge {
   }
 };
 
-/// Runs SLSQP from x (updated in place). Returns NLopt's code name; `error` gets callback
-/// failures.
+/// Runs SLSQP from x (updated in place) until `deadline` less `reserve_s`. Returns NLopt's
+/// code name (MAXTIME_REACHED when the deadline stopped it); `error` gets callback failures.
 /// \throws ReachCancelled when `progress` returns false.
-std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, double max_time,
-                     Eigen::VectorXd& x, int& evaluations, std::string& error,
-                     const OcpProgressCallback& progress) {
+std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
+                     Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
+                     int& evaluations, std::string& error, const OcpProgressCallback& progress) {
   const unsigned n = static_cast<unsigned>(nlp.variableCount());
   nlopt::opt opt(nlopt::LD_SLSQP, n);
   NloptBridge bridge;
@@ -135,6 +162,9 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, doub
   bridge.opt = &opt;
   bridge.progress = &progress;
   bridge.evaluations_before = evaluations;
+  bridge.deadline = deadline;
+  bridge.reserve_s = reserve_s;
+  const double max_time = std::chrono::duration<double>(deadline - Clock::now()).count();
   auto toStd = [](const Eigen::VectorXd& v) {
     return std::vector<double>(v.data(), v.data() + v.size());
   };
@@ -148,7 +178,7 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, doub
   opt.set_ftol_rel(nlp.relaxed() ? config.relaxed_ftol_rel : config.ftol_rel);
   opt.set_xtol_rel(config.xtol_rel);
   opt.set_maxeval(config.max_evaluations);
-  opt.set_maxtime(max_time);
+  opt.set_maxtime(std::max(1e-6, max_time - reserve_s));
   std::vector<double> xv = toStd(x);
   double f = 0.0;
   nlopt::result code = nlopt::FAILURE;
@@ -174,6 +204,7 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config, doub
   const Eigen::VectorXd xn = Eigen::Map<const Eigen::VectorXd>(xv.data(), n);
   if (xn.allFinite()) x = xn;
   evaluations += bridge.gradient_evaluations;
+  if (bridge.timed_out) return "MAXTIME_REACHED";
   return nloptResultName(code);
 }
 
@@ -191,7 +222,19 @@ std::string worstFamily(const ConstraintViolations& v) {
   return os.str();
 }
 
-/// The hull slices of a request: times in [0, T], sizes, finite, no zero normal.
+/// A slice whose half-planes A p <= b share no point: the nearest point of the hull to the
+/// origin (a QP of 2 variables) is infeasible. An empty slice was solved for the whole time
+/// limit and reported as torque violations.
+void requireNonEmptyHull(const ReachableSlice& s, const std::string& what) {
+  if (s.A.cols() != 2) return;  // sizes are checked by the NLP
+  qp::DualActiveSetQp nearest(2, 0, static_cast<int>(s.A.rows()));
+  const qp::QpResult& r = nearest.solve(Eigen::Matrix2d::Identity(), Eigen::Vector2d::Zero(),
+                                        Eigen::MatrixXd(0, 2), Eigen::VectorXd(0), -s.A, -s.b);
+  if (r.status == qp::QpStatus::kInfeasible)
+    throw RequestError(what + ": empty hull: its half-planes A p <= b share no point");
+}
+
+/// The hull slices of a request: times in [0, T], sizes, finite, no zero normal, not empty.
 void validateSlices(const TransitionRequest& r) {
   const double t_tol = 1e-9 + 1e-9 * r.horizon;
   for (size_t i = 0; i < r.slices.size(); ++i) {
@@ -209,6 +252,7 @@ void validateSlices(const TransitionRequest& r) {
     for (Eigen::Index k = 0; k < s.A.rows(); ++k) {
       if (s.A.row(k).norm() < 1e-12) throw RequestError(what + ": zero normal in A");
     }
+    requireNonEmptyHull(s, what);
   }
 }
 
@@ -322,21 +366,33 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
   TransitionResult res;
   std::string error;
   double previous = std::numeric_limits<double>::infinity();
+  // Kept free for sampling and checking the answer after a run: the last such pass's wall
+  // time, twice (a first guess before any: one evaluation of the NLP, timed here).
+  double reserve_s = 0.0;
+  {
+    const Clock::time_point t0 = Clock::now();
+    NlpValues probe;
+    nlp.evaluate(x, false, probe);
+    reserve_s = 2.0 * std::chrono::duration<double>(Clock::now() - t0).count();
+  }
   for (int round = 0;; ++round) {
     const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
-    if (remaining <= 0.0) {
+    if (remaining <= reserve_s) {
       res.status = OcpStatus::kFailed;
       res.reason = "time limit of " + std::to_string(config_.time_limit) + " s reached";
       if (res.time.size() == 0) nlp.sampleSolution(x, config_.output_dt, res);
       break;
     }
-    res.nlopt_status = runSlsqp(nlp, config_, remaining, x, res.iterations, error, progress);
+    res.nlopt_status =
+        runSlsqp(nlp, config_, deadline, reserve_s, x, res.iterations, error, progress);
     ++res.solves;
     res.variables = nlp.variableCount();
     res.constraints = nlp.equalityCount() + nlp.inequalityCount();
+    const Clock::time_point sampled = Clock::now();
     nlp.sampleSolution(x, config_.output_dt, res);
     const TransitionCheck check =
         checkTransition(*model_, contact_, request, res, 0.5 * config_.tolerance);
+    reserve_s = 2.0 * std::chrono::duration<double>(Clock::now() - sampled).count();
     res.violation = check.violation;
     if (!error.empty()) {
       res.status = OcpStatus::kFailed;
@@ -346,6 +402,9 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     if (res.violation.max() <= config_.tolerance) {
       res.status = relaxed ? OcpStatus::kRelaxed : OcpStatus::kConverged;
       res.reason.clear();
+      // Stopped by the time limit at a feasible iterate: feasible (re-checked), not optimal.
+      if (res.nlopt_status == "MAXTIME_REACHED")
+        res.reason = "time limit reached at a feasible iterate (not optimal)";
       break;
     }
     res.status = OcpStatus::kFailed;
@@ -390,6 +449,8 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request,
       if (finalStateOnContacts(request)) {
         res = solveMode(request, false, deadline, progress);
         if (res.status != OcpStatus::kFailed) break;
+        // Out of time: the strict problem's answer (failed, naming the time limit) stands.
+        if (Clock::now() >= deadline || res.nlopt_status == "MAXTIME_REACHED") break;
         const TransitionResult strict = res;
         res = solveMode(request, true, deadline, progress);
         res.iterations += strict.iterations;

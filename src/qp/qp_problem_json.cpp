@@ -3,7 +3,10 @@
 
 #include "reach_trajopt/qp/qp_problem_json.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace reach_trajopt {
 namespace qp {
@@ -38,6 +41,19 @@ QpProblem readQpProblem(const JsonReader& r) {
   const auto n = static_cast<Eigen::Index>(g.requireArray(0, kMaxQpSize));
   p.g = g.vector(n, NonFinite::kAllow);
   p.G = r.at("G").matrix(n, n, NonFinite::kAllow);
+  // The solver factors G's lower triangle: an asymmetric G would be another problem (or be
+  // reported as not positive definite).
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < i; ++j) {
+      const double a = p.G(i, j), b = p.G(j, i);
+      if (std::isfinite(a) && std::isfinite(b) &&
+          std::abs(a - b) > 1e-9 * std::max(std::abs(a), std::abs(b))) {
+        std::ostringstream os;
+        os << "G is not symmetric: G[" << i << "][" << j << "] = " << a << " but G[" << j << "]["
+           << i << "] = " << b;
+        r.at("G").at(static_cast<std::size_t>(i)).at(static_cast<std::size_t>(j)).fail(os.str());
+      }
+    }
   readRows(r, "Aeq", "beq", n, p.Aeq, p.beq);
   readRows(r, "Ain", "bin", n, p.Ain, p.bin);
   if (r.has("warm_start")) {

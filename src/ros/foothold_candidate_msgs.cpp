@@ -53,6 +53,10 @@ FootholdCandidates fromCheckFootholdsRequestMsg(const reach_trajopt::CheckFootho
   const geometry_msgs::Point& s = m.stance_position;
   b.stance_foothold.position = finiteVector({s.x, s.y, s.z}, 3, "stance_position");
   b.stance_foothold.yaw = finiteVector({m.stance_yaw}, 1, "stance_yaw")[0];
+  if (m.candidates.size() > kMaxFootholdCandidates)
+    throw RequestError("candidates: " + std::to_string(m.candidates.size()) +
+                       " candidates exceed the limit of " + std::to_string(kMaxFootholdCandidates) +
+                       " per request (one ring of the search: nearest_foothold.directions)");
   if (m.candidate_yaw.size() != m.candidates.size())
     throw RequestError("candidate_yaw: expected one per candidate (" +
                        std::to_string(m.candidates.size()) + "), got " +

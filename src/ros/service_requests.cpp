@@ -105,7 +105,9 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
   const Eigen::Vector3d target = fromPointMsg(foothold);
   requireFinite("foothold", target);
   r.duration = duration == 0.0 ? default_duration : duration;
-  if (!(r.duration > 0.0) || !std::isfinite(r.duration))
+  if (!std::isfinite(r.duration))
+    throw RequestError("swing_duration must be finite, got " + std::to_string(r.duration));
+  if (!(r.duration > 0.0))
     throw RequestError("swing_duration " + std::to_string(r.duration) + " s must be positive");
   if (r.duration > limits.max_duration)
     throw RequestError("swing_duration " + std::to_string(r.duration) + " s is over the limit of " +
@@ -164,6 +166,14 @@ ReachConfig reachConfigForDuration(const ReachConfig& base, double duration) {
   config.horizon = duration;
   config.window_start *= s;
   config.window_end *= s;
+  // Shorter than one step of the check (and of the OCP's output): name swing_duration, not the
+  // scaled window (1e-9 s was answered about window_start multiples of dt).
+  if (std::isfinite(duration) && duration < base.dt * (1.0 - 1e-9)) {
+    std::ostringstream os;
+    os << "swing_duration " << duration << " s is shorter than one time step of the check "
+       << "(reach.dt = " << base.dt << " s)";
+    throw RequestError(os.str());
+  }
   return config;
 }
 

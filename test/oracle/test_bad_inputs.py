@@ -89,6 +89,23 @@ ISLAND_LOOP_URDF = """<robot name="island"><link name="base"/><link name="a"/><l
 TWO_ROOTS_URDF = """<robot name="roots"><link name="base"/><link name="a"/><link name="b"/>
   <joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint></robot>"""
 
+def alias_bomb(levels=9):
+    """YAML whose aliases expand ninefold per level (issue 43: 306 bytes, 31 s in a config)."""
+    y = "l0: &l0 [1, 1, 1, 1, 1, 1, 1, 1, 1]\n"
+    for i in range(1, levels + 1):
+        y += f"l{i}: &l{i} [" + ", ".join([f"*l{i - 1}"] * 9) + "]\n"
+    return y
+
+
+def trajectory_over(times):
+    """A trajectory file of check_transition's format on the time axis `times`."""
+    n = len(times)
+    return {"time": times, "q": [standing_q()] * n, "qd": [[0.0] * NQ] * n,
+            "qdd": [[0.0] * NQ] * n, "u": [[0.0] * (NQ - 6)] * n, "lambda": [[0.0] * 12] * n}
+
+
+FIXTURE_REQUESTS = REPO / "test" / "fixtures" / "other_walks_requests.jsonl"
+
 # (class, id, tool, args ({name} = a written file), files {name: text or JSON}, must mention)
 CASES = [
     # ---- crash ------------------------------------------------------------------------------
@@ -274,6 +291,42 @@ CASES = [
                  "lambda": [[0.0] * 11] * 2}}, ["t.json", "lambda"]),
     ("message", "check_transition_request_without_qf", "check_transition", ["{r}", "{r}"],
      {"r.json": TRANSITION_REQUEST}, ["r.json", "qf"]),
+    # ---- issue 43 ---------------------------------------------------------------------------
+    ("resource", "yaml_alias_bomb_config", "reach_check", [BIPED, "{c}", "{r}"],
+     {"c.yaml": "reach:\n  initial_samples: 100\n" + alias_bomb(), "r.json": SWING_REQUEST},
+     ["c.yaml", "line 4", "alias"]),
+    ("resource", "yaml_alias_bomb_walk_config", "walk_experiment", ["--config", "{c}"],
+     {"c.yaml": CONFIG.read_text() + alias_bomb()}, ["c.yaml", "alias"]),
+    ("resource", "envelope_steps_over_time_limit", "push_envelope", ["--steps", "300"], {},
+     ["--steps 300", "walk.max_sim_time"]),
+    ("resource", "envelope_sweep_over_limit", "push_envelope",
+     ["--directions", "64", "--fine", "--steps", "100"], {}, ["409600 footsteps", "--force"]),
+    ("resource", "verdict_grid_over_limit", "verdict_grid",
+     ["--requests", FIXTURE_REQUESTS, "--grid", "41"], {}, ["--grid 41", "--force"]),
+    ("silent", "state_q_1e300", "model_info", [BIPED, "--state", "{s}"],
+     {"s.json": {"q": [0.0, 0.0, 0.9, 1e300] + [0.0] * (NQ - 4), "qd": [0.0] * NQ}},
+     ["s.json", "state 0", "q[3] = 1e+300"]),
+    ("silent", "state_qd_1e300_b_not_finite", "model_info", [BIPED, "--state", "{s}"],
+     {"s.json": {"q": standing_q(), "qd": [1e300] * NQ}}, ["s.json", "state 0", "qd[0]"]),
+    ("silent", "frames_without_state", "model_info", [BIPED, "--frames", "l_sole"], {},
+     ["--frames", "--state"]),
+    ("silent", "check_transition_time_x10", "check_transition", ["{r}", "{t}"],
+     {"r.json": edited(TRANSITION_REQUEST, ("qf",), standing_q()),
+      "t.json": trajectory_over([0.0, 2.0, 4.0])}, ["t.json", "time", "[0, 0.4]"]),
+    ("silent", "check_transition_time_shifted", "check_transition", ["{r}", "{t}"],
+     {"r.json": edited(TRANSITION_REQUEST, ("qf",), standing_q()),
+      "t.json": trajectory_over([1.0, 1.2, 1.4])}, ["t.json", "time", "[1, 1.4]"]),
+    ("silent", "robot_joint_in_two_roles", "walk_experiment", ["--config", "{c}", "--steps", "1"],
+     {"c.yaml": biped_config_with("left_knee: l_knee", "left_knee: r_knee")},
+     ["robot.left_knee", "robot.right_knee", "r_knee"]),
+    ("message", "qp_asymmetric_G", "qp_solve", ["{p}"],
+     {"p.json": {"G": [[2, 1], [0, 2]], "g": [1, 1]}}, ["not symmetric", "G[1][0]"]),
+    ("message", "transition_empty_hull", "plan_transition", ["{r}"],
+     {"r.json": edited(TRANSITION_REQUEST, ("slices",),
+                       [{"time": 0.2, "A": [[1, 0], [-1, 0]], "b": [0, -1]}])},
+     ["slice 0", "empty hull"]),
+    ("message", "walk_push_1e300", "walk_experiment", ["--push", "0,1e300"], {},
+     ["--push", "1e300"]),
 ]
 
 

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +38,13 @@ namespace {
 
 constexpr int kNq = 18;      // urdf/biped.urdf: 6 virtual + 12 leg joints
 constexpr int kRounds = 12;  // rounds over all malformed kinds, per service and pass
+/// The bound on the resident memory's growth per pass after the warm-up (the median of the
+/// passes' increments) [KiB per pass of 432 requests]: a leak of 0.5 KiB per request fails it.
+/// Measured on the 2-core test machine, bad_requests.test run alone 10 times in a row (both
+/// nodes' VmRSS summed, 10 passes after the warm-up): 0.0 KiB per pass in 9 runs, 2.0 in one;
+/// the end-to-end growth was 0.0-3.1 MiB (a one-time 3 MiB step of the allocator in 4 of the 10
+/// runs, the same pass to pass back and forth: the 3 MB requests), which the median ignores.
+constexpr double kMaxSlopeKiB = 200.0;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 
@@ -101,6 +109,18 @@ std::vector<std::function<void(Req&)>> kinds(std::mt19937& rng) {
   k.push_back([](Req& r) { r.swing_duration = 1000.0; });  // over the duration limit
   k.push_back([](Req& r) { r.swing_duration = 1e-300; });
   return k;
+}
+
+/// YAML whose aliases expand `levels` times ninefold: `l1: &l1 [*l0, *l0, ...]` and so on.
+std::string aliasBomb(int levels) {
+  std::string y = "l0: &l0 [1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+  for (int i = 1; i <= levels; ++i) {
+    const std::string prev = "*l" + std::to_string(i - 1);
+    y += "l" + std::to_string(i) + ": &l" + std::to_string(i) + " [";
+    for (int k = 0; k < 9; ++k) y += (k ? ", " : "") + prev;
+    y += "]\n";
+  }
+  return y;
 }
 
 struct Tally {
@@ -172,27 +192,44 @@ TEST(BadRequests, NodesRejectEverythingAndStayFlat) {
   ASSERT_GT(pid_reach, 0);
   ASSERT_GT(pid_ocp, 0);
   Tally t;
-  // Warm up (lazy allocations of the first calls are not growth), then measure.
-  hammer<reach_trajopt::CheckReachability>("check_reachability", t, [](auto& r) {
-    r.forward_samples = 1000000000u;  // 1e9 samples: rejected before any sample is drawn
-  });
-  hammer<reach_trajopt::PlanTransition>("plan_transition", t,
-                                        [](auto& r) { r.swing_duration = 1e9; });
-  const double rss0 = rssMiB(pid_reach) + rssMiB(pid_ocp);
-  t = Tally();
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int rep = 0; rep < 4; ++rep) {
-    std::printf("rss after %d passes: %.1f MiB\n", rep, rssMiB(pid_reach) + rssMiB(pid_ocp));
+  auto pass = [&t]() {
     hammer<reach_trajopt::CheckReachability>("check_reachability", t, [](auto& r) {
       r.forward_samples = 10000000u;  // 1e7 samples (the issue's 1.6 GB request)
     });
     hammer<reach_trajopt::PlanTransition>("plan_transition", t, [](auto& r) {
       r.swing_duration = 1000.0;  // the issue's 1000 s horizon
     });
+  };
+  // Warm up: the nodes' first calls allocate lazily (connections, buffers, malloc arenas) and
+  // that is not growth. Then the growth per pass over kPasses passes (the resident memory
+  // after each), so neither the warm-up nor a one-time step of the allocator counts as a leak
+  // the way an end-to-end difference did (issue 43: 8.9 MiB of warm-up against a fixed 8 MiB).
+  hammer<reach_trajopt::CheckReachability>("check_reachability", t, [](auto& r) {
+    r.forward_samples = 1000000000u;  // 1e9 samples: rejected before any sample is drawn
+  });
+  hammer<reach_trajopt::PlanTransition>("plan_transition", t,
+                                        [](auto& r) { r.swing_duration = 1e9; });
+  pass();
+  constexpr int kPasses = 10;
+  std::vector<double> rss{rssMiB(pid_reach) + rssMiB(pid_ocp)};
+  t = Tally();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int rep = 0; rep < kPasses; ++rep) {
+    pass();
+    rss.push_back(rssMiB(pid_reach) + rssMiB(pid_ocp));
+    std::printf("rss after %d passes: %.2f MiB\n", rep + 1, rss.back());
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double rss1 = rssMiB(pid_reach) + rssMiB(pid_ocp);
+  // The growth per pass: the median of the passes' increments. A leak grows every pass; the
+  // allocator's occasional one-time step (3 MiB once, in 2 of 10 runs measured) moves one
+  // increment, which the median ignores (a slope fitted through it did not).
+  std::vector<double> increments;
+  for (std::size_t i = 1; i < rss.size(); ++i) increments.push_back(rss[i] - rss[i - 1]);
+  std::sort(increments.begin(), increments.end());
+  const double slope =
+      0.5 * (increments[(increments.size() - 1) / 2] + increments[increments.size() / 2]);
+  const int calls_per_pass = t.calls / kPasses;
   // Still serving: a valid, small check.
   reach_trajopt::CheckReachability ok;
   ok.request.header.frame_id = "world";
@@ -203,14 +240,16 @@ TEST(BadRequests, NodesRejectEverythingAndStayFlat) {
   const bool alive = callService("check_reachability", ok) && ok.response.success &&
                      rssMiB(pid_reach) > 0 && rssMiB(pid_ocp) > 0;
   std::printf(
-      "BENCH ros.bad_requests calls=%d answered=%d node_alive=%d rss_growth_mib=%.1f "
-      "seconds=%.1f\n",
-      t.calls, t.answered, alive ? 1 : 0, rss1 - rss0, seconds);
+      "BENCH ros.bad_requests calls=%d answered=%d node_alive=%d passes=%d "
+      "rss_median_kib_per_pass=%.1f rss_growth_mib=%.2f seconds=%.1f\n",
+      t.calls, t.answered, alive ? 1 : 0, kPasses, 1024.0 * slope, rss.back() - rss.front(),
+      seconds);
   std::fflush(stdout);
   EXPECT_EQ(t.answered, t.calls);
   EXPECT_TRUE(alive) << ok.response.message;
-  // Flat: a leak of even 1 KiB per request would show as > 8 MiB here.
-  EXPECT_LT(rss1 - rss0, 8.0);
+  // Flat: a leak of 1 KiB per request is calls_per_pass KiB per pass (432).
+  EXPECT_LT(1024.0 * slope, kMaxSlopeKiB) << "resident memory grows by " << 1024.0 * slope
+                                          << " KiB per pass of " << calls_per_pass << " requests";
 }
 
 // The longest swing a request may ask (5 s, docs/limits.md) must still end within the OCP's
@@ -227,9 +266,41 @@ TEST(BadRequests, LongestAllowedSwingKeepsTheTimeLimit) {
   ASSERT_TRUE(callService("plan_transition", srv));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("BENCH ros.longest_swing seconds=%.1f status=%s\n", seconds,
-              srv.response.trajectory.status.c_str());
-  EXPECT_LT(seconds, 10.0 + 5.0) << srv.response.message;
+  // The 2 % target is the BENCH line's (a benchmark figure); the test's bound is generous.
+  constexpr double kLimit = 10.0;
+  std::printf(
+      "BENCH ros.longest_swing seconds=%.2f limit_s=%.1f ratio=%.3f within_2pct=%s status=%s\n",
+      seconds, kLimit, seconds / kLimit, seconds <= 1.02 * kLimit ? "yes" : "no",
+      srv.response.trajectory.status.c_str());
+  EXPECT_LT(seconds, kLimit + 5.0) << srv.response.message;
+}
+
+// A swing_duration of inf or 1e-9 s is answered about swing_duration (issue 43: "must be
+// positive" and a message about window_start multiples of dt), by both services.
+TEST(BadRequests, SwingDurationMessagesNameTheProblem) {
+  const std::pair<double, std::string> cases[] = {
+      {kInf, "swing_duration must be finite"},
+      {1e-9, "swing_duration 1e-09 s is shorter than one time step of the check"}};
+  for (const auto& [duration, words] : cases) {
+    reach_trajopt::CheckReachability check;
+    check.request.header.frame_id = "world";
+    check.request.contact_mode = "SS-L";
+    check.request.foothold.x = 0.05;
+    check.request.foothold.y = -0.2;
+    check.request.swing_duration = duration;
+    ASSERT_TRUE(callService("check_reachability", check));
+    EXPECT_FALSE(check.response.success);
+    EXPECT_NE(check.response.message.find(words), std::string::npos) << check.response.message;
+    reach_trajopt::PlanTransition plan;
+    plan.request.header.frame_id = "world";
+    plan.request.contact_mode = "SS-L";
+    plan.request.foothold.x = 0.05;
+    plan.request.foothold.y = -0.2;
+    plan.request.swing_duration = duration;
+    ASSERT_TRUE(callService("plan_transition", plan));
+    EXPECT_FALSE(plan.response.success);
+    EXPECT_NE(plan.response.message.find(words), std::string::npos) << plan.response.message;
+  }
 }
 
 // plan_footstep (the walking loop's per-step service of transition_ocp_node): each malformed
@@ -320,6 +391,12 @@ TEST(BadRequests, CheckFootholdsRejectsNamingTheFieldAndServesOn) {
           {"candidates[1]", [](auto& r) { r.candidates[1].x = kNaN; }},
           {"q_init", [](auto& r) { r.q_init.assign(200000, 0.0); }},
           {"pelvis_position", [](auto& r) { r.pelvis_position = {1.0}; }},
+          // A million candidates (24 s and 1.15 GB before the cap, issue 43).
+          {"candidates",
+           [](auto& r) {
+             r.candidates.resize(1000000);
+             r.candidate_yaw.resize(1000000);
+           }},
       };
   for (const auto& [field, edit] : kinds) {
     reach_trajopt::CheckFootholds srv;
@@ -375,6 +452,8 @@ TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
           {"touchdown_pelvis_position", [](auto& r) { r.touchdown_pelvis_position = {1.0}; }},
           {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
           {"seed", [](auto& r) { r.seed = -5; }},
+          // YAML aliases nine levels deep: 55 s of expansion before they were refused.
+          {"reach_config", [](auto& r) { r.reach_config = aliasBomb(9); }},
       };
   for (const auto& [field, edit] : kinds) {
     reach_trajopt::CheckFootstep srv;

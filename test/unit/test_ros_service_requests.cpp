@@ -68,8 +68,13 @@ TEST(RosServiceRequests, RejectsMalformedRequestsWithTheReason) {
   expectReason([&] { f.parse("world", "SS-L", std::vector<double>(200000, 0.0), qd); },
                "q: expected size");
   const rb::FootholdRequest tiny = f.parse("world", "SS-L", {}, {}, 1e-300);
+  // Named as swing_duration, not as the scaled window (issue 43).
   expectReason([&] { rb::reachConfigForDuration(ReachConfig{}, tiny.duration).validate(); },
-               "at least one time step");
+               "swing_duration 1e-300 s is shorter than one time step of the check");
+  expectReason([&] { rb::reachConfigForDuration(ReachConfig{}, 1e-9); },
+               "swing_duration 1e-09 s is shorter than one time step");
+  expectReason([&] { f.parse("world", "SS-L", {}, {}, INFINITY); },
+               "swing_duration must be finite");
   f.foothold.x = INFINITY;
   expectReason([&] { f.parse("world", "SS-L", {}, {}); }, "non-finite");
   f.foothold.x = 0.1;

@@ -15,12 +15,17 @@
 namespace reach_trajopt {
 namespace ros_bridge {
 
+/// The most candidates one check_footholds request may carry: one ring of the search, whose
+/// `nearest_foothold.directions` is at most 360 (each candidate is an IK solve).
+constexpr size_t kMaxFootholdCandidates = 360;
+
 /// The request of `batch`, tagged `request_id`.
 reach_trajopt::CheckFootholds::Request toCheckFootholdsRequestMsg(const FootholdCandidates& batch,
                                                                   uint64_t request_id);
 
 /// The batch of a request for a model with `nq` coordinates.
-/// \throws RequestError naming the field: an unknown stance, sizes, non-finite numbers.
+/// \throws RequestError naming the field: an unknown stance, sizes, non-finite numbers, more
+/// than kMaxFootholdCandidates candidates.
 FootholdCandidates fromCheckFootholdsRequestMsg(const reach_trajopt::CheckFootholds::Request& m,
                                                 int nq);
 

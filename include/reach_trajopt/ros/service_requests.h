@@ -67,6 +67,7 @@ const std::string& swingFrame(const ContactConfig& contact, Side stance);
 /// The reachability configuration for a swing of `duration` seconds [s, > 0]: the horizon
 /// t_f - t_0 set to `duration`, the overlap window [t_2, t_1] kept at the same fractions of it.
 /// Not validated (the caller may change more fields first).
+/// \throws RequestError naming swing_duration when `duration` is shorter than base.dt.
 ReachConfig reachConfigForDuration(const ReachConfig& base, double duration);
 
 /// The reachability problem (13)-(21) of a validated request whose foothold passed the
