@@ -99,8 +99,12 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
           .add("forward_speed", &C::forward_speed, "m/s",
                "desired CoM speed along x (drives p_des of eq. 11)")
           .add("initial_com_velocity", &C::initial_com_velocity, "m/s", "push at t = 0, feet still")
-          .choice("first_swing", &C::first_swing, {{"left", Side::kLeft}, {"right", Side::kRight}},
-                  "the sole that swings first (right: SS-L comes first)")
+          .choice("first_swing", &C::first_swing,
+                  {{"capture_point", WalkConfig::FirstSwing::kFromCapturePoint},
+                   {"left", WalkConfig::FirstSwing::kLeft},
+                   {"right", WalkConfig::FirstSwing::kRight}},
+                  "the sole that swings first (right: SS-L comes first; capture_point: the side "
+                  "the capture point lies toward at lift-off)")
           .add("fall_pelvis_height", &C::fall_pelvis_height, "m",
                "pelvis origin below this height = fall, > 0")
           .add("seed", &C::seed, "",
@@ -240,6 +244,8 @@ struct WalkingExperiment::Loop {
   /// Phase transitions; false when the run ends here.
   bool updatePhase(double t);
   bool singleSupport(double t);
+  /// WalkConfig::FirstSwing::kFromCapturePoint's choice from the measured CoM state.
+  Side firstSwingSide() const;
   void beginSingleSupport(double t);
   void planStep(double t, double time_in_swing);
   void checkStep(double t, double time_in_swing);
@@ -318,7 +324,7 @@ WalkingExperiment::Loop::Loop(
       com_ref_(planner_.lipm(), com0_),
       wbc_(model_, impl.contact, impl.wbc_config, q0_),
       Jc_(3, m_.nq()),
-      swing_(wc_.first_swing) {
+      swing_(wc_.first_swing == WalkConfig::FirstSwing::kLeft ? Side::kLeft : Side::kRight) {
   const Eigen::VectorXd qd0 =
       doubleSupportBaseVelocity(m_, q0_, sole_[0], sole_[1], wc_.initial_com_velocity);
   world_ = BulletWorld::fromUrdfFile(impl.robot.urdfPath(), m_, impl.sim_config);
@@ -367,6 +373,7 @@ bool WalkingExperiment::Loop::updatePhase(double t) {
     }
     feet_mid_ = 0.5 * (xy(m_.framePose(ws_, sole_[0]).translation()) +
                        xy(m_.framePose(ws_, sole_[1]).translation()));
+    if (wc_.first_swing == WalkConfig::FirstSwing::kFromCapturePoint) swing_ = firstSwingSide();
     beginSingleSupport(t);
   } else if (phase_ == Phase::kSingle) {
     return singleSupport(t);
@@ -379,6 +386,14 @@ bool WalkingExperiment::Loop::updatePhase(double t) {
     beginSingleSupport(t);
   }
   return true;
+}
+
+Side WalkingExperiment::Loop::firstSwingSide() const {
+  // The capture point's lateral offset from the soles' midpoint, in the stance heading (the
+  // walk starts facing +x).
+  const double omega = planner_.lipm().omega();
+  const double offset = com_.y() + vcom_.y() / omega - feet_mid_.y();
+  return offset > 0.01 ? Side::kLeft : Side::kRight;
 }
 
 bool WalkingExperiment::Loop::singleSupport(double t) {

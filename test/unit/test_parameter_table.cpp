@@ -166,7 +166,8 @@ TEST(ParameterTable, UnknownAndBadKeysNameTheFileAndKey) {
     WalkConfig::fromYaml(
         YamlSection::loadString("walk: {first_swing: up}", "w.yaml").section("walk"));
   });
-  EXPECT_NE(side.find("walk.first_swing: expected 'left' or 'right', got 'up'"), std::string::npos)
+  EXPECT_NE(side.find("walk.first_swing: expected 'capture_point', 'left' or 'right', got 'up'"),
+            std::string::npos)
       << side;
   const std::string size = configError([] {
     WalkConfig::fromYaml(
@@ -179,7 +180,7 @@ TEST(ParameterTable, UnknownAndBadKeysNameTheFileAndKey) {
       YamlSection::loadString("walk: {policy: proposed, first_swing: left, seed: 7}", "w.yaml")
           .section("walk"));
   EXPECT_EQ(w.policy.name, "proposed");
-  EXPECT_EQ(w.first_swing, Side::kLeft);
+  EXPECT_EQ(w.first_swing, WalkConfig::FirstSwing::kLeft);
   EXPECT_EQ(w.seed, 7u);
 }
 

@@ -57,7 +57,12 @@ struct WalkConfig {
   double knee_bend = 0.6;         ///< standing posture [rad]
   double forward_speed = 0.0;     ///< desired CoM speed along x (drives p_des of eq. 11)
   Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
-  Side first_swing = Side::kRight;  ///< SS-L comes first: the right sole swings first
+  /// Which sole swings first. kFromCapturePoint: the one on the side the instantaneous capture
+  /// point (CoM + CoM velocity / omega, eq. 9) lies toward, laterally from the soles' midpoint,
+  /// at the end of the settle phase (a push to the left steps with the left leg: the stance
+  /// leg is not crossed); within 1 cm of the midpoint, the right sole (as kRight).
+  enum class FirstSwing { kFromCapturePoint, kLeft, kRight };
+  FirstSwing first_swing = FirstSwing::kRight;
   double fall_pelvis_height = 0.6;  ///< pelvis origin below this height = fall [m]
   /// Seed of every random draw of the run: the reachability check's sampler (replaces
   /// reach.seed; the simulation, the controller and the other policies draw nothing).
