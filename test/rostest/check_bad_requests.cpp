@@ -356,8 +356,8 @@ TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
   model->update(ws, request.q0, request.qd0);
   request.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
   request.target.position = model->framePose(ws, model->frameId("r_sole")).translation();
-  const reach_trajopt::CheckFootstep::Request valid =
-      ros_bridge::toCheckFootstepRequestMsg(request, ReachConfig(), false, false, ros::Time(0));
+  const reach_trajopt::CheckFootstep::Request valid = ros_bridge::toCheckFootstepRequestMsg(
+      request, ReachConfig(), std::nullopt, false, false, ros::Time(0));
   const std::vector<
       std::pair<std::string, std::function<void(reach_trajopt::CheckFootstep::Request&)>>>
       kinds = {
@@ -375,6 +375,12 @@ TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
           {"touchdown_pelvis_position", [](auto& r) { r.touchdown_pelvis_position = {1.0}; }},
           {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
           {"seed", [](auto& r) { r.seed = -5; }},
+          {"budget", [](auto& r) { r.budget.resize(2); }},
+          {"forward_until",
+           [](auto& r) {
+             r.budget.resize(1);
+             r.forward_until = {0.01};  // without forward_set_only
+           }},
       };
   for (const auto& [field, edit] : kinds) {
     reach_trajopt::CheckFootstep srv;
