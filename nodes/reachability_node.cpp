@@ -95,7 +95,7 @@ class ReachabilityNode {
                 "backward_samples: both directions draw initial_samples; set "
                 "forward_samples only (or equal)");
           if (req.forward_samples > 0)
-            config.initial_samples = static_cast<int>(req.forward_samples);
+            config.budgets.full.initial_samples = static_cast<int>(req.forward_samples);
           if (req.seed > 0) config.seed = req.seed;
           config.validate();
           config.requireResourcesWithinLimits(s_.model->nq());  // reject before the IK runs
@@ -181,8 +181,9 @@ class ReachabilityNode {
         [&] {
           const rb::FootstepCheckCall call =
               rb::fromCheckFootstepRequestMsg(req, s_.model->nq(), s_.reach);
-          const FootstepCheckResult check = reach_trajopt::checkFootstep(
-              s_.planner->footstepReachability(), call.request, call.reach, call.reachability);
+          const FootstepCheckResult check =
+              reach_trajopt::checkFootstep(s_.planner->footstepReachability(), call.request,
+                                           call.reach, call.pass, call.reachability);
           res = rb::toCheckFootstepResponseMsg(
               check,
               rb::checkedFootstepMsg(check.result, rb::swingFrame(s_.contact, call.request.stance),

@@ -139,9 +139,9 @@ class TransitionOcpNode {
     remote_check_ = std::make_unique<rb::RemoteFootstepCheck>(nh, service, timeout, s_.planner,
                                                               s_.contact, reachability_samples_);
     footstep_planner_->setFootstepCheck(
-        [check = remote_check_.get()](const FootstepRequest& r, const ReachConfig& c, bool reach) {
-          return check->check(r, c, reach);
-        });
+        [check = remote_check_.get()](const FootstepRequest& r, const ReachConfig& c,
+                                      const CheckPass& pass,
+                                      bool reach) { return check->check(r, c, pass, reach); });
     ROS_INFO("transition_ocp_node: plan_footstep checks its footsteps on '%s'",
              nh.resolveName(service).c_str());
   }

@@ -14,7 +14,7 @@
 /// before touchdown) at 1 and 2 threads with the full budget alone, for the stage times of the
 /// walk's full passes (mode=walk_horizon; the walk itself is scripts/bench_walk_check.sh).
 ///
-///   bench_reach [repeats=3] [initial_samples=0: the configuration's] [config.yaml]
+///   bench_reach [repeats=3] [initial_samples=0: the configuration's budgets.full] [config.yaml]
 
 #include <sys/resource.h>
 
@@ -112,7 +112,7 @@ void benchMode(const FootstepReachability& check, const FootstepRequest& req, co
         "samples=%d threads=%d qps=%ld qps_per_s=%.0f kept=%ld reachable=%d budgets=%d "
         "gave_up=%d peak_rss_mib=%.1f\n",
         mode, configs[c].horizon, m.total, m.total_min, m.cpu, m.forward, m.backward, m.boundary,
-        m.hausdorff, m.witness, configs[c].initial_samples, configs[c].threads, qps,
+        m.hausdorff, m.witness, configs[c].budgets.full.initial_samples, configs[c].threads, qps,
         qps / (m.forward + m.backward), n.forward_samples + n.backward_samples, r.reachable ? 1 : 0,
         r.reach.budgets, r.reach.gave_up ? 1 : 0, peakRssMiB());
   }
@@ -126,11 +126,11 @@ void benchMode(const FootstepReachability& check, const FootstepRequest& req, co
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
   // The reach: section of a YAML file (e.g. config/reach_reference.yaml) on top of the
-  // defaults (= config/biped.yaml's); initial_samples 0 keeps the configuration's.
+  // defaults (= config/biped.yaml's); budgets.full.initial_samples 0 keeps the configuration's.
   ReachConfig base;
   if (argc > 3) base = ReachConfig::fromYaml(YamlSection::loadFile(argv[3]).section("reach"), base);
   base.threads = 0;
-  if (argc > 2 && std::atoi(argv[2]) > 0) base.initial_samples = std::atoi(argv[2]);
+  if (argc > 2 && std::atoi(argv[2]) > 0) base.budgets.full.initial_samples = std::atoi(argv[2]);
   const auto model = RobotModel::fromUrdfFile(std::string(REACH_REPO) + "/urdf/biped.urdf");
   const ContactConfig contact;
   const KinematicFeasibilityConfig kfc;
@@ -164,7 +164,8 @@ int main(int argc, char** argv) {
   for (const Mode& mode : modes) {
     std::vector<ReachConfig> configs;
     for (int threads : {1, 2}) {
-      ReachConfig cfg = mode.adaptive ? base : base.fullPassConfig();
+      ReachConfig cfg = base;
+      cfg.quick_pass = mode.adaptive;  // false: budgets.full alone
       cfg.threads = threads;
       if (!mode.bidirectional) cfg.window_start = cfg.window_end = cfg.horizon;
       configs.push_back(cfg);
@@ -179,7 +180,8 @@ int main(int argc, char** argv) {
   req.qd0 = walk_case.qd;
   std::vector<ReachConfig> walk_configs;
   for (int threads : {1, 2}) {
-    ReachConfig cfg = walk_config.reach.fullPassConfig();
+    ReachConfig cfg = walk_config.reach;
+    cfg.quick_pass = false;  // budgets.full alone
     cfg.threads = threads;
     walk_configs.push_back(cfg);
   }

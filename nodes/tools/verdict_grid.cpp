@@ -198,16 +198,9 @@ void requireReferenceWithinLimits(const GridOptions& o, const GridSetup& g,
     if (st.reach) rc.horizon = st.reach->horizon;
     try {
       rc.validate();
-      rc.requireResourcesWithinLimits(g.model->nq());
+      rc.requireResourcesWithinLimits(g.model->nq());  // every budget: full, quick, hull
     } catch (const ReachError& e) {
       throw ConfigError(where + ": " + e.what());
-    }
-    try {
-      if (rc.hull_pass) rc.hullPassConfig().requireResourcesWithinLimits(g.model->nq());
-    } catch (const ReachError& e) {
-      throw ConfigError(where + ": the hull pass's budget (hull_initial_samples " +
-                        std::to_string(rc.hull_initial_samples) + ", hull_children_per_parent " +
-                        std::to_string(rc.hull_children_per_parent) + "): " + e.what());
     }
   }
 }

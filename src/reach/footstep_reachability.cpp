@@ -66,4 +66,16 @@ FootstepResult FootstepReachability::check(const FootstepRequest& r, const Reach
   return out;
 }
 
+FootstepResult FootstepReachability::checkPass(const FootstepRequest& r, const ReachConfig& config,
+                                               const CheckPass& pass,
+                                               const ReachProgressCallback& progress) const {
+  FootstepResult out = kinematicStage(r);
+  if (!out.kinematically_feasible) return out;
+  out.reach =
+      analyzer_->checkPass(footstepProblem(r, out.kinematics.q_f, out.qdf), config, pass, progress);
+  out.reachable = out.reach.reachable;
+  out.reason = out.reach.reason;
+  return out;
+}
+
 }  // namespace reach_trajopt

@@ -67,19 +67,10 @@ void ReachConfig::validate() const {
   if (horizon / dt > L::kMaxSteps + 0.5)
     bad("horizon", "/ dt = " + std::to_string(horizon / dt) + " steps is over the limit of " +
                        std::to_string(L::kMaxSteps));
-  if (initial_samples < 1) bad("initial_samples", "must be >= 1 (zero samples)");
-  if (children_per_parent < 1) bad("children_per_parent", "must be >= 1 (zero samples)");
-  if (max_boundary < 1) bad("max_boundary", "must be >= 1");
+  budgets.full.validate("budgets.full");
+  if (quick_pass) budgets.quick.validate("budgets.quick");
+  budgets.hullBudget().validate("budgets.hull");
   if (angular_bins < 0) bad("angular_bins", "must be >= 0");
-  if (interior_samples < 0) bad("interior_samples", "must be >= 0");
-  if (backward_children_per_parent < 1)
-    bad("backward_children_per_parent", "must be >= 1 (zero samples)");
-  requireAtMost("initial_samples", initial_samples, L::kMaxInitialSamples);
-  requireAtMost("children_per_parent", children_per_parent, L::kMaxChildrenPerParent);
-  requireAtMost("backward_children_per_parent", backward_children_per_parent,
-                L::kMaxChildrenPerParent);
-  requireAtMost("max_boundary", max_boundary, L::kMaxBoundary);
-  requireAtMost("interior_samples", interior_samples, L::kMaxBoundary);
   requireAtMost("angular_bins", angular_bins, L::kMaxAngularBins);
   if (boundary_lookahead.empty()) bad("boundary_lookahead", "must hold at least one value");
   requireAtMost("boundary_lookahead (entries)", static_cast<long long>(boundary_lookahead.size()),
@@ -108,13 +99,10 @@ void ReachConfig::validate() const {
   requirePositive("backward_base_accel", backward_base_accel);
   requireNonNegative("delta", delta);
   requireNonNegative("overlap_gap_max", overlap_gap_max);
-  if (certificate_candidates < 1) bad("certificate_candidates", "must be >= 1");
-  requireAtMost("certificate_candidates", certificate_candidates, L::kMaxCertificateCandidates);
   requirePositive("certificate_tolerance", certificate_tolerance);
   requirePositive("certificate_contact_velocity_tolerance", certificate_contact_velocity_tolerance);
   requirePositive("terminal_position_tolerance", terminal_position_tolerance);
   requirePositive("terminal_velocity_tolerance", terminal_velocity_tolerance);
-  requireNonNegative("constraint_margin", constraint_margin);
   requireNonNegative("quick_retry_constraint_margin", quick_retry_constraint_margin);
   if (output_axes.empty() || output_axes.size() > 3) bad("output_axes", "must hold 1-3 axes");
   for (std::size_t i = 0; i < output_axes.size(); ++i) {
@@ -128,86 +116,57 @@ void ReachConfig::validate() const {
   requirePositive("contact_velocity_tolerance", contact_velocity_tolerance);
   requireNonNegative("limit_tolerance", limit_tolerance);
   if (!(give_up_gap >= 0.0)) bad("give_up_gap", "must be >= 0 (0: never give up)");
-  if (hull_children_per_parent < 1) bad("hull_children_per_parent", "must be >= 1 (zero samples)");
-  requireAtMost("hull_children_per_parent", hull_children_per_parent, L::kMaxChildrenPerParent);
-  if (hull_initial_samples < 1) bad("hull_initial_samples", "must be >= 1 (zero samples)");
-  requireAtMost("hull_initial_samples", hull_initial_samples, L::kMaxInitialSamples);
-  if (quick_pass) {
-    try {
-      quickPassConfig().validate();
-    } catch (const ConfigError& e) {
-      // Name the quick_ key: "ReachConfig: initial_samples ..." -> "ReachConfig: quick_...".
-      std::string what = e.what();
-      const std::string prefix = "ReachConfig: ";
-      if (what.rfind(prefix, 0) == 0) what.insert(prefix.size(), "quick_");
-      throw ConfigError(what);
-    }
-  }
 }
 
-ReachConfig ReachConfig::hullPassConfig(double forward_until_s) const {
-  ReachConfig c = *this;
-  c.quick_pass = false;
-  c.hull_pass = false;
-  c.forward_set_only = true;
-  c.children_per_parent = hull_children_per_parent;
-  c.initial_samples = hull_initial_samples;
-  if (forward_until_s >= 0.0 && forward_until_s < window_end) {
-    c.window_end = std::max(1.0, std::ceil(forward_until_s / dt - 1e-6)) * dt;  // on the grid
-    c.window_start = std::min(c.window_start, c.window_end);  // unused without backward set
-  }
-  return c;
-}
-
-ReachConfig ReachConfig::fullPassConfig() const {
-  ReachConfig c = *this;
-  c.quick_pass = false;
-  return c;
-}
-
-ReachConfig ReachConfig::quickPassConfig() const {
-  ReachConfig c = *this;
-  c.quick_pass = false;
-  c.initial_samples = quick_initial_samples;
-  c.children_per_parent = quick_children_per_parent;
-  c.backward_children_per_parent = quick_backward_children_per_parent;
-  c.max_boundary = quick_max_boundary;
-  c.interior_samples = quick_interior_samples;
-  c.certificate_candidates = quick_certificate_candidates;
-  c.constraint_margin = quick_constraint_margin;
-  return c;
+double ReachConfig::estimatedQps(const SamplingBudget& budget) const {
+  const double steps = std::ceil(window_end / dt) + std::ceil((horizon - window_start) / dt);
+  const double parents = static_cast<double>(budget.max_boundary) + budget.interior_samples;
+  const double per_slice =
+      parents * std::max(budget.children_per_parent, budget.backward_children_per_parent);
+  return 2.0 * budget.initial_samples + steps * per_slice;
 }
 
 double ReachConfig::estimatedQps() const {
-  const double steps = std::ceil(window_end / dt) + std::ceil((horizon - window_start) / dt);
-  const double parents = static_cast<double>(max_boundary) + interior_samples;
-  const double per_slice = parents * std::max(children_per_parent, backward_children_per_parent);
-  return 2.0 * initial_samples + steps * per_slice;
+  double qps = estimatedQps(budgets.full);
+  if (quick_pass) qps = std::max(qps, estimatedQps(budgets.quick));
+  if (quick_pass && hull_pass) qps = std::max(qps, estimatedQps(budgets.hullBudget()));
+  return qps;
+}
+
+double ReachConfig::estimatedMemoryBytes(int nq, const SamplingBudget& budget) const {
+  // output + rate (3 each), qd, u, lambda (12), kept q: doubles; parent index; QP scratch.
+  const double per_sample = 8.0 * (6 + 3.0 * nq + 12) + 16;
+  return per_sample * estimatedQps(budget);
 }
 
 double ReachConfig::estimatedMemoryBytes(int nq) const {
-  // output + rate (3 each), qd, u, lambda (12), kept q: doubles; parent index; QP scratch.
   const double per_sample = 8.0 * (6 + 3.0 * nq + 12) + 16;
   return per_sample * estimatedQps();
 }
 
 void ReachConfig::requireResourcesWithinLimits(int nq) const {
-  const double qps = estimatedQps();
+  requireResourcesWithinLimits(nq, budgets.full);
+  if (quick_pass) requireResourcesWithinLimits(nq, budgets.quick);
+  if (quick_pass && hull_pass) requireResourcesWithinLimits(nq, budgets.hullBudget());
+}
+
+void ReachConfig::requireResourcesWithinLimits(int nq, const SamplingBudget& b) const {
+  const double qps = estimatedQps(b);
   if (qps > ReachLimits::kMaxQps) {
     std::ostringstream os;
     os << "ReachConfig: the check would solve about " << qps << " QPs (initial_samples "
-       << initial_samples << ", max_boundary " << max_boundary << ", interior_samples "
-       << interior_samples << ", horizon " << horizon << " s at dt " << dt
+       << b.initial_samples << ", max_boundary " << b.max_boundary << ", interior_samples "
+       << b.interior_samples << ", horizon " << horizon << " s at dt " << dt
        << " s), over the limit of " << ReachLimits::kMaxQps << " (minutes of wall time)";
     throw ConfigError(os.str());
   }
-  const double bytes = estimatedMemoryBytes(nq);
+  const double bytes = estimatedMemoryBytes(nq, b);
   if (bytes > ReachLimits::kMaxMemoryBytes) {
     std::ostringstream os;
     os << "ReachConfig: the check would need about " << std::lround(bytes / (1024 * 1024))
-       << " MiB (initial_samples " << initial_samples << ", max_boundary " << max_boundary
-       << ", children_per_parent " << children_per_parent << ", horizon " << horizon << " s at dt "
-       << dt << " s), over the limit of "
+       << " MiB (initial_samples " << b.initial_samples << ", max_boundary " << b.max_boundary
+       << ", children_per_parent " << b.children_per_parent << ", horizon " << horizon
+       << " s at dt " << dt << " s), over the limit of "
        << std::lround(ReachLimits::kMaxMemoryBytes / (1024 * 1024)) << " MiB";
     throw ConfigError(os.str());
   }
@@ -215,6 +174,11 @@ void ReachConfig::requireResourcesWithinLimits(int nq) const {
 
 const ConfigFields<ReachConfig>& ReachConfig::fields() {
   using C = ReachConfig;
+  // The error of a key that moved into a budget.
+  const auto moved = [](const std::string& key, const std::string& budget) {
+    return "removed: now reach.budgets." + budget + "." + key +
+           " (reach.budgets: {full, quick, hull}, docs/parameters.md)";
+  };
   static const ConfigFields<C> f =
       ConfigFields<C>("ReachConfig", "reach", "include/reach_trajopt/reach/reach_config.h",
                       "The reachability check (eq. 13-21) and its certificate (docs/method.md "
@@ -224,14 +188,7 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
           .add("window_start", &C::window_start, "s", "t_2: the backward set reaches back to here")
           .add("window_end", &C::window_end, "s",
                "t_1: the forward set reaches up to here; window_start <= window_end <= horizon")
-          .add("initial_samples", &C::initial_samples, "",
-               "draws at the first step of each direction (paper: 1e4); one QP each")
-          .add("children_per_parent", &C::children_per_parent, "",
-               "forward draws per kept sample at later steps")
-          .add("backward_children_per_parent", &C::backward_children_per_parent, "",
-               "backward draws per kept sample (most are rejected by (19))")
-          .add("max_boundary", &C::max_boundary, "", "boundary samples (21) kept per slice")
-          .add("interior_samples", &C::interior_samples, "", "interior samples kept besides them")
+          .nested("budgets", &C::budgets, ReachBudgets::fields())
           .add("angular_bins", &C::angular_bins, "", "bins per output plane (keeps concave parts)")
           .add("boundary_lookahead", &C::boundary_lookahead, "s",
                "tau of y + tau ydot in the boundary rule, each >= 0")
@@ -260,8 +217,6 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
           .add("delta", &C::delta, "m", "Prop. 2 threshold (paper 1e-5), reported only")
           .add("overlap_gap_max", &C::overlap_gap_max, "m",
                "output sets meet when a pair is closer than min(K, this); reported only")
-          .add("certificate_candidates", &C::certificate_candidates, "",
-               "junction pairs bridged at most (witness_certificate.h), >= 1")
           .add("certificate_tolerance", &C::certificate_tolerance, "N, N m, m, rad",
                "largest violation on a certified path of eq. (1), (8), the limits, the ground")
           .add("certificate_contact_velocity_tolerance", &C::certificate_contact_velocity_tolerance,
@@ -270,8 +225,6 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "|q(t_f) - q_f| of a certified path")
           .add("terminal_velocity_tolerance", &C::terminal_velocity_tolerance, "m/s, rad/s",
                "|qd(t_f) - qd_f| of a certified path")
-          .add("constraint_margin", &C::constraint_margin, "m",
-               "eq. (23): the swing sole hulls handed to the OCP grow by this")
           .add("output_frame", &C::output_frame, "", "frame of y; empty: the swing sole")
           .add("output_axes", &C::output_axes, "", "world axes of the frame origin in y")
           .add("swing_ground_margin", &C::swing_ground_margin, "m",
@@ -283,38 +236,37 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
           .add("limit_tolerance", &C::limit_tolerance, "",
                "slack on the position / velocity / torque limits")
           .add("quick_pass", &C::quick_pass, "",
-               "the quick_ budget first, the budget above only when it certifies nothing "
-               "(the step planner's passes; a check on its own, see give_up_gap)")
-          .add("quick_initial_samples", &C::quick_initial_samples, "",
-               "initial_samples of the quick pass")
-          .add("quick_children_per_parent", &C::quick_children_per_parent, "",
-               "children_per_parent of the quick pass")
-          .add("quick_backward_children_per_parent", &C::quick_backward_children_per_parent, "",
-               "backward_children_per_parent of the quick pass")
-          .add("quick_max_boundary", &C::quick_max_boundary, "", "max_boundary of the quick pass")
-          .add("quick_interior_samples", &C::quick_interior_samples, "",
-               "interior_samples of the quick pass")
-          .add("quick_certificate_candidates", &C::quick_certificate_candidates, "",
-               "certificate_candidates of the quick pass")
+               "budgets.quick first, budgets.full only when it does not end the step (the step "
+               "planner's passes) or the check (see give_up_gap); false: budgets.full alone")
           .add("give_up_gap", &C::give_up_gap, "terminal tolerances",
                "a check on its own stops after an uncertified quick budget whose closest "
                "attempt ends farther than this from x_f (0: never)")
-          .add("quick_constraint_margin", &C::quick_constraint_margin, "m",
-               "constraint_margin of the quick pass (its sparser hulls grow more)")
           .add("quick_retry_constraint_margin", &C::quick_retry_constraint_margin, "m",
                "when the quick pass's strict OCP fails, solve it again in its hulls grown to "
                "this margin before the hull pass (0: no retry)")
           .add("hull_pass", &C::hull_pass, "",
                "when the quick pass's strict OCP fails, solve it again in the hulls of a forward "
-               "set alone (the full budget's boundary, hull_initial_samples, "
-               "hull_children_per_parent) before the full pass")
-          .add("hull_children_per_parent", &C::hull_children_per_parent, "",
-               "children_per_parent of the hull pass's forward set (its other budget is the "
-               "full one's)")
-          .add("hull_initial_samples", &C::hull_initial_samples, "",
-               "initial_samples of the hull pass's forward set")
-          .add("forward_set_only", &C::forward_set_only, "",
-               "the forward set alone (no backward set, no verdict): the hull pass's check");
+               "set alone drawn with budgets.hull before the full pass")
+          .removed("initial_samples", moved("initial_samples", "full"))
+          .removed("children_per_parent", moved("children_per_parent", "full"))
+          .removed("backward_children_per_parent", moved("backward_children_per_parent", "full"))
+          .removed("max_boundary", moved("max_boundary", "full"))
+          .removed("interior_samples", moved("interior_samples", "full"))
+          .removed("certificate_candidates", moved("certificate_candidates", "full"))
+          .removed("constraint_margin", moved("constraint_margin", "full"))
+          .removed("quick_initial_samples", moved("initial_samples", "quick"))
+          .removed("quick_children_per_parent", moved("children_per_parent", "quick"))
+          .removed("quick_backward_children_per_parent",
+                   moved("backward_children_per_parent", "quick"))
+          .removed("quick_max_boundary", moved("max_boundary", "quick"))
+          .removed("quick_interior_samples", moved("interior_samples", "quick"))
+          .removed("quick_certificate_candidates", moved("certificate_candidates", "quick"))
+          .removed("quick_constraint_margin", moved("constraint_margin", "quick"))
+          .removed("hull_initial_samples", moved("initial_samples", "hull"))
+          .removed("hull_children_per_parent", moved("children_per_parent", "hull"))
+          .removed("forward_set_only",
+                   "removed: the forward set alone is how the step planner's hull pass runs one "
+                   "check (CheckPass::sets, reach/sample_budget.h), not a setting of the file");
   return f;
 }
 

@@ -8,12 +8,18 @@
 namespace reach_trajopt {
 
 ReachContext::ReachContext(std::shared_ptr<const RobotModel> model_in, const ContactConfig& contact,
-                           const ReachConfig& config_in, const ContactMode& mode_in,
+                           const ReachConfig& config_in, const SamplingBudget& budget_in,
+                           const ContactMode& mode_in,
                            const std::optional<Eigen::Isometry3d> footholds[2],
                            const std::optional<Eigen::Isometry3d>& target)
-    : model(std::move(model_in)), config(config_in), mode(mode_in), cone(contact) {
+    : model(std::move(model_in)),
+      config(config_in),
+      budget(budget_in),
+      mode(mode_in),
+      cone(contact) {
   if (!model) throw ReachError("ReachContext: null model");
   config.validate();
+  budget.validate("budget");
   const RobotModel& md = *model;
   n = md.nq();
   nu = md.nu();

@@ -70,7 +70,7 @@ void validateState(const ReachContext& ctx, const char* which, const Eigen::Vect
 }
 
 /// The sentence explaining the verdict: the certificate, then what the sets showed.
-std::string verdictReason(const ReachConfig& config, const std::vector<SliceComparison>& window,
+std::string verdictReason(const SamplingBudget& budget, const std::vector<SliceComparison>& window,
                           int best, bool sets_meet, const WitnessPath& w) {
   std::ostringstream os;
   if (w.certified) {
@@ -78,7 +78,7 @@ std::string verdictReason(const ReachConfig& config, const std::vector<SliceComp
        << fmt(w.time[w.bridge_start]) << " s bridged to x_f (largest violation "
        << fmt(w.violation.max()) << ", x(t_f) - x_f " << fmt(w.terminal_position_gap) << " / "
        << fmt(w.terminal_velocity_gap) << ", pair " << w.candidates_tried << " of "
-       << config.certificate_candidates << ")";
+       << budget.certificate_candidates << ")";
     return os.str();
   }
   os << "unreachable (not shown reachable): ";
@@ -145,22 +145,24 @@ Eigen::VectorXd ReachabilityAnalyzer::sampleConfiguration(const ReachResult& res
 
 ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfig& config,
                                         const ReachProgressCallback& progress) const {
-  if (!config.quick_pass || config.forward_set_only) return checkBudget(pb, config, progress);
+  const PassSchedule schedule = PassSchedule::forCheck(config);
+  const CheckPass& first_pass = schedule.passes.front().check;
+  if (schedule.passes.size() == 1) return checkPass(pb, config, first_pass, progress);
   config.validate();  // names a bad key of the whole configuration, not of the quick budget's
-  ReachResult quick = checkBudget(pb, config.quickPassConfig(), progress);
+  ReachResult quick = checkPass(pb, config, first_pass, progress);
   if (quick.reachable) return quick;
   const double gap = terminalGapInTolerances(config, quick.witness);
-  if (config.give_up_gap > 0.0 && std::isfinite(gap) && gap > config.give_up_gap) {
+  if (schedule.give_up_gap > 0.0 && std::isfinite(gap) && gap > schedule.give_up_gap) {
     quick.gave_up = true;
     quick.reason = "the quick budget's closest attempt ended " + fmt(gap) +
-                   " terminal tolerances from x_f (give_up_gap " + fmt(config.give_up_gap) +
+                   " terminal tolerances from x_f (give_up_gap " + fmt(schedule.give_up_gap) +
                    "), the full budget not drawn: " + quick.reason;
     return quick;
   }
   const ReachCounts quick_counts = quick.counts;
   const ReachTimings quick_timings = quick.timings;
   quick = ReachResult();  // its sets are not returned: freed before the full budget's
-  ReachResult full = checkBudget(pb, config.fullPassConfig(), progress);
+  ReachResult full = checkPass(pb, config, schedule.passes.back().check, progress);
   full.budgets = 2;
   full.counts.add(quick_counts);
   full.timings.add(quick_timings);
@@ -169,12 +171,22 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   return full;
 }
 
-ReachResult ReachabilityAnalyzer::checkBudget(const ReachProblem& pb, const ReachConfig& config,
-                                              const ReachProgressCallback& progress) const {
+ReachResult ReachabilityAnalyzer::checkPass(const ReachProblem& pb, const ReachConfig& config_in,
+                                            const CheckPass& pass,
+                                            const ReachProgressCallback& progress) const {
   const auto t_start = Clock::now();
+  ReachConfig config = config_in;
+  if (pass.forwardOnly() && pass.forward_until_s >= 0.0 &&
+      pass.forward_until_s < config.window_end) {
+    // The forward set up to the first step at or after forward_until_s, on the grid.
+    config.window_end =
+        std::max(1.0, std::ceil(pass.forward_until_s / config.dt - 1e-6)) * config.dt;
+    config.window_start = std::min(config.window_start, config.window_end);  // no backward set
+  }
   config.validate();
-  config.requireResourcesWithinLimits(model_->nq());  // before any sample is drawn
-  const ReachContext ctx(model_, contact_, config, pb.mode, pb.footholds, pb.target);
+  pass.budget.validate("budget");
+  config.requireResourcesWithinLimits(model_->nq(), pass.budget);  // before any sample is drawn
+  const ReachContext ctx(model_, contact_, config, pass.budget, pb.mode, pb.footholds, pb.target);
   const RobotModel& model = *model_;
   // ---- input checks ---------------------------------------------------------------------
   validateState(ctx, "x_0", pb.q0, pb.qd0, ctx.contacts);
@@ -205,7 +217,7 @@ ReachResult ReachabilityAnalyzer::checkBudget(const ReachProblem& pb, const Reac
   DirectionSet fwd{{PropagationDirection::kForward, 0, pb.q0, pb.qd0, n_fwd}, {}, {}};
   DirectionSet bwd{{PropagationDirection::kBackward, i_t, pb.qf, pb.qdf, n_bwd}, {}, {}};
   std::vector<DirectionSet*> sets{&fwd};
-  if (!config.forward_set_only) sets.push_back(&bwd);  // the hull pass: the forward set alone
+  if (!pass.forwardOnly()) sets.push_back(&bwd);  // the hull pass: the forward set alone
   propagateSets(ctx, sets, threads, progress);
   res.forward = std::move(fwd.slices);
   res.backward = std::move(bwd.slices);
@@ -219,8 +231,8 @@ ReachResult ReachabilityAnalyzer::checkBudget(const ReachProblem& pb, const Reac
   res.timings.forward = fwd.stats.propagation_time;
   res.timings.backward = bwd.stats.propagation_time;
   res.timings.boundary = fwd.stats.boundary_time + bwd.stats.boundary_time;
-  if (config.forward_set_only) {
-    res.reason = "not checked: the forward set only (reach.forward_set_only)";
+  if (pass.forwardOnly()) {
+    res.reason = "not checked: the forward set only (PassSets::kForwardOnly, the hull pass)";
   } else {
     // ---- the test (14) on the overlap window ----------------------------------------------
     const auto th = Clock::now();
@@ -231,7 +243,7 @@ ReachResult ReachabilityAnalyzer::checkBudget(const ReachProblem& pb, const Reac
     res.best = decidingSlice(res.window, res.sets_meet);
     res.witness = certifyWitness(ctx, res.forward, res.backward, res.window, res.semi_implicit);
     res.reachable = res.witness.certified;
-    res.reason = verdictReason(config, res.window, res.best, res.sets_meet, res.witness);
+    res.reason = verdictReason(pass.budget, res.window, res.best, res.sets_meet, res.witness);
     res.timings.witness = since(tw);
   }
   res.timings.total = since(t_start);

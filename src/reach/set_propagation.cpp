@@ -96,7 +96,7 @@ void selectAndStore(const ReachContext& ctx, bool forward, const SampleSlice& pr
   if (!forward)  // backward slices look back in time
     for (double& tau : rule.lookahead) tau = -tau;
   rule.angular_bins = ctx.config.angular_bins;
-  rule.max_boundary = ctx.config.max_boundary;
+  rule.max_boundary = ctx.budget.max_boundary;
   rule.threads = ctx.config.threads > 0 ? ctx.config.threads : omp_get_max_threads();
   s.boundary = selectBoundary(s.output, s.output_rate, rule);
   // Interior picks: evenly spread over the samples not on the boundary.
@@ -106,7 +106,7 @@ void selectAndStore(const ReachContext& ctx, bool forward, const SampleSlice& pr
   for (int i = 0; i < s.size(); ++i)
     if (!on[i]) rest.push_back(i);
   s.kept = s.boundary;
-  const int want = std::min<int>(ctx.config.interior_samples, static_cast<int>(rest.size()));
+  const int want = std::min<int>(ctx.budget.interior_samples, static_cast<int>(rest.size()));
   for (int k = 0; k < want; ++k)
     s.kept.push_back(rest[(static_cast<long>(k) * static_cast<long>(rest.size())) / want]);
   std::sort(s.kept.begin(), s.kept.end());
@@ -249,10 +249,10 @@ class StepRun : public DirectionRun {
         stats_.propagation_time = since(t0_) - stats_.boundary_time;
         return;
       }
-      const ReachConfig& config = ctx_.config;
+      const SamplingBudget& budget = ctx_.budget;
       n_children_ =
-          j == 0 ? config.initial_samples
-                 : (forward_ ? config.children_per_parent : config.backward_children_per_parent);
+          j == 0 ? budget.initial_samples
+                 : (forward_ ? budget.children_per_parent : budget.backward_children_per_parent);
       chunks_ = (n_children_ + kChunk - 1) / kChunk;
       rounds_.clear();
       survivors_ = 0;
@@ -292,7 +292,8 @@ class StepRun : public DirectionRun {
   bool anotherRound() {
     for (char ok : rounds_.back()->ok) survivors_ += ok;
     const ReachConfig& config = ctx_.config;
-    const double wanted = config.redraw_below * (config.max_boundary + config.interior_samples);
+    const double wanted =
+        config.redraw_below * (ctx_.budget.max_boundary + ctx_.budget.interior_samples);
     return static_cast<int>(rounds_.size()) <= config.redraw_rounds && survivors_ < wanted;
   }
 

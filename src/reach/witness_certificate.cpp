@@ -243,7 +243,7 @@ WitnessPath certifyWitness(const ReachContext& ctx, const std::vector<SampleSlic
                            const std::vector<SampleSlice>& backward,
                            const std::vector<SliceComparison>& window, bool semi_implicit) {
   const std::vector<JunctionCandidate> candidates =
-      junctionCandidates(ctx, forward, backward, window, ctx.config.certificate_candidates);
+      junctionCandidates(ctx, forward, backward, window, ctx.budget.certificate_candidates);
   // The attempts in their serial order: each candidate along its backward chain, then direct.
   // Threads claim them one at a time in that order, and claim none after an attempt that
   // certified; every attempt before the first certified one has then run. They are judged in

@@ -45,10 +45,9 @@ Eigen::VectorXd responseVector(const std::vector<double>& v, size_t size, const 
 
 }  // namespace
 
-reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRequest& r,
-                                                                const ReachConfig& reach,
-                                                                bool reachability, bool samples,
-                                                                const ros::Time& t0) {
+reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(
+    const FootstepRequest& r, const ReachConfig& reach, const std::optional<CheckPass>& pass,
+    bool reachability, bool samples, const ros::Time& t0) {
   reach_trajopt::CheckFootstep::Request m;
   m.header.stamp = t0;
   m.header.frame_id = kWorldFrame;
@@ -64,11 +63,12 @@ reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRe
   m.check_reachability = reachability;
   m.reach_horizon = reach.horizon;
   m.seed = static_cast<int64_t>(reach.seed);
-  m.sample_budget = {
-      reach.initial_samples, reach.children_per_parent, reach.backward_children_per_parent,
-      reach.max_boundary,    reach.interior_samples,    reach.certificate_candidates};
-  m.constraint_margin = {reach.constraint_margin};
-  m.reach_config = reachConfigText(reach);
+  if (pass) {
+    m.budget = {toSampleBudgetMsg(pass->budget)};
+    m.forward_set_only = pass->forwardOnly();
+    if (pass->forwardOnly() && std::isfinite(pass->forward_until_s))
+      m.forward_until = {pass->forward_until_s};
+  }
   m.return_samples = samples;
   return m;
 }
@@ -94,7 +94,7 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
         finiteVector(m.touchdown_pelvis_position, 3, "touchdown_pelvis_position");
   c.reachability = m.check_reachability;
   c.samples = m.return_samples;
-  c.reach = reachConfigFromText(m.reach_config, base);
+  c.reach = base;
   if (!std::isfinite(m.reach_horizon) || m.reach_horizon < 0.0 ||
       m.reach_horizon > kMaxTransitionHorizon) {
     std::ostringstream os;
@@ -105,26 +105,32 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
   if (m.reach_horizon > 0.0) c.reach.horizon = m.reach_horizon;
   if (m.seed < -1) throw RequestError("seed: expected -1 (the node's) or >= 0");
   if (m.seed >= 0) c.reach.seed = static_cast<std::uint64_t>(m.seed);
-  if (!m.sample_budget.empty()) {
-    if (m.sample_budget.size() != 6)
-      throw RequestError("sample_budget: expected 0 or 6 values, got " +
-                         std::to_string(m.sample_budget.size()));
-    c.reach.initial_samples = m.sample_budget[0];
-    c.reach.children_per_parent = m.sample_budget[1];
-    c.reach.backward_children_per_parent = m.sample_budget[2];
-    c.reach.max_boundary = m.sample_budget[3];
-    c.reach.interior_samples = m.sample_budget[4];
-    c.reach.certificate_candidates = m.sample_budget[5];
+  if (m.budget.size() > 1)
+    throw RequestError("budget: expected none or one, got " + std::to_string(m.budget.size()));
+  if (m.budget.empty() && (m.forward_set_only || !m.forward_until.empty()))
+    throw RequestError("forward_set_only/forward_until: need a budget (one pass)");
+  if (!m.forward_set_only && !m.forward_until.empty())
+    throw RequestError("forward_until: only with forward_set_only");
+  if (!m.budget.empty()) {
+    CheckPass pass;
+    pass.budget = fromSampleBudgetMsg(m.budget[0]);
+    pass.sets = m.forward_set_only ? PassSets::kForwardOnly : PassSets::kBoth;
+    if (!m.forward_until.empty()) {
+      pass.forward_until_s = finiteVector(m.forward_until, 1, "forward_until")[0];
+      if (pass.forward_until_s < 0.0) throw RequestError("forward_until: must be >= 0");
+    }
+    c.pass = pass;
   }
-  if (!m.constraint_margin.empty())
-    c.reach.constraint_margin = finiteVector(m.constraint_margin, 1, "constraint_margin")[0];
   try {
     c.reach.validate();
-    c.reach.requireResourcesWithinLimits(nq);
+    if (c.pass) {
+      c.pass->budget.validate("budget");
+      c.reach.requireResourcesWithinLimits(nq, c.pass->budget);
+    } else {
+      c.reach.requireResourcesWithinLimits(nq);
+    }
   } catch (const ReachError& e) {
-    throw RequestError(
-        std::string("reach_config/reach_horizon/seed/sample_budget/constraint_margin: ") +
-        e.what());
+    throw RequestError(std::string("budget/reach_horizon/seed: ") + e.what());
   }
   return c;
 }

@@ -51,18 +51,28 @@ Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const st
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
-std::string reachConfigText(const ReachConfig& reach) { return ReachConfig::fields().yaml(reach); }
+reach_trajopt::SampleBudget toSampleBudgetMsg(const SamplingBudget& b) {
+  reach_trajopt::SampleBudget m;
+  m.initial_samples = b.initial_samples;
+  m.children_per_parent = b.children_per_parent;
+  m.backward_children_per_parent = b.backward_children_per_parent;
+  m.max_boundary = b.max_boundary;
+  m.interior_samples = b.interior_samples;
+  m.certificate_candidates = b.certificate_candidates;
+  m.constraint_margin = b.constraint_margin;
+  return m;
+}
 
-ReachConfig reachConfigFromText(const std::string& text, const ReachConfig& base) {
-  ReachConfig reach = base;
-  if (text.empty()) return reach;
-  try {
-    ReachConfig::fields().readInto(YamlSection::loadString(text, "reach_config"), reach);
-  } catch (const ReachError& e) {
-    throw RequestError(e.what());  // "reach_config: <key>: ..." (the YAML's source name)
-  }
-  reach.threads = base.threads;
-  return reach;
+SamplingBudget fromSampleBudgetMsg(const reach_trajopt::SampleBudget& m) {
+  SamplingBudget b;
+  b.initial_samples = m.initial_samples;
+  b.children_per_parent = m.children_per_parent;
+  b.backward_children_per_parent = m.backward_children_per_parent;
+  b.max_boundary = m.max_boundary;
+  b.interior_samples = m.interior_samples;
+  b.certificate_candidates = m.certificate_candidates;
+  b.constraint_margin = m.constraint_margin;
+  return b;
 }
 
 std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
@@ -119,7 +129,8 @@ reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlan
   const ReachConfig& used = r.reach ? *r.reach : reach;
   m.reach_horizon = used.horizon;
   m.seed = static_cast<int64_t>(used.seed);
-  m.reach_config = reachConfigText(used);
+  m.budgets = {toSampleBudgetMsg(used.budgets.full), toSampleBudgetMsg(used.budgets.quick),
+               toSampleBudgetMsg(used.budgets.hullBudget())};
   m.ocp_policy = ocpPolicyName(r.ocp_policy);
   m.on_infeasible = infeasibleFootholdPolicyName(r.on_infeasible);
   return m;
@@ -166,7 +177,19 @@ FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep
     return h;
   };
   r.horizon = horizon("horizon", m.horizon);
-  ReachConfig reach = reachConfigFromText(m.reach_config, base);
+  ReachConfig reach = base;
+  if (!m.budgets.empty()) {
+    if (m.budgets.size() != 3)
+      throw RequestError("budgets: expected none or 3 (full, quick, hull), got " +
+                         std::to_string(m.budgets.size()));
+    reach.budgets.full = fromSampleBudgetMsg(m.budgets[0]);
+    reach.budgets.quick = fromSampleBudgetMsg(m.budgets[1]);
+    const SamplingBudget hull = fromSampleBudgetMsg(m.budgets[2]);
+    reach.budgets.hull = {
+        hull.initial_samples,  hull.children_per_parent, hull.backward_children_per_parent,
+        hull.max_boundary,     hull.interior_samples,    hull.certificate_candidates,
+        hull.constraint_margin};
+  }
   if (horizon("reach_horizon", m.reach_horizon) > 0.0) reach.horizon = m.reach_horizon;
   if (m.seed < -1) throw RequestError("seed: expected -1 (the node's) or >= 0");
   if (m.seed >= 0) reach.seed = static_cast<std::uint64_t>(m.seed);
@@ -174,7 +197,7 @@ FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep
     reach.validate();
     reach.requireResourcesWithinLimits(nq);
   } catch (const ReachError& e) {
-    throw RequestError(std::string("reach_config/reach_horizon/seed: ") + e.what());
+    throw RequestError(std::string("budgets/reach_horizon/seed: ") + e.what());
   }
   r.reach = reach;
   r.ocp_policy = parseName(kOcpPolicies, "ocp_policy", m.ocp_policy);

@@ -30,16 +30,18 @@ void RemoteFootstepCheck::beginStep(const ros::Time& t0) {
 }
 
 FootstepCheckResult RemoteFootstepCheck::check(const FootstepRequest& request,
-                                               const ReachConfig& config, bool reachability) {
-  const auto answer = call_.call(
-      toCheckFootstepRequestMsg(request, config, reachability, samples_, stamp_), "the check");
+                                               const ReachConfig& config, const CheckPass& pass,
+                                               bool reachability) {
+  const auto answer =
+      call_.call(toCheckFootstepRequestMsg(request, config, pass, reachability, samples_, stamp_),
+                 "the check");
   if (answer) {
     // A rejected request is what the in-process check throws for it.
     if (!answer->success) throw RequestError(answer->message);
     try {
       FootstepCheckResult result = fromCheckFootstepResponseMsg(*answer, nq_);
       // The hull pass's forward set alone has no verdict: the step's check is the one before.
-      if (!config.forward_set_only) checked_ = answer->reachability;
+      if (!pass.forwardOnly()) checked_ = answer->reachability;
       ++remote_checks_;
       return result;
     } catch (const ReachError& e) {
@@ -47,14 +49,15 @@ FootstepCheckResult RemoteFootstepCheck::check(const FootstepRequest& request,
                call_.service().c_str(), e.what());
     }
   }
-  return checkHere(request, config, reachability);
+  return checkHere(request, config, pass, reachability);
 }
 
 FootstepCheckResult RemoteFootstepCheck::checkHere(const FootstepRequest& request,
-                                                   const ReachConfig& config, bool reachability) {
+                                                   const ReachConfig& config, const CheckPass& pass,
+                                                   bool reachability) {
   FootstepCheckResult result =
-      checkFootstep(local_->footstepReachability(), request, config, reachability);
-  if (config.forward_set_only) return result;  // no verdict: the step's check is the one before
+      checkFootstep(local_->footstepReachability(), request, config, pass, reachability);
+  if (pass.forwardOnly()) return result;  // no verdict: the step's check is the one before
   checked_ = checkedFootstepMsg(result.result, swingFrame(contact_, request.stance),
                                 request.target.position, config.delta, stamp_, samples_);
   return result;

@@ -9,16 +9,19 @@ namespace reach_trajopt {
 
 FootstepCheckResult checkFootstep(const FootstepReachability& footsteps,
                                   const FootstepRequest& request, const ReachConfig& config,
-                                  bool reachability, const ReachProgressCallback& progress) {
+                                  const std::optional<CheckPass>& pass, bool reachability,
+                                  const ReachProgressCallback& progress) {
   FootstepCheckResult out;
   if (!reachability) {
     out.result = footsteps.kinematicStage(request);
     return out;
   }
-  out.result = footsteps.check(request, config, progress);
+  out.result = pass ? footsteps.checkPass(request, config, *pass, progress)
+                    : footsteps.check(request, config, progress);
+  const double margin =
+      pass ? pass->budget.constraint_margin : config.budgets.full.constraint_margin;
   if (out.result.kinematically_feasible)
-    out.set_constraint =
-        reachableSetConstraint(out.result.reach, config.output_axes, config.constraint_margin);
+    out.set_constraint = reachableSetConstraint(out.result.reach, config.output_axes, margin);
   return out;
 }
 

@@ -84,71 +84,90 @@ FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
     requireFinite("FootstepTransitionPlanner: touchdown CoM velocity", r.touchdown_com->pd);
   }
   const ReachConfig& reach = r.reach ? *r.reach : config_.reach;
+  // Which passes run, in which order, with which budget (sample_budget.h): the quick pass,
+  // then, each only when the one before did not end the step, the wide hull retry, the hull
+  // pass and the full pass; or the full pass alone.
+  const PassSchedule schedule = PassSchedule::forStepPlanner(reach, r.check_reachability);
+  const ScheduledPass& first = schedule.passes.front();
   if (progress.pass) progress.pass(1);
-  if (!r.check_reachability || !reach.quick_pass) return planWith(r, reach, progress);
+  if (first.kind != PassKind::kQuick) return planWith(r, reach, first.check, progress);
   // The quick pass first. It is final when it certified the step and (when asked for) its
   // strict OCP converged: the sparser forward set's hulls (eq. 23) can leave a certified step
   // without a trajectory. A kinematically infeasible foothold is decided before any sample is
   // drawn: its quick pass is final too.
-  const ReachConfig quick_config = reach.quickPassConfig();
-  // The wide hull retry's extra margin over the quick pass's hulls; <= 0: no retry.
-  const double extra_margin = reach.quick_retry_constraint_margin - quick_config.constraint_margin;
-  std::vector<ReachableSlice> quick_slices;  // kept only for the retry
+  bool keep_slices = false;  // for the wide hull retry only
+  for (const ScheduledPass& p : schedule.passes) keep_slices |= p.kind == PassKind::kWideHullRetry;
+  std::vector<ReachableSlice> quick_slices;
   // An uncertified quick pass is final only when its strict OCP converges (the local solve):
   // a relaxed trajectory of it would be replaced by the passes that follow.
-  FootstepTransition quick = planWith(r, quick_config, progress, RelaxedFallback::kWhenCertified,
-                                      extra_margin > 0.0 ? &quick_slices : nullptr);
+  FootstepTransition quick =
+      planWith(r, reach, first.check, progress, RelaxedFallback::kWhenCertified,
+               keep_slices ? &quick_slices : nullptr);
   if (!quick.kinematically_feasible || (quick.reachable && hasStrictTrajectory(r, quick)))
     return quick;
-  int passes = 1;
-  double check_time_s = quick.check_time_s, ocp_time_s = quick.ocp_time_s;
-  // A retry of the quick pass's OCP ends the step when it gives a certified strict trajectory:
-  // the step then carries the sums of every pass and says which retry solved it.
-  auto endsStep = [&](FootstepTransition& retry, const std::string& how) {
-    if (!retry.reachable || !hasStrictTrajectory(r, retry)) return false;
-    retry.check_passes = passes;
-    retry.check_time_s = check_time_s;
-    retry.ocp_time_s = ocp_time_s;
-    retry.reason =
-        "the quick pass's strict OCP failed in its hulls, solved in " + how + ": " + retry.reason;
-    return true;
-  };
-  // The wide hull retry: the quick pass's strict OCP again, in its own hulls grown more (with
-  // or without a witness to seed it: a slice of the quick window can be empty while its
-  // forward hulls hold the OCP).
-  if (extra_margin > 0.0 && r.solve_ocp && !quick_slices.empty()) {
-    ++passes;
-    if (progress.pass) progress.pass(passes);
-    FootstepTransition wide =
-        solveInGrownHulls(r, quick, std::move(quick_slices), extra_margin, progress);
-    ocp_time_s += wide.ocp_time_s;
-    char margin[32];
-    std::snprintf(margin, sizeof margin, "%g m", reach.quick_retry_constraint_margin);
-    if (endsStep(wide, std::string("them grown to ") + margin)) return wide;
+  PassTotals totals{1, quick.check_time_s, quick.ocp_time_s};
+  for (std::size_t i = 1; i + 1 < schedule.passes.size(); ++i) {
+    std::optional<FootstepTransition> retried = retryQuickOcp(
+        r, reach, schedule.passes[i], first.check, quick, quick_slices, progress, totals);
+    if (retried) return std::move(*retried);
   }
-  // The hull pass: the quick pass's OCP again, in the hulls of a denser forward set.
-  if (reach.hull_pass && r.solve_ocp && quick.check.reach.witness.valid) {
-    ++passes;
-    if (progress.pass) progress.pass(passes);
-    FootstepTransition hull = solveInFullHulls(r, reach, quick, progress);
-    check_time_s += hull.check_time_s;
-    ocp_time_s += hull.ocp_time_s;
-    if (endsStep(hull, "the hull pass's forward set's")) return hull;
-  }
-  ++passes;
-  if (progress.pass) progress.pass(passes);
+  ++totals.passes;
+  if (progress.pass) progress.pass(totals.passes);
   // The full budget alone: its check does not draw the quick budget again (and never gives up).
-  FootstepTransition full = planWith(r, reach.fullPassConfig(), progress);
+  FootstepTransition full = planWith(r, reach, schedule.passes.back().check, progress);
   // A certificate is never given up: when only the quick pass found one, its plan stands.
   FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;
   const char* why = quick.reachable ? "the quick pass's certified step has no strict trajectory"
                                     : "the quick pass certified nothing";
-  kept.check_passes = passes;
-  kept.check_time_s = check_time_s + full.check_time_s;
-  kept.ocp_time_s = ocp_time_s + full.ocp_time_s;
+  kept.check_passes = totals.passes;
+  kept.check_time_s = totals.check_time_s + full.check_time_s;
+  kept.ocp_time_s = totals.ocp_time_s + full.ocp_time_s;
   kept.reason =
       std::string(why) + (&kept == &full ? ", the full budget: " : ", kept: ") + kept.reason;
   return kept;
+}
+
+std::optional<FootstepTransition> FootstepTransitionPlanner::retryQuickOcp(
+    const FootstepPlanRequest& r, const ReachConfig& reach, const ScheduledPass& pass,
+    const CheckPass& quick_pass, const FootstepTransition& quick,
+    std::vector<ReachableSlice>& quick_slices, const FootstepPlanProgress& progress,
+    PassTotals& totals) const {
+  // A retry of the quick pass's OCP ends the step when it gives a certified strict trajectory:
+  // the step then carries the sums of every pass and says which retry solved it.
+  auto endsStep = [&](FootstepTransition& retry, const std::string& how) {
+    if (!retry.reachable || !hasStrictTrajectory(r, retry)) return false;
+    retry.check_passes = totals.passes;
+    retry.check_time_s = totals.check_time_s;
+    retry.ocp_time_s = totals.ocp_time_s;
+    retry.reason =
+        "the quick pass's strict OCP failed in its hulls, solved in " + how + ": " + retry.reason;
+    return true;
+  };
+  if (pass.kind == PassKind::kWideHullRetry) {
+    // The quick pass's strict OCP again, in its own hulls grown more (with or without a witness
+    // to seed it: a slice of the quick window can be empty while its forward hulls hold the
+    // OCP).
+    if (!r.solve_ocp || quick_slices.empty()) return std::nullopt;
+    ++totals.passes;
+    if (progress.pass) progress.pass(totals.passes);
+    const double extra_margin = pass.retry_margin - quick_pass.budget.constraint_margin;
+    FootstepTransition wide =
+        solveInGrownHulls(r, quick, std::move(quick_slices), extra_margin, progress);
+    totals.ocp_time_s += wide.ocp_time_s;
+    char margin[32];
+    std::snprintf(margin, sizeof margin, "%g m", pass.retry_margin);
+    if (endsStep(wide, std::string("them grown to ") + margin)) return wide;
+  } else if (pass.kind == PassKind::kHull) {
+    // The quick pass's OCP again, in the hulls of a denser forward set.
+    if (!r.solve_ocp || !quick.check.reach.witness.valid) return std::nullopt;
+    ++totals.passes;
+    if (progress.pass) progress.pass(totals.passes);
+    FootstepTransition hull = solveInFullHulls(r, reach, pass.check, quick, progress);
+    totals.check_time_s += hull.check_time_s;
+    totals.ocp_time_s += hull.ocp_time_s;
+    if (endsStep(hull, "the hull pass's forward set's")) return hull;
+  }
+  return std::nullopt;
 }
 
 bool FootstepTransitionPlanner::hasStrictTrajectory(const FootstepPlanRequest& r,
@@ -158,17 +177,18 @@ bool FootstepTransitionPlanner::hasStrictTrajectory(const FootstepPlanRequest& r
 }
 
 FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
-    const FootstepPlanRequest& r, const ReachConfig& reach, const FootstepTransition& quick,
-    const FootstepPlanProgress& progress) const {
+    const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& hull_pass,
+    const FootstepTransition& quick, const FootstepPlanProgress& progress) const {
   FootstepTransition out;
   const PassStart start = startPass(r, quick.horizon, out);
-  // A forward set alone with the full budget's boundary, reach.hull_initial_samples and
-  // reach.hull_children_per_parent, propagated up to the quick witness's junction only:
-  // slicesUpToJunction drops the rest.
+  // A forward set alone drawn with the hull budget (reach.budgets.hull over the full one),
+  // propagated up to the quick witness's junction only: slicesUpToJunction drops the rest.
   double check_time_s = 0.0;
   const WitnessPath& witness = quick.check.reach.witness;
-  FootstepCheckResult forward = runCheck(r, reach.hullPassConfig(junctionTime(witness)),
-                                         start.touchdown, progress.check, out, check_time_s);
+  CheckPass forward_pass = hull_pass;
+  forward_pass.forward_until_s = junctionTime(witness);
+  FootstepCheckResult forward =
+      runCheck(r, reach, forward_pass, start.touchdown, progress.check, out, check_time_s);
   // The quick pass's check stands (verdict, IK, witness): only the OCP's hulls change, cut
   // where its witness leaves the sampled sets.
   recordCheck(quick.check, true, out);
@@ -194,12 +214,13 @@ FootstepTransition FootstepTransitionPlanner::solveInGrownHulls(
 }
 
 FootstepTransition FootstepTransitionPlanner::planWith(
-    const FootstepPlanRequest& r, const ReachConfig& reach, const FootstepPlanProgress& progress,
-    RelaxedFallback relaxed_fallback, std::vector<ReachableSlice>* slices_used) const {
+    const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& pass,
+    const FootstepPlanProgress& progress, RelaxedFallback relaxed_fallback,
+    std::vector<ReachableSlice>* slices_used) const {
   FootstepTransition out;
   const PassStart start = startPass(r, r.horizon > 0.0 ? r.horizon : reach.horizon, out);
   std::vector<ReachableSlice> set_constraint =
-      checkFoothold(r, reach, start.touchdown, progress.check, out);
+      checkFoothold(r, reach, pass, start.touchdown, progress.check, out);
   if (slices_used) *slices_used = set_constraint;
   solveTransition(r, start.held, start.touchdown, std::move(set_constraint), progress.ocp, out,
                   relaxed_fallback);
@@ -271,26 +292,30 @@ FootstepRequest FootstepTransitionPlanner::checkRequest(const FootstepTransition
   return request;
 }
 
-FootstepCheckResult FootstepTransitionPlanner::runCheck(
-    const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
-    const ReachProgressCallback& progress, const FootstepTransition& out, double& time_s) const {
+FootstepCheckResult FootstepTransitionPlanner::runCheck(const FootstepPlanRequest& r,
+                                                        const ReachConfig& reach,
+                                                        const CheckPass& pass, const Touchdown& td,
+                                                        const ReachProgressCallback& progress,
+                                                        const FootstepTransition& out,
+                                                        double& time_s) const {
   const auto check_start = std::chrono::steady_clock::now();
   FootstepRequest request = checkRequest(out);
   if (!r.touchdown_com) request.qdf = Eigen::VectorXd::Zero(model_->nq());  // x_f at rest
   request.touchdown_com_velocity = td.com_velocity.head<2>();
   request.touchdown_pelvis_position = td.pelvis;
   FootstepCheckResult checked =
-      footstep_check_ ? footstep_check_(request, reach, r.check_reachability)
-                      : checkFootstep(footsteps_, request, reach, r.check_reachability, progress);
+      footstep_check_
+          ? footstep_check_(request, reach, pass, r.check_reachability)
+          : checkFootstep(footsteps_, request, reach, pass, r.check_reachability, progress);
   time_s = secondsSince(check_start);
   return checked;
 }
 
 std::vector<ReachableSlice> FootstepTransitionPlanner::checkFoothold(
-    const FootstepPlanRequest& r, const ReachConfig& reach, const Touchdown& td,
-    const ReachProgressCallback& progress, FootstepTransition& out) const {
+    const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& pass,
+    const Touchdown& td, const ReachProgressCallback& progress, FootstepTransition& out) const {
   double time_s = 0.0;
-  FootstepCheckResult checked = runCheck(r, reach, td, progress, out, time_s);
+  FootstepCheckResult checked = runCheck(r, reach, pass, td, progress, out, time_s);
   recordCheck(std::move(checked.result), r.check_reachability, out);
   out.check_time_s = time_s;
   return std::move(checked.set_constraint);

@@ -43,7 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         rb::parseFootholdRequest(*model, contact, frame, mode, q, qd, p, duration, 0.4, standing);
     ReachConfig config = rb::reachConfigForDuration(ReachConfig{}, r.duration);
     if (samples > 0 && samples <= static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
-      config.initial_samples = static_cast<int>(samples);
+      config.budgets.full.initial_samples = static_cast<int>(samples);
     config.validate();
     config.requireResourcesWithinLimits(model->nq());
     KinematicFeasibilityResult ik;

@@ -42,11 +42,13 @@ reach:
   horizon: 0.05
   window_start: 0.0
   window_end: 0.05
-  initial_samples: 300
-  children_per_parent: 6
-  backward_children_per_parent: 6
-  max_boundary: 24
-  interior_samples: 8
+  budgets:
+    full:
+      initial_samples: 300
+      children_per_parent: 6
+      backward_children_per_parent: 6
+      max_boundary: 24
+      interior_samples: 8
   angular_bins: 8
   output_frame: slider
   output_axes: x
@@ -121,7 +123,7 @@ def test_bad_requests_fail_cleanly(di_files, tmp_path):
     assert run.returncode == 2 and "velocity limit" in run.output, run.describe()
     bad = write_json(tmp_path / "bad2.json", {"mode": "none", "x0": {"q": [0.0], "qd": [0.0]},
                                               "xf": {"q": [0.0], "qd": [0.0]},
-                                              "config": {"initial_samples": 0}})
+                                              "config": {"budgets": {"full": {"initial_samples": 0}}}})
     run = run_tool("reach_check", di_files / "di.urdf", di_files / "di.yaml", bad)
     assert run.returncode == 2 and "initial_samples" in run.output, run.describe()
     (tmp_path / "junk.json").write_text("{not json")
@@ -162,9 +164,10 @@ def normal_footstep_request(path, names, stance_y, target, legs=None, base_z=1.1
         "swing": {"position": p0.tolist(), "velocity": (2 * (target - p0) / horizon).tolist(),
                   "q_init": q_init},
         "config": {"horizon": horizon, "window_start": 0.02, "window_end": 0.04,
-                   "initial_samples": 500, "children_per_parent": 4,
-                   "backward_children_per_parent": 12, "max_boundary": 40,
-                   "interior_samples": 12, "angular_bins": 8}}), horizon
+                   "budgets": {"full": {"initial_samples": 500, "children_per_parent": 4,
+                                        "backward_children_per_parent": 12,
+                                        "max_boundary": 40, "interior_samples": 12}},
+                   "angular_bins": 8}}), horizon
 
 
 def check_witness_with_pinocchio(res, model, sole_name, stance, cone, horizon):

@@ -111,18 +111,6 @@ std::vector<std::function<void(Req&)>> kinds(std::mt19937& rng) {
   return k;
 }
 
-/// YAML whose aliases expand `levels` times ninefold: `l1: &l1 [*l0, *l0, ...]` and so on.
-std::string aliasBomb(int levels) {
-  std::string y = "l0: &l0 [1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
-  for (int i = 1; i <= levels; ++i) {
-    const std::string prev = "*l" + std::to_string(i - 1);
-    y += "l" + std::to_string(i) + ": &l" + std::to_string(i) + " [";
-    for (int k = 0; k < 9; ++k) y += (k ? ", " : "") + prev;
-    y += "]\n";
-  }
-  return y;
-}
-
 struct Tally {
   int calls = 0, answered = 0;
 };
@@ -433,8 +421,8 @@ TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
   model->update(ws, request.q0, request.qd0);
   request.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
   request.target.position = model->framePose(ws, model->frameId("r_sole")).translation();
-  const reach_trajopt::CheckFootstep::Request valid =
-      ros_bridge::toCheckFootstepRequestMsg(request, ReachConfig(), false, false, ros::Time(0));
+  const reach_trajopt::CheckFootstep::Request valid = ros_bridge::toCheckFootstepRequestMsg(
+      request, ReachConfig(), std::nullopt, false, false, ros::Time(0));
   const std::vector<
       std::pair<std::string, std::function<void(reach_trajopt::CheckFootstep::Request&)>>>
       kinds = {
@@ -452,8 +440,12 @@ TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
           {"touchdown_pelvis_position", [](auto& r) { r.touchdown_pelvis_position = {1.0}; }},
           {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
           {"seed", [](auto& r) { r.seed = -5; }},
-          // YAML aliases nine levels deep: 55 s of expansion before they were refused.
-          {"reach_config", [](auto& r) { r.reach_config = aliasBomb(9); }},
+          {"budget", [](auto& r) { r.budget.resize(2); }},
+          {"forward_until",
+           [](auto& r) {
+             r.budget.resize(1);
+             r.forward_until = {0.01};  // without forward_set_only
+           }},
       };
   for (const auto& [field, edit] : kinds) {
     reach_trajopt::CheckFootstep srv;

@@ -70,17 +70,35 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
         YamlSection::loadString("contact:\n  mu: -1\n", "t.yaml").section("contact"));
   });
   EXPECT_NE(invalid.find("mu"), std::string::npos) << invalid;
-  // A sample budget of the step planner's passes: the hull pass's own keys.
-  for (const char* key : {"hull_children_per_parent", "hull_initial_samples"}) {
+  // A sample budget of the step planner's passes: the hull pass's own keys, named with their
+  // budget.
+  for (const char* key : {"children_per_parent", "initial_samples"}) {
     for (const char* value : {"0", "-3", "1000000"}) {
       const std::string hull = thrownMessage<ConfigError>([&] {
-        ReachConfig::fromYaml(
-            YamlSection::loadString(std::string("reach:\n  ") + key + ": " + value + "\n", "t.yaml")
-                .section("reach"))
+        ReachConfig::fromYaml(YamlSection::loadString(std::string("reach:\n  budgets:\n    hull:\n"
+                                                                  "      ") +
+                                                          key + ": " + value + "\n",
+                                                      "t.yaml")
+                                  .section("reach"))
             .validate();
       });
-      EXPECT_NE(hull.find(key), std::string::npos) << key << " = " << value << ": " << hull;
+      EXPECT_NE(hull.find(std::string("budgets.hull.") + key), std::string::npos)
+          << key << " = " << value << ": " << hull;
     }
+  }
+  // The keys that moved into reach.budgets: an old file gets an error naming the new place.
+  for (const auto& [old_key, new_key] : std::vector<std::pair<std::string, std::string>>{
+           {"initial_samples", "reach.budgets.full.initial_samples"},
+           {"quick_max_boundary", "reach.budgets.quick.max_boundary"},
+           {"quick_constraint_margin", "reach.budgets.quick.constraint_margin"},
+           {"hull_children_per_parent", "reach.budgets.hull.children_per_parent"},
+           {"forward_set_only", "hull pass"}}) {
+    const std::string moved = thrownMessage<ConfigError>([&] {
+      ReachConfig::fromYaml(
+          YamlSection::loadString("reach:\n  " + old_key + ": 1\n", "t.yaml").section("reach"));
+    });
+    EXPECT_NE(moved.find("reach." + old_key), std::string::npos) << moved;
+    EXPECT_NE(moved.find(new_key), std::string::npos) << moved;
   }
   // The redraws of thin slices: a bounded number of rounds, a share in [0, 1]; the adaptive
   // budget's give-up gap: >= 0.

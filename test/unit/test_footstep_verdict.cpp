@@ -140,7 +140,10 @@ FootstepTransition planStrict(FootstepPlanRequest r) {
 /// The quick pass of `request` as the only pass (its strict OCP must fail for the fixtures of
 /// the second passes below).
 FootstepTransition planQuickPassAlone(FootstepPlanRequest request) {
-  request.reach = request.reach->quickPassConfig();
+  ReachConfig quick_alone = *request.reach;  // budgets.quick as the only pass's budget
+  quick_alone.budgets.full = quick_alone.budgets.quick;
+  quick_alone.quick_pass = false;
+  request.reach = quick_alone;
   const FootstepTransition quick = planStrict(request);
   EXPECT_FALSE(quick.trajectory.status == OcpStatus::kConverged && !quick.trajectory.relaxed)
       << "the quick pass's strict OCP converged: the fixture no longer needs a second pass";
@@ -308,7 +311,7 @@ TEST(FootstepVerdict, WideHullRetrySolvesTheQuickPassesOcpInItsGrownHulls) {
   ASSERT_EQ(requests.size(), 2u);
   for (const FootstepPlanRequest& request : requests) {
     const ReachConfig& reach = *request.reach;
-    ASSERT_GT(reach.quick_retry_constraint_margin, reach.quick_constraint_margin);
+    ASSERT_GT(reach.quick_retry_constraint_margin, reach.budgets.quick.constraint_margin);
     const FootstepTransition quick = planQuickPassAlone(request);
     const FootstepTransition step = planStrict(request);
     expectSecondPassEndsStrict(step, "solved in them grown to");

@@ -125,8 +125,8 @@ TEST(RequestReaders, ReachCheckRequest) {
   EXPECT_ERROR_NAMES(read(R"(, "xF": {}, "swing": {"position": [0,0,0], "velocity": [0,0,0]})"),
                      "xF: unknown key");
   EXPECT_ERROR_NAMES(read(R"(, "swing": {"position": [0,0,0], "velocity": [0,0,0]},
-                              "config": {"initial_samples": 10000000})"),
-                     "initial_samples");
+                              "config": {"budgets": {"full": {"initial_samples": 10000000}}})"),
+                     "budgets.full.initial_samples");
   const ReachCheckRequest ok = read(R"(, "swing": {"position": [0,0,0], "velocity": [0.1,0,0]})");
   EXPECT_FALSE(ok.has_x0);
   EXPECT_DOUBLE_EQ(ok.swing_velocity.x(), 0.1);
@@ -187,7 +187,7 @@ TEST(YamlConfig, DuplicateKeysAndUnknownSections) {
 
 TEST(ReachLimits, BoundsThreadsAndEstimates) {
   ReachConfig c;
-  c.initial_samples = 10000000;
+  c.budgets.full.initial_samples = 10000000;
   EXPECT_ERROR_NAMES(c.validate(), "initial_samples");
   c = ReachConfig();
   c.threads = 100000;
@@ -200,12 +200,12 @@ TEST(ReachLimits, BoundsThreadsAndEstimates) {
   c.window_start = c.window_end = 0.0;
   EXPECT_ERROR_NAMES(c.validate(), "at least one time step");
   c = ReachConfig();
-  c.max_boundary = 5000;
-  c.children_per_parent = 500;
+  c.budgets.full.max_boundary = 5000;
+  c.budgets.full.children_per_parent = 500;
   c.validate();
   EXPECT_ERROR_NAMES(c.requireResourcesWithinLimits(18), "QPs");
   c = ReachConfig();
-  c.initial_samples = 100000;
+  c.budgets.full.initial_samples = 100000;
   EXPECT_ERROR_NAMES(c.requireResourcesWithinLimits(2000), "MiB");  // a 2000-dof robot
   ReachConfig shipped;  // the defaults are the paper's: well inside the limits
   EXPECT_NO_THROW(shipped.requireResourcesWithinLimits(18));

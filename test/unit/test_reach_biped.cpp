@@ -34,11 +34,11 @@ ReachConfig testConfig() {
   c.horizon = 0.06;
   c.window_start = 0.02;
   c.window_end = 0.04;
-  c.initial_samples = 600;
-  c.children_per_parent = 4;
-  c.backward_children_per_parent = 12;
-  c.max_boundary = 40;
-  c.interior_samples = 12;
+  c.budgets.full.initial_samples = 600;
+  c.budgets.full.children_per_parent = 4;
+  c.budgets.full.backward_children_per_parent = 12;
+  c.budgets.full.max_boundary = 40;
+  c.budgets.full.interior_samples = 12;
   c.angular_bins = 8;
   c.threads = 1;
   return c;
@@ -294,8 +294,10 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
   // far beyond give_up_gap; the full budget alone does not find a path either.
   EXPECT_TRUE(dyn.reach.gave_up) << dyn.reason;
   EXPECT_EQ(dyn.reach.budgets, 1);
-  const FootstepResult full = FootstepReachability(d.analyzer, d.kinematics)
-                                  .check(d.request, testConfig().fullPassConfig());
+  ReachConfig full_alone = testConfig();
+  full_alone.quick_pass = false;
+  const FootstepResult full =
+      FootstepReachability(d.analyzer, d.kinematics).check(d.request, full_alone);
   EXPECT_EQ(full.reach.budgets, 1);
   EXPECT_FALSE(full.reach.gave_up);
   EXPECT_FALSE(full.reachable) << full.reason;
@@ -305,7 +307,7 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
 
 TEST(ReachBiped, OneAndTwoThreadsGiveIdenticalSetsAndVerdict) {
   ReachConfig c = testConfig();
-  c.initial_samples = 300;
+  c.budgets.full.initial_samples = 300;
   c.horizon = 0.03;
   c.window_start = 0.01;
   c.window_end = 0.02;

@@ -55,11 +55,11 @@ ReachConfig diConfig() {
   c.horizon = 0.1;
   c.window_start = 0.0;  // backward all the way to t_0
   c.window_end = 0.1;    // forward all the way to t_f
-  c.initial_samples = 400;
-  c.children_per_parent = 6;
-  c.backward_children_per_parent = 6;
-  c.max_boundary = 24;
-  c.interior_samples = 8;
+  c.budgets.full.initial_samples = 400;
+  c.budgets.full.children_per_parent = 6;
+  c.budgets.full.backward_children_per_parent = 6;
+  c.budgets.full.max_boundary = 24;
+  c.budgets.full.interior_samples = 8;
   c.angular_bins = 8;
   c.output_frame = "slider";
   c.output_axes = "x";
@@ -276,12 +276,12 @@ TEST(ReachDoubleIntegrator, AdaptiveBudgetEndsWhereTheQuickBudgetDecides) {
   c.window_start = 0.02;
   c.window_end = 0.04;
   c.quick_pass = true;
-  c.quick_initial_samples = 100;
-  c.quick_children_per_parent = 3;
-  c.quick_backward_children_per_parent = 3;
-  c.quick_max_boundary = 8;
-  c.quick_interior_samples = 4;
-  c.quick_certificate_candidates = 2;
+  c.budgets.quick.initial_samples = 100;
+  c.budgets.quick.children_per_parent = 3;
+  c.budgets.quick.backward_children_per_parent = 3;
+  c.budgets.quick.max_boundary = 8;
+  c.budgets.quick.interior_samples = 4;
+  c.budgets.quick.certificate_candidates = 2;
   const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
   ReachProblem p = diProblem();
   auto qps = [](const ReachResult& r) { return r.counts.forward_qps + r.counts.backward_qps; };
@@ -291,8 +291,8 @@ TEST(ReachDoubleIntegrator, AdaptiveBudgetEndsWhereTheQuickBudgetDecides) {
     p.qf[0] = probe.xf.x();
     p.qdf[0] = probe.xf.y();
     const ReachResult adaptive = an.check(p, c);
-    const ReachResult quick = an.check(p, c.quickPassConfig());
-    const ReachResult full = an.check(p, c.fullPassConfig());
+    const ReachResult quick = an.checkPass(p, c, {c.budgets.quick});
+    const ReachResult full = an.checkPass(p, c, {c.budgets.full});
     ASSERT_EQ(quick.budgets, 1);
     ASSERT_EQ(full.budgets, 1);
     const double gap = terminalGapInTolerances(c, quick.witness);
@@ -362,8 +362,8 @@ TEST(ReachDoubleIntegrator, RedrawsFillThinSlicesWithSoundSamplesAndKeepTheFirst
   // the slice has them or the rounds are spent. Round 0 is the fixed-draw run's, every extra
   // sample is still in the exact set, and 1 and 2 threads give the same slices.
   ReachConfig c = diConfig();
-  c.children_per_parent = 1;
-  c.backward_children_per_parent = 1;
+  c.budgets.full.children_per_parent = 1;
+  c.budgets.full.backward_children_per_parent = 1;
   c.redraw_below = 1.0;
   c.redraw_rounds = 0;
   const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
@@ -373,7 +373,7 @@ TEST(ReachDoubleIntegrator, RedrawsFillThinSlicesWithSoundSamplesAndKeepTheFirst
   const ReachResult redrawn = an.check(p, c);
   c.threads = 2;
   const ReachResult redrawn2 = an.check(p, c);
-  const int wanted = c.max_boundary + c.interior_samples;
+  const int wanted = c.budgets.full.max_boundary + c.budgets.full.interior_samples;
   for (bool forward : {true, false}) {
     const auto& a = forward ? fixed.forward : fixed.backward;
     const auto& b = forward ? redrawn.forward : redrawn.backward;
@@ -409,13 +409,12 @@ TEST(ReachDoubleIntegrator, RedrawsFillThinSlicesWithSoundSamplesAndKeepTheFirst
 }
 
 TEST(ReachDoubleIntegrator, ForwardSetOnlyIsTheCheckForwardSetAlone) {
-  // reach.forward_set_only (the step planner's hull pass): the forward set of the whole check, bit
-  // for bit, no backward set and no verdict.
+  // PassSets::kForwardOnly (the step planner's hull pass): the forward set of the whole check,
+  // bit for bit, no backward set and no verdict.
   ReachConfig c = diConfig();
   const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
   const ReachResult whole = an.check(diProblem(), c);
-  c.forward_set_only = true;
-  const ReachResult fwd = an.check(diProblem(), c);
+  const ReachResult fwd = an.checkPass(diProblem(), c, {c.budgets.full, PassSets::kForwardOnly});
   ASSERT_EQ(fwd.forward.size(), whole.forward.size());
   for (std::size_t j = 0; j < whole.forward.size(); ++j) {
     EXPECT_EQ(fwd.forward[j].parent, whole.forward[j].parent);
@@ -429,27 +428,39 @@ TEST(ReachDoubleIntegrator, ForwardSetOnlyIsTheCheckForwardSetAlone) {
   EXPECT_EQ(fwd.counts.backward_qps, 0);
   EXPECT_FALSE(fwd.reachable);
   EXPECT_FALSE(fwd.witness.valid);
-  EXPECT_NE(fwd.reason.find("forward_set_only"), std::string::npos) << fwd.reason;
+  EXPECT_NE(fwd.reason.find("forward set only"), std::string::npos) << fwd.reason;
 }
 
-TEST(ReachDoubleIntegrator, HullPassConfigStopsAtTheJunctionWithTheSameSlices) {
-  // hullPassConfig(t): the forward set up to the first step at or after t only (the hull pass
-  // needs it up to the quick witness's junction), each of its slices the whole window's bit for
-  // bit (the draws are keyed by step); no truncation at or past window_end.
-  const ReachConfig c = diConfig();
+TEST(ReachDoubleIntegrator, HullPassStopsAtTheJunctionWithTheSameSlices) {
+  // The hull pass (PassSchedule::forStepPlanner): a forward set alone with budgets.hull over the
+  // full budget, up to the first step at or after forward_until_s only (the hull pass needs it
+  // up to the quick witness's junction), each of its slices the whole window's bit for bit (the
+  // draws are keyed by step); no truncation at or past window_end.
+  ReachConfig c = diConfig();
+  c.quick_pass = true;  // the planner's passes
   const ReachabilityAnalyzer an(slider(), ContactConfig(), c);
-  const ReachResult whole = an.check(diProblem(), c.hullPassConfig());
+  const PassSchedule schedule = PassSchedule::forStepPlanner(c);
+  ASSERT_EQ(schedule.passes.size(), 3u);  // quick, hull, full (no wide hull retry as shipped)
+  EXPECT_EQ(schedule.passes[0].kind, PassKind::kQuick);
+  EXPECT_EQ(schedule.passes[2].kind, PassKind::kFull);
+  const CheckPass& hull = schedule.passes[1].check;
+  ASSERT_EQ(schedule.passes[1].kind, PassKind::kHull);
+  EXPECT_TRUE(hull.forwardOnly());
+  EXPECT_EQ(hull.budget.children_per_parent, 4);  // its own budget (budgets.hull)
+  EXPECT_EQ(hull.budget.initial_samples, 2500);
+  EXPECT_EQ(hull.budget.max_boundary, c.budgets.full.max_boundary);  // the full budget's
+  EXPECT_EQ(hull.budget.interior_samples, c.budgets.full.interior_samples);
+  const ReachResult whole = an.checkPass(diProblem(), c, hull);
   const int n_window = static_cast<int>(std::lround(c.window_end / c.dt));
   ASSERT_EQ(static_cast<int>(whole.forward.size()), n_window + 1);
   ASSERT_GE(n_window, 3);
   const int k = n_window - 2;  // a junction two steps before the window's end, off the grid
-  const ReachConfig cut = c.hullPassConfig((k - 0.5) * c.dt);
-  EXPECT_TRUE(cut.forward_set_only);
-  EXPECT_EQ(cut.children_per_parent, c.hull_children_per_parent);  // its own budget
-  EXPECT_EQ(cut.initial_samples, c.hull_initial_samples);
-  EXPECT_EQ(cut.max_boundary, c.max_boundary);  // the full budget's boundary
-  EXPECT_NEAR(cut.window_end, k * c.dt, 1e-15);
-  const ReachResult part = an.check(diProblem(), cut);
+  auto upTo = [&](double t) {
+    CheckPass cut = hull;
+    cut.forward_until_s = t;
+    return an.checkPass(diProblem(), c, cut);
+  };
+  const ReachResult part = upTo((k - 0.5) * c.dt);
   ASSERT_EQ(static_cast<int>(part.forward.size()), k + 1);
   for (int j = 0; j <= k; ++j) {
     EXPECT_EQ(part.forward[j].time, whole.forward[j].time);
@@ -458,10 +469,9 @@ TEST(ReachDoubleIntegrator, HullPassConfigStopsAtTheJunctionWithTheSameSlices) {
     EXPECT_TRUE(part.forward[j].qd == whole.forward[j].qd);
     EXPECT_TRUE(part.forward[j].output == whole.forward[j].output);
   }
-  EXPECT_EQ(c.hullPassConfig(k * c.dt).window_end, cut.window_end);  // on the grid: that step
-  EXPECT_EQ(c.hullPassConfig(c.window_end + c.dt).window_end, c.window_end);
-  EXPECT_EQ(c.hullPassConfig(HUGE_VAL).window_end, c.window_end);
-  EXPECT_NO_THROW(cut.validate());
+  EXPECT_EQ(upTo(k * c.dt).forward.size(), part.forward.size());  // on the grid: that step
+  EXPECT_EQ(upTo(c.window_end + c.dt).forward.size(), whole.forward.size());
+  EXPECT_EQ(upTo(HUGE_VAL).forward.size(), whole.forward.size());
 }
 
 TEST(ReachDoubleIntegrator, ProgressReportsEverySliceAndCancels) {
@@ -566,7 +576,7 @@ TEST(ReachDoubleIntegrator, BadInputThrows) {
   p.qf.resize(2);
   EXPECT_THROW(an.check(p), ReachError);
   ReachConfig c = diConfig();
-  c.initial_samples = 0;
+  c.budgets.full.initial_samples = 0;
   EXPECT_THROW(an.check(diProblem(), c), ReachError);
   c = diConfig();
   c.window_start = 0.08;

@@ -93,14 +93,14 @@ TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
   auto there = p.planner();
   int calls = 0;
   there->setFootstepCheck([&](const FootstepRequest& request, const ReachConfig& reach,
-                              bool reachability) {
+                              const CheckPass& pass, bool reachability) {
     ++calls;
     const auto request_msg =
-        rb::toCheckFootstepRequestMsg(request, reach, reachability, false, ros::Time(2.0));
+        rb::toCheckFootstepRequestMsg(request, reach, pass, reachability, false, ros::Time(2.0));
     const rb::FootstepCheckCall call =
         rb::fromCheckFootstepRequestMsg(request_msg, p.model->nq(), p.config.reach);
-    const FootstepCheckResult checked =
-        checkFootstep(node->footstepReachability(), call.request, call.reach, call.reachability);
+    const FootstepCheckResult checked = checkFootstep(node->footstepReachability(), call.request,
+                                                      call.reach, call.pass, call.reachability);
     const auto response = rb::toCheckFootstepResponseMsg(checked, ReachabilityResult());
     return rb::fromCheckFootstepResponseMsg(response, p.model->nq());
   });
@@ -130,17 +130,12 @@ TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
   const Pipeline& p = pipeline();
   FootstepRequest r = footstepRequest(1);
   r.touchdown_pelvis_position = Eigen::Vector3d(0.01, -0.02, 0.9);
-  ReachConfig quick = p.config.reach;
-  quick.horizon = 0.17;
-  quick.seed = 11;
-  quick.initial_samples = 900;
-  quick.children_per_parent = 3;
-  quick.backward_children_per_parent = 7;
-  quick.max_boundary = 21;
-  quick.interior_samples = 5;
-  quick.certificate_candidates = 2;
-  quick.constraint_margin = 0.023;
-  const auto m = rb::toCheckFootstepRequestMsg(r, quick, true, true, ros::Time(1.25));
+  ReachConfig reach = p.config.reach;
+  reach.horizon = 0.17;
+  reach.seed = 4000000000u;  // above INT_MAX: the walk's --seed range
+  CheckPass pass;
+  pass.budget = {900, 3, 7, 21, 5, 2, 0.023};
+  const auto m = rb::toCheckFootstepRequestMsg(r, reach, pass, true, true, ros::Time(1.25));
   EXPECT_EQ(m.header.frame_id, "world");
   EXPECT_EQ(m.header.stamp, ros::Time(1.25));
   const rb::FootstepCheckCall c = rb::fromCheckFootstepRequestMsg(m, p.model->nq(), p.config.reach);
@@ -157,97 +152,55 @@ TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
   EXPECT_TRUE(sameBits(*c.request.touchdown_pelvis_position, *r.touchdown_pelvis_position));
   EXPECT_TRUE(c.request.qdf.size() == 0);
   EXPECT_EQ(c.reach.horizon, 0.17);
-  EXPECT_EQ(c.reach.seed, 11u);
-  EXPECT_EQ(c.reach.initial_samples, 900);
-  EXPECT_EQ(c.reach.children_per_parent, 3);
-  EXPECT_EQ(c.reach.backward_children_per_parent, 7);
-  EXPECT_EQ(c.reach.max_boundary, 21);
-  EXPECT_EQ(c.reach.interior_samples, 5);
-  EXPECT_EQ(c.reach.certificate_candidates, 2);
-  EXPECT_EQ(c.reach.constraint_margin, 0.023);
-  // The rest is the node's: here its delta, not one sent.
+  EXPECT_EQ(c.reach.seed, 4000000000u);
+  ASSERT_TRUE(c.pass.has_value());
+  const SamplingBudget& b = c.pass->budget;
+  EXPECT_EQ(b.initial_samples, 900);
+  EXPECT_EQ(b.children_per_parent, 3);
+  EXPECT_EQ(b.backward_children_per_parent, 7);
+  EXPECT_EQ(b.max_boundary, 21);
+  EXPECT_EQ(b.interior_samples, 5);
+  EXPECT_EQ(b.certificate_candidates, 2);
+  EXPECT_EQ(b.constraint_margin, 0.023);
+  EXPECT_FALSE(c.pass->forwardOnly());
+  // The rest is the node's: here its delta and its budgets, not the sender's.
   EXPECT_EQ(c.reach.delta, p.config.reach.delta);
+  EXPECT_EQ(c.reach.budgets.full.initial_samples, p.config.reach.budgets.full.initial_samples);
 
-  // Empty budget, horizon 0 and seed -1: the node's own.
-  auto defaults = m;
-  defaults.sample_budget.clear();
-  defaults.reach_horizon = 0.0;
-  defaults.seed = -1;
-  defaults.constraint_margin.clear();
-  defaults.reach_config.clear();
+  // The hull pass: the forward set alone, up to a time (none: up to window_end).
+  CheckPass hull{p.config.reach.budgets.hullBudget(), PassSets::kForwardOnly, 0.037};
+  for (double until : {0.037, HUGE_VAL}) {
+    hull.forward_until_s = until;
+    const rb::FootstepCheckCall h = rb::fromCheckFootstepRequestMsg(
+        rb::toCheckFootstepRequestMsg(r, reach, hull, true, false, ros::Time(1)), p.model->nq(),
+        p.config.reach);
+    ASSERT_TRUE(h.pass.has_value());
+    EXPECT_TRUE(h.pass->forwardOnly());
+    EXPECT_EQ(h.pass->forward_until_s, until);
+    EXPECT_EQ(h.pass->budget.initial_samples, 2500);
+    EXPECT_EQ(h.pass->budget.max_boundary, p.config.reach.budgets.full.max_boundary);
+  }
+
+  // No pass, horizon 0 and seed -1: the node's own (its pass schedule).
+  const auto defaults =
+      rb::toCheckFootstepRequestMsg(r, reach, std::nullopt, true, true, ros::Time(1.25));
+  EXPECT_TRUE(defaults.budget.empty());
+  auto own = defaults;
+  own.reach_horizon = 0.0;
+  own.seed = -1;
   const rb::FootstepCheckCall d =
-      rb::fromCheckFootstepRequestMsg(defaults, p.model->nq(), p.config.reach);
+      rb::fromCheckFootstepRequestMsg(own, p.model->nq(), p.config.reach);
   EXPECT_EQ(d.reach.horizon, p.config.reach.horizon);
   EXPECT_EQ(d.reach.seed, p.config.reach.seed);
-  EXPECT_EQ(d.reach.initial_samples, p.config.reach.initial_samples);
-  EXPECT_EQ(d.reach.constraint_margin, p.config.reach.constraint_margin);
-}
-
-// The check runs the sender's whole reach section, not a hand-picked part of it: a field that
-// a pass changes and the message did not carry would be lost silently (the quick pass's hull
-// margin once was). Every row of the table, fields the 4 explicit ones do not name included.
-TEST(RosFootstepCheckMsgs, RequestCarriesTheWholeReachSection) {
-  const Pipeline& p = pipeline();
-  ReachConfig sent = p.config.reach;
-  sent.horizon = 0.12;
-  sent.window_start = 0.02;
-  sent.window_end = 0.06;
-  sent.seed = 4000000000u;  // above INT_MAX: the walk's --seed range
-  sent.angular_bins = 11;
-  sent.boundary_lookahead = {0.0, 0.003};
-  sent.vertex_fraction = 0.3;
-  sent.forward_integrator = "explicit";
-  sent.w_qdd = 2.5e-4;
-  sent.delta = 3e-5;
-  sent.overlap_gap_max = 0.004;
-  sent.certificate_tolerance = 2e-4;
-  sent.terminal_velocity_tolerance = 0.02;
-  sent.output_axes = "xy";
-  sent.swing_ground_margin = 0.001;
-  sent.quick_pass = !sent.quick_pass;
-  sent.quick_initial_samples = 700;
-  sent.quick_constraint_margin = 0.017;
-  sent.threads = 1;
-  ReachConfig node = p.config.reach;
-  node.threads = 2;
-  for (const ReachConfig& pass : {sent, sent.quickPassConfig()}) {
-    const auto m =
-        rb::toCheckFootstepRequestMsg(footstepRequest(1), pass, true, false, ros::Time(1));
-    const rb::FootstepCheckCall c = rb::fromCheckFootstepRequestMsg(m, p.model->nq(), node);
-    const auto want = ReachConfig::fields().rows(pass);
-    const auto got = ReachConfig::fields().rows(c.reach);
-    ASSERT_EQ(got.size(), want.size());
-    for (size_t i = 0; i < want.size(); ++i) {
-      if (want[i].key == "threads") {
-        EXPECT_EQ(c.reach.threads, node.threads) << "threads stays the receiving node's";
-        continue;
-      }
-      EXPECT_EQ(got[i].value, want[i].value) << "reach." << want[i].key << " was not carried";
-    }
-  }
-  // Bad sections are rejected naming the field and the key.
-  auto m = rb::toCheckFootstepRequestMsg(footstepRequest(1), sent, true, false, ros::Time(1));
-  m.sample_budget.clear();  // the explicit fields would replace the section's budget
-  m.constraint_margin.clear();
-  for (const auto& [text, key] : std::vector<std::pair<std::string, std::string>>{
-           {"initial_samples: many", "initial_samples"},
-           {"no_such_key: 1", "no_such_key"},
-           {"seed: -3", "seed"},
-           {"dt: [1, 2", "reach_config"},
-           {"initial_samples: 0", "initial_samples"},
-           {"initial_samples: 2000000000\nchildren_per_parent: 1000", "reach_config"}}) {
-    m.reach_config = text;
-    expectRejected([&] { rb::fromCheckFootstepRequestMsg(m, p.model->nq(), node); },
-                   "reach_config");
-    expectRejected([&] { rb::fromCheckFootstepRequestMsg(m, p.model->nq(), node); }, key);
-  }
+  EXPECT_FALSE(d.pass.has_value());
 }
 
 TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
   const Pipeline& p = pipeline();
   const int nq = p.model->nq();
-  const auto good =
-      rb::toCheckFootstepRequestMsg(footstepRequest(1), p.config.reach, true, false, ros::Time(1));
+  const auto good = rb::toCheckFootstepRequestMsg(footstepRequest(1), p.config.reach,
+                                                  CheckPass{p.config.reach.budgets.quick}, true,
+                                                  false, ros::Time(1));
   EXPECT_NO_THROW(rb::fromCheckFootstepRequestMsg(good, nq, p.config.reach));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto reject = [&](const std::function<void(reach_trajopt::CheckFootstep::Request&)>& edit,
@@ -269,14 +222,39 @@ TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
   reject([&](auto& m) { m.reach_horizon = nan; }, "reach_horizon");
   reject([](auto& m) { m.reach_horizon = 1e9; }, "reach_horizon");
   reject([](auto& m) { m.seed = -2; }, "seed");
-  reject([](auto& m) { m.sample_budget = {1000, 4, 12, 24, 8}; }, "sample_budget");
-  reject([](auto& m) { m.sample_budget = {0, 4, 12, 24, 8, 4}; }, "sample_budget");
-  reject([](auto& m) { m.sample_budget = {-5, 4, 12, 24, 8, 4}; }, "sample_budget");
-  reject([](auto& m) { m.constraint_margin = {0.01, 0.02}; }, "constraint_margin");
-  reject([&](auto& m) { m.constraint_margin = {nan}; }, "constraint_margin");
-  reject([](auto& m) { m.constraint_margin = {-0.01}; }, "constraint_margin");
+  reject([](auto& m) { m.budget.resize(2); }, "budget");
+  reject([](auto& m) { m.budget[0].initial_samples = 0; }, "budget.initial_samples");
+  reject([](auto& m) { m.budget[0].initial_samples = -5; }, "budget.initial_samples");
+  reject([](auto& m) { m.budget[0].certificate_candidates = 0; }, "budget.certificate_candidates");
+  reject([&](auto& m) { m.budget[0].constraint_margin = nan; }, "budget.constraint_margin");
+  reject([](auto& m) { m.budget[0].constraint_margin = -0.01; }, "budget.constraint_margin");
+  reject([](auto& m) { m.forward_until = {0.01}; }, "forward_until");  // not forward_set_only
+  reject(
+      [](auto& m) {
+        m.forward_set_only = true;
+        m.forward_until = {-0.01};
+      },
+      "forward_until");
+  reject(
+      [&](auto& m) {
+        m.forward_set_only = true;
+        m.forward_until = {nan};
+      },
+      "forward_until");
+  reject(
+      [](auto& m) {
+        m.budget.clear();
+        m.forward_set_only = true;
+      },
+      "forward_set_only");
   // A budget beyond the memory limit (an unbounded allocation) is refused before any sampling.
-  reject([](auto& m) { m.sample_budget = {2000000000, 1000, 1000, 24, 8, 4}; }, "sample_budget");
+  reject(
+      [](auto& m) {
+        m.budget[0].initial_samples = 200000;
+        m.budget[0].children_per_parent = 1000;
+        m.budget[0].backward_children_per_parent = 1000;
+      },
+      "budget");
 }
 
 TEST(RosFootstepCheckMsgs, MalformedAnswersAreErrorsNamingTheField) {
@@ -284,12 +262,9 @@ TEST(RosFootstepCheckMsgs, MalformedAnswersAreErrorsNamingTheField) {
   const int nq = p.model->nq();
   // A well-formed answer of a real check (the quick budget keeps it short).
   const auto node = p.planner();
-  ReachConfig quick = p.config.reach;
-  quick.initial_samples = p.config.reach.quick_initial_samples;
-  quick.children_per_parent = p.config.reach.quick_children_per_parent;
-  quick.backward_children_per_parent = p.config.reach.quick_backward_children_per_parent;
   const FootstepCheckResult checked =
-      checkFootstep(node->footstepReachability(), footstepRequest(1), quick, true);
+      checkFootstep(node->footstepReachability(), footstepRequest(1), p.config.reach,
+                    CheckPass{p.config.reach.budgets.quick}, true);
   ASSERT_TRUE(checked.result.kinematically_feasible) << checked.result.reason;
   const auto good = rb::toCheckFootstepResponseMsg(checked, ReachabilityResult());
   ASSERT_NO_THROW(rb::fromCheckFootstepResponseMsg(good, nq));

@@ -88,12 +88,22 @@ TEST(RosFootstepPlanMsgs, RequestRoundTripIsExact) {
   ASSERT_TRUE(back.reach.has_value());
   EXPECT_EQ(back.reach->horizon, 0.2);
   EXPECT_EQ(back.reach->seed, 7u);
-  EXPECT_EQ(back.reach->initial_samples, base.initial_samples);
-  // The sender's whole section travels (reach_config): a field besides horizon and seed too.
-  reach.certificate_candidates = base.certificate_candidates + 3;
+  EXPECT_EQ(back.reach->budgets.full.initial_samples, base.budgets.full.initial_samples);
+  // The sender's three sample budgets travel (budgets), each key of each; the hull budget whole
+  // (its unset keys the full budget's).
+  reach.budgets.full.certificate_candidates = base.budgets.full.certificate_candidates + 3;
+  reach.budgets.full.max_boundary = 50;
+  reach.budgets.quick.constraint_margin = 0.031;
+  reach.budgets.hull.children_per_parent = 5;
   const FootstepPlanRequest sent = rb::fromPlanFootstepRequestMsg(
       rb::toPlanFootstepRequestMsg(r, reach, ros::Time(0)), model->nq(), base);
-  EXPECT_EQ(sent.reach->certificate_candidates, base.certificate_candidates + 3);
+  EXPECT_EQ(sent.reach->budgets.full.certificate_candidates,
+            base.budgets.full.certificate_candidates + 3);
+  EXPECT_EQ(sent.reach->budgets.full.max_boundary, 50);
+  EXPECT_EQ(sent.reach->budgets.quick.constraint_margin, 0.031);
+  EXPECT_EQ(sent.reach->budgets.hullBudget().children_per_parent, 5);
+  EXPECT_EQ(sent.reach->budgets.hullBudget().max_boundary, 50);
+  EXPECT_EQ(sent.reach->budgets.hullBudget().initial_samples, 2500);
   EXPECT_EQ(sent.reach->threads, base.threads);
 
   // No yaw, no touchdown CoM, the node's seed and horizon: all stay unset.
@@ -103,7 +113,7 @@ TEST(RosFootstepPlanMsgs, RequestRoundTripIsExact) {
   auto pm = rb::toPlanFootstepRequestMsg(plain, reach, ros::Time(0));
   pm.seed = -1;
   pm.reach_horizon = 0.0;
-  pm.reach_config.clear();
+  pm.budgets.clear();
   const FootstepPlanRequest pb = rb::fromPlanFootstepRequestMsg(pm, model->nq(), base);
   EXPECT_FALSE(pb.target_yaw.has_value());
   EXPECT_FALSE(pb.touchdown_com.has_value());

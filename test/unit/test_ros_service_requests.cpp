@@ -138,7 +138,7 @@ TEST(RosServiceRequests, ReachConfigKeepsTheWindowFractionsOfTheHorizon) {
   EXPECT_DOUBLE_EQ(twice.horizon, 0.16);
   EXPECT_DOUBLE_EQ(twice.window_start, 0.06);
   EXPECT_DOUBLE_EQ(twice.window_end, 0.10);
-  EXPECT_EQ(twice.initial_samples, base.initial_samples);
+  EXPECT_EQ(twice.budgets.full.initial_samples, base.budgets.full.initial_samples);
 }
 
 TEST(RosServiceRequests, ReachProblemHoldsTheStanceSoleAndTargetsTheFoothold) {

@@ -107,7 +107,7 @@ WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2
   setup.walk.initial_com_velocity = push;
   setup.walk.forward_speed = forward_speed;
   setup.walk.seed = seed;
-  setup.footsteps.reach.initial_samples = samples;
+  setup.footsteps.reach.budgets.full.initial_samples = samples;
   return setup.experiment(kUrdf)->run();
 }
 
@@ -354,7 +354,7 @@ TEST(TalosWalk, BaselineWalksInPlaceTwentySteps) {
 TEST(TalosWalk, ProposedKeepsWalkingAfterALateralPush) {
   WalkSetup setup = talosSetup("proposed", 6);
   setup.walk.initial_com_velocity = Eigen::Vector2d(0.0, 0.3);
-  setup.footsteps.reach.initial_samples = 2000;
+  setup.footsteps.reach.budgets.full.initial_samples = 2000;
   const WalkResult r = setup.experiment()->run();
   EXPECT_FALSE(r.fell) << r.summaryLine();
   EXPECT_EQ(r.steps, 6) << r.summaryLine();

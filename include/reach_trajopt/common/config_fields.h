@@ -43,6 +43,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -160,6 +161,19 @@ struct Value<T, std::enable_if_t<(std::is_base_of_v<Eigen::MatrixBase<T>, T> &&
   }
 };
 
+/// An optional value: unset (the table shows it empty) until the YAML gives it.
+template <typename T>
+struct Value<std::optional<T>> {
+  static std::string type() { return std::string(Value<T>::type()) + " or unset"; }
+  static bool read(const YamlSection& s, const std::string& k, std::optional<T>& v) {
+    T x{};
+    if (!Value<T>::read(s, k, x)) return false;
+    v = x;
+    return true;
+  }
+  static std::string text(const std::optional<T>& v) { return v ? Value<T>::text(*v) : ""; }
+};
+
 }  // namespace config_detail
 
 /// The fields of one config struct (see the file comment). Immutable once built; build it
@@ -241,6 +255,33 @@ class ConfigFields {
     return *this;
   }
 
+  /// A sub-section `key:` whose keys `sub` reads into `member` (each optional, read over the
+  /// member's value; unknown and removed keys of `sub` are errors there). Not validated by
+  /// `sub`: this struct's validate() checks the member. The table shows the sub-section's rows
+  /// as "key.subkey" (nested sections nest further: "a.b.c").
+  template <typename Sub>
+  ConfigFields& nested(std::string key, Sub Config::*member, const ConfigFields<Sub>& sub) {
+    Field f;
+    f.row.key = key;
+    f.row.type = "section";
+    f.shown = false;
+    const ConfigFields<Sub>* sub_fields = &sub;  // fields() tables are function-local statics
+    f.read = [member, sub_fields](const YamlSection& s, const std::string& k, Config& c) {
+      if (s.has(k)) sub_fields->readInto(s.section(k), c.*member);
+    };
+    fields_.push_back(std::move(f));
+    for (const auto& sf : sub.fields_) {
+      if (!sf.shown) continue;
+      Field row;
+      row.row = sf.row;
+      row.row.key = key + "." + sf.row.key;
+      row.is_key = false;
+      row.text = [member, text = sf.text](const Config& c) { return text(c.*member); };
+      fields_.push_back(std::move(row));
+    }
+    return *this;
+  }
+
   /// A key that was removed: a file that still has it gets ConfigError("<where>: <why>").
   ConfigFields& removed(std::string key, std::string why) {
     table_.removed.emplace_back(std::move(key), std::move(why));
@@ -252,7 +293,8 @@ class ConfigFields {
   /// The accepted keys, in table order.
   std::vector<std::string> keys() const {
     std::vector<std::string> out;
-    for (const Field& f : fields_) out.push_back(f.row.key);
+    for (const Field& f : fields_)
+      if (f.is_key) out.push_back(f.row.key);
     return out;
   }
 
@@ -263,7 +305,8 @@ class ConfigFields {
       for (const auto& r : table_.removed)
         if (r.first == k) throw ConfigError(s.where(k) + ": " + r.second);
     s.requireOnlyKeys(keys());
-    for (const Field& f : fields_) f.read(s, f.row.key, config);
+    for (const Field& f : fields_)
+      if (f.is_key) f.read(s, f.row.key, config);
   }
 
   /// readInto() over `config`, then validate() (errors prefixed with the section's location).
@@ -276,22 +319,9 @@ class ConfigFields {
   std::vector<ParameterRow> rows(const Config& config = Config()) const {
     std::vector<ParameterRow> out;
     for (const Field& f : fields_) {
+      if (!f.shown) continue;
       out.push_back(f.row);
       out.back().value = f.text(config);
-    }
-    return out;
-  }
-
-  /// The section as YAML text with the values of `config`, one "key: value" line per field
-  /// (strings quoted, numbers in their round-trip form): read() of it gives `config` back. How a
-  /// whole section travels in a message (CheckFootstep.srv reach_config). A custom() field's
-  /// text must be YAML its read accepts.
-  std::string yaml(const Config& config) const {
-    std::string out;
-    for (const Field& f : fields_) {
-      std::string value = f.text(config);
-      if (f.row.type == config_detail::Value<std::string>::type()) value = quotedYaml(value);
-      out += f.row.key + ": " + value + "\n";
     }
     return out;
   }
@@ -310,7 +340,11 @@ class ConfigFields {
   }
 
  private:
+  template <typename Other>
+  friend class ConfigFields;
   struct Field {
+    bool is_key = true;  ///< a key of this section (false: a row of a nested section)
+    bool shown = true;   ///< a row of the table (false: a nested section's own key)
     ParameterRow row;
     std::function<void(const YamlSection&, const std::string&, Config&)> read;
     std::function<std::string(const Config&)> text;

@@ -61,6 +61,10 @@ class FootstepReachability {
   /// \param progress  the reachability check's (reach_progress.h; may be empty)
   FootstepResult check(const FootstepRequest& request, const ReachConfig& config,
                        const ReachProgressCallback& progress = {}) const;
+  /// Same with one pass of the check (ReachabilityAnalyzer::checkPass) instead of the check's
+  /// pass schedule: one pass of the step planner.
+  FootstepResult checkPass(const FootstepRequest& request, const ReachConfig& config,
+                           const CheckPass& pass, const ReachProgressCallback& progress = {}) const;
 
   /// The kinematic stage alone: kinematics, kinematically_feasible, qdf (the touchdown
   /// velocity x_f would have) and reason; reach stays empty, reachable false.

@@ -1,8 +1,8 @@
 #pragma once
 /// \file reach_config.h
-/// Parameters of the reachability check (docs/method.md Sec. 4, eq. 13-21, Prop. 1-2) and what each
-/// one costs. The paper gives dt = 1 ms, 1e4 samples at the first step and delta = 1e-5; the
-/// rest are ours (documented here and in config/biped.yaml, section `reach:`).
+/// Parameters of the reachability check (docs/method.md Sec. 4, eq. 13-21, Prop. 1-2), YAML
+/// section `reach:` (docs/parameters.md). The paper gives dt = 1 ms, 1e4 samples at the first
+/// step and delta = 1e-5; the rest are ours (docs/method.md says where each value came from).
 ///
 /// Time line of one check (all times relative to t_0, the time of x_0):
 ///   forward set  from x_0 at 0 up to t_1 = window_end            (eq. 15-16)
@@ -10,8 +10,8 @@
 ///   the test (14) on every slice t in [t_2, t_1] (the overlap window).
 /// Forward-only checking (the paper's earlier method) is window_start = window_end = horizon.
 ///
-/// Speed knobs (cost ~ QPs solved): initial_samples (one QP each, at the first step of each
-/// direction), children_per_parent x max_boundary (QPs per later step), the number of steps
+/// Speed: a check costs about the QPs it solves, set by its sample budget (sample_budget.h:
+/// `budgets.full`, `budgets.quick`, `budgets.hull`) and the number of steps
 /// window_end / dt + (horizon - window_start) / dt.
 
 #include <cmath>
@@ -19,6 +19,8 @@
 #include <limits>
 #include <string>
 #include <vector>
+
+#include "reach_trajopt/reach/sample_budget.h"
 
 namespace reach_trajopt {
 
@@ -45,7 +47,7 @@ struct ReachLimits {
   static constexpr double kMaxQps = 2.0e6;
 };
 
-/// Configuration of ReachabilityAnalyzer. validate() throws ReachError naming a bad field.
+/// Configuration of ReachabilityAnalyzer. validate() throws ConfigError naming a bad field.
 struct ReachConfig {
   // ---- time line -------------------------------------------------------------------------
   double dt = 1e-3;            ///< time step of (16) and (20) [s] (paper: 1 ms)
@@ -53,16 +55,9 @@ struct ReachConfig {
   double window_start = 0.03;  ///< t_2 - t_0 [s]: the backward set reaches back to here
   double window_end = 0.05;    ///< t_1 - t_0 [s]: the forward set reaches up to here
   // ---- sampling ------------------------------------------------------------------------
-  int initial_samples = 10000;  ///< samples drawn at the first step of each direction (paper 1e4)
-  int children_per_parent = 8;  ///< samples drawn from each boundary sample at later steps
-  int max_boundary = 96;        ///< cap on the boundary samples propagated per slice (21)
-  int angular_bins = 16;        ///< bins around the centroid per plane (keeps concave parts)
-  /// Interior samples propagated besides the boundary ones (evenly spread over the slice):
-  /// without them the later slices are thin shells around their sets.
-  int interior_samples = 32;
-  /// Draws per kept sample at the later backward steps: (19) rejects most draws of (17), so
-  /// the backward direction draws more than the forward one (whose QP repairs its draws).
-  int backward_children_per_parent = 24;
+  /// The sample budgets of the passes (sample_budget.h; YAML `budgets: {full, quick, hull}`).
+  ReachBudgets budgets;
+  int angular_bins = 16;  ///< bins around the centroid per plane (keeps concave parts)
   /// Boundary selection (21) uses y + tau * ydot for each tau here [s]: with tau = 0 only the
   /// positions count; tau > 0 also keeps the samples whose velocity points outward, which are
   /// the ones the next steps' extremes come from.
@@ -75,17 +70,12 @@ struct ReachConfig {
   /// Extra rounds of draws at a step whose slice keeps fewer samples than redraw_below x
   /// (max_boundary + interior_samples): each round draws as many children per parent again
   /// (new draws, uniform), until the slice has that many or the rounds are spent. Where (19)
-  /// rejects nearly every backward draw a slice can otherwise thin out to nothing within a few
-  /// steps and end the set (bench/README.md, "Redraws where a slice thins out"). 0: the
-  /// paper's fixed draws per parent. A step then draws at most (1 + redraw_rounds) times its
-  /// draws; estimatedQps() counts one round.
+  /// rejects nearly every backward draw, a slice can otherwise thin out to nothing within a few
+  /// steps and end the set. 0: the paper's fixed draws per parent. A step then draws at most
+  /// (1 + redraw_rounds) times its draws; estimatedQps() counts one round.
   int redraw_rounds = 3;
   /// The share of max_boundary + interior_samples below which a slice gets another round, in
-  /// [0, 1]. 0.125 (4 samples in the quick pass, 16 with the full budget): only slices on
-  /// their way to nothing draw again. With 0.5 the quick pass's sets changed at many more
-  /// steps, and 3 of 16 seeded forward walks fell against none; with 0.125, 6 of 48 seeded
-  /// walks fell against 7 with no redraws, and only pushed walks that fell still needed the
-  /// full pass (bench/README.md, "Redraws where a slice thins out").
+  /// [0, 1]: small, so only slices on their way to nothing draw again.
   double redraw_below = 0.125;
   std::uint64_t seed = 1;  ///< random stream: results are identical for any thread count
   int threads = 0;         ///< OpenMP threads (0: OpenMP's default)
@@ -109,8 +99,7 @@ struct ReachConfig {
   /// With one held sole, reject a draw d before its dynamics when (19) linearized at the
   /// parent (the bias at d = 0, exact otherwise) is violated by more than a tenth of the
   /// row's range over the draw box: the same children as without it (backward_step.h), at a
-  /// fraction of the cost of the ~85 % of draws that (19) rejects. false: every draw gets the
-  /// exact test.
+  /// fraction of the cost of the draws that (19) rejects. false: every draw gets the exact test.
   bool backward_prefilter = true;
   // ---- the test (14), Prop. 1-2 -------------------------------------------------------------
   double delta = 1e-5;  ///< Prop. 2 threshold on d_H [m] (paper 1e-5), used as min(delta, K)
@@ -120,9 +109,6 @@ struct ReachConfig {
   /// never farther apart than this [m].
   double overlap_gap_max = 5e-3;
   // ---- the certificate (witness_certificate.h, junction_bridge.h) -------------------------
-  /// Junction pairs (a, b) bridged at most, lowest bridge effort first; the verdict is
-  /// "reachable" only when one of them gives a certified path.
-  int certificate_candidates = 8;
   /// Largest violation along a certified path of eq. (1) [N, Nm], the cones (8) [N], the
   /// torque limits [Nm], the position / velocity limits [m, rad; m/s, rad/s], the Euler steps
   /// [m, rad] and the ground [m]; the held soles' |phi| within contact_tolerance.
@@ -133,9 +119,6 @@ struct ReachConfig {
   double certificate_contact_velocity_tolerance = 1e-2;
   double terminal_position_tolerance = 1e-3;  ///< |q(t_f) - q_f|_inf of a certified path [m, rad]
   double terminal_velocity_tolerance = 1e-2;  ///< |qd(t_f) - qd_f|_inf [m/s, rad/s]
-  /// Eq. (23): the swing sole hulls of the forward set handed to the OCP grow by this [m]
-  /// (step/reachable_set_constraint.h).
-  double constraint_margin = 0.01;
   // ---- output and states ----------------------------------------------------------------
   std::string output_frame;         ///< frame of y; empty: the swing sole of the mode
   std::string output_axes = "xyz";  ///< world axes of the frame origin in y (1-3 of x, y, z)
@@ -145,85 +128,49 @@ struct ReachConfig {
   double contact_tolerance = 1e-4;           ///< |phi| allowed at x_0 and x_f [m, rad]
   double contact_velocity_tolerance = 1e-3;  ///< |J qd| allowed at x_0 and x_f [m/s, rad/s]
   double limit_tolerance = 1e-9;             ///< slack on position / velocity / torque limits
-  // ---- the quick pass (issue 16; step/footstep_transition_planner.h) ----------------------
-  /// FootstepTransitionPlanner first plans the step with the smaller sample budget below
-  /// (quickPassConfig()); only when that pass certifies nothing (neither the bridge nor the
-  /// local solve), or certifies the step but its strict OCP fails, does it plan again with
-  /// the budget above (a quick certificate is kept if the full pass finds none). Every certificate
-  /// is the same full-model re-check whichever budget found it, so the quick pass can add
-  /// "reachable" verdicts the full budget misses but never removes one (the full pass is the same
-  /// computation as without it).
-  /// ReachabilityAnalyzer::check on its own (the check service, reach_check, bench/reach) also
-  /// draws the quick budget first: it ends there when that budget certifies the step or gives
-  /// up (give_up_gap), and draws the full budget otherwise (docs/method.md Sec. 4.6).
+  // ---- the passes (PassSchedule, sample_budget.h) ------------------------------------------
+  /// Draw budgets.quick first. The step planner (step/footstep_transition_planner.h) plans the
+  /// step with it and runs its later passes only when that pass certifies nothing or its strict
+  /// OCP fails (a quick certificate is kept if the full pass finds none); a check on its own
+  /// (ReachabilityAnalyzer::check) ends after the quick budget when it certifies the step or
+  /// gives up (give_up_gap), and draws budgets.full otherwise. false: budgets.full alone.
   bool quick_pass = true;
-  int quick_initial_samples = 1000;             ///< initial_samples of the quick pass
-  int quick_children_per_parent = 4;            ///< children_per_parent of the quick pass
-  int quick_backward_children_per_parent = 12;  ///< backward_children_per_parent of it
-  int quick_max_boundary = 24;                  ///< max_boundary of the quick pass
-  int quick_interior_samples = 8;               ///< interior_samples of the quick pass
-  int quick_certificate_candidates = 4;         ///< certificate_candidates of the quick pass
-  /// A check on its own (ReachabilityAnalyzer::check with quick_pass) stops after an
-  /// uncertified quick budget whose closest attempt ends more than this many terminal
-  /// tolerances from x_f (terminalGapInTolerances of witness_certificate.h: the sets are too
-  /// far apart for the full budget to join them): "not shown reachable" without the full
-  /// budget. 0: never; the full budget is drawn after every uncertified quick budget.
-  /// 20: over the 115 kinematically feasible footholds of bench/README.md's verdict grid,
-  /// checked with 1/16, 1/8, 1/4, 1/2 and all of the reference budget, every foothold that a
-  /// larger budget certified had ended each smaller uncertified one within 6.8 tolerances;
-  /// the bench case's footholds ended every budget 24 to 540 tolerances away (the quick
-  /// budget: 45 to 305). The step planner's passes do not give up: there the full pass's
-  /// local solve (the strict OCP) certified a foothold whose quick closest attempt ended 37
-  /// tolerances away.
+  /// A check on its own stops after an uncertified quick budget whose closest attempt ends
+  /// more than this many terminal tolerances from x_f (terminalGapInTolerances of
+  /// witness_certificate.h: the sets are too far apart for the full budget to join them):
+  /// "not shown reachable" without the full budget. 0: never. The step planner never gives up.
   double give_up_gap = 20.0;
-  /// constraint_margin of the quick pass [m]: the hull of its 32 kept samples per slice
-  /// covers less of the forward set than the full budget's 128, so eq. (23)'s rows grow more
-  /// (bench/README.md: with 0.01 m 4 of the walk's 14 quick certificates got no strict OCP,
-  /// with 0.02 m 2 of 13, with 0.03 m none, but a forward walk then fell by leg collision).
-  double quick_constraint_margin = 0.02;
-  /// When the quick pass's strict OCP fails (see hull_pass), FootstepTransitionPlanner first
-  /// solves it again, seeded as before, in the quick pass's own hulls grown to this margin [m]
-  /// (no sampling: the retry costs one OCP), before the hull pass. 0 (or not above
-  /// quick_constraint_margin): no such retry (the default; bench/README.md, "The wide hull
-  /// retry": it spares the sampling of the passes after it, but changed walks fell).
+  /// When the quick pass's strict OCP fails, the step planner first solves it again, seeded as
+  /// before, in the quick pass's own hulls grown to this margin [m] (no sampling: one OCP),
+  /// before the hull pass. 0 (or not above budgets.quick.constraint_margin): no such retry.
   double quick_retry_constraint_margin = 0.0;
   /// When the quick pass's strict OCP fails (its certified step has no trajectory, or its local
-  /// solve does not converge), FootstepTransitionPlanner first solves that OCP again, seeded
-  /// as before, in the eq. (23) hulls of a forward set alone (hullPassConfig(): the full
-  /// budget's boundary, hull_initial_samples and hull_children_per_parent, up to the quick
-  /// witness's junction, without the backward set), and plans the full pass only when
-  /// that fails too. In all the full passes of the walks measured, the quick pass's own
-  /// sparser hulls were what stopped the OCP (bench/README.md, "Why steps need the full pass").
+  /// solve does not converge), the step planner solves that OCP again, seeded as before, in the
+  /// eq. (23) hulls of a forward set alone drawn with budgets.hull up to the quick witness's
+  /// junction, and plans the full pass only when that fails too.
   bool hull_pass = true;
-  /// children_per_parent of the hull pass's forward set (its boundary and interior counts are
-  /// the full budget's). 4, half the full budget's 8: the 25 hull passes of 20 walks measured
-  /// ended the same steps as with 8, and the walks the same way, with 42 % fewer QPs
-  /// (bench/README.md, "Boundary hulls as tasks, ...").
-  int hull_children_per_parent = 4;
-  /// initial_samples of the hull pass's forward set: its first step keeps only max_boundary +
-  /// interior_samples of them as parents, so its hulls hardly depend on it. 2500, a quarter of
-  /// the full budget's 1e4: the 20 walks above planned every step the same (verdict,
-  /// certificate, passes, foothold), each hull pass 0.02-0.06 s faster (bench/README.md,
-  /// "Fewer first draws in the hull pass").
-  int hull_initial_samples = 2500;
-  /// Propagate the forward set alone, to window_end: no backward set, window test or witness;
-  /// the verdict is "not shown reachable". What the hull pass checks (its forward set's hulls
-  /// are all it uses); set by hullPassConfig(). In a config file it makes every verdict "not
-  /// shown reachable".
-  bool forward_set_only = false;
 
-  /// Throws ReachError naming a bad field, also for values over ReachLimits and threads over
+  /// Throws ConfigError naming a bad field, also for values over ReachLimits and threads over
   /// the hardware threads of this machine.
   void validate() const;
-  /// Estimated peak memory of one check for a model with `nq` coordinates [bytes]: every
-  /// slice's samples (outputs, rates, velocities, torques, wrenches, kept configurations).
+  /// Estimated peak memory of one check with `budget` for a model with `nq` coordinates
+  /// [bytes]: every slice's samples (outputs, rates, velocities, torques, wrenches, kept
+  /// configurations).
+  double estimatedMemoryBytes(int nq, const SamplingBudget& budget) const;
+  /// Same for the largest of the three budgets.
   double estimatedMemoryBytes(int nq) const;
-  /// Upper estimate of the QPs (samples) of one check: 2 initial_samples + per later step
-  /// (max_boundary + interior_samples) x max(children_per_parent, backward_children_per_parent).
+  /// Upper estimate of the QPs (samples) of one check with `budget`: 2 initial_samples + per
+  /// later step (max_boundary + interior_samples) x max(children_per_parent,
+  /// backward_children_per_parent).
+  double estimatedQps(const SamplingBudget& budget) const;
+  /// Same for the largest of the three budgets.
   double estimatedQps() const;
-  /// Throws ReachError when estimatedMemoryBytes(nq) > ReachLimits::kMaxMemoryBytes or
-  /// estimatedQps() > ReachLimits::kMaxQps (called before a check starts).
+  /// Throws ConfigError when estimatedMemoryBytes(nq) > ReachLimits::kMaxMemoryBytes or
+  /// estimatedQps() > ReachLimits::kMaxQps for any of the three budgets (called before a check
+  /// starts).
   void requireResourcesWithinLimits(int nq) const;
+  /// Same for one budget.
+  void requireResourcesWithinLimits(int nq, const SamplingBudget& budget) const;
   /// Its YAML keys (section `reach:`, docs/parameters.md).
   static const ConfigFields<ReachConfig>& fields();
   /// Reads fields() of a YAML section on top of `base`, then validates. Unknown keys throw.
@@ -231,18 +178,6 @@ struct ReachConfig {
   /// Same on top of the defaults.
   static ReachConfig fromYaml(const YamlSection& section);
   bool semiImplicit() const { return forward_integrator == "semi_implicit"; }
-  /// This configuration with the quick pass's sample budget (quick_*) and quick_pass false.
-  ReachConfig quickPassConfig() const;
-  /// This configuration with quick_pass false: the full budget alone (the step planner's
-  /// full pass, after its own quick pass).
-  ReachConfig fullPassConfig() const;
-  /// This configuration (the full budget, children_per_parent = hull_children_per_parent,
-  /// initial_samples = hull_initial_samples) with forward_set_only true and quick_pass and
-  /// hull_pass false: the hull pass's check. Its forward set stops at the first step at or after
-  /// `forward_until_s` [s after t_0] when that is before window_end (the hull pass needs it up
-  /// to the quick witness's junction only). Each draw is keyed by its step, not by the number
-  /// of steps, so the slices it has are those of the whole window's, bit for bit.
-  ReachConfig hullPassConfig(double forward_until_s = HUGE_VAL) const;
 };
 
 }  // namespace reach_trajopt

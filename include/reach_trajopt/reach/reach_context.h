@@ -28,12 +28,13 @@ struct ReachContext {
   /// \throws ReachError when a sole of the mode has no foothold or frame, or the output frame
   ///     is unknown, or a floating-base model is given no contact (flight).
   ReachContext(std::shared_ptr<const RobotModel> model, const ContactConfig& contact,
-               const ReachConfig& config, const ContactMode& mode,
+               const ReachConfig& config, const SamplingBudget& budget, const ContactMode& mode,
                const std::optional<Eigen::Isometry3d> footholds[2],
                const std::optional<Eigen::Isometry3d>& target);
 
   std::shared_ptr<const RobotModel> model;
   ReachConfig config;
+  SamplingBudget budget;  ///< the pass's sample budget (one of config.budgets)
   ContactMode mode;
   ContactWrenchCone cone;
   std::vector<ContactConstraint> contacts;  ///< held soles, left before right

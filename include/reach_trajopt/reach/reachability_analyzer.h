@@ -5,8 +5,9 @@
 /// state of the next mode m_{k+1}, e.g. the touchdown of the swing sole) within the horizon?
 ///
 ///  1. Forward set (15)-(16) from x_0 over [0, t_1], backward set (17)-(20) from x_f over
-///     [t_2, t_f], dt apart. The first step of each direction draws `initial_samples` inputs
-///     (paper: 1e4); every later step draws `children_per_parent` (backward:
+///     [t_2, t_f], dt apart. With the pass's SamplingBudget (sample_budget.h), the first step of
+///     each direction draws `initial_samples` inputs (paper: 1e4); every later step draws
+///     `children_per_parent` (backward:
 ///     `backward_children_per_parent`) from each kept sample of the previous slice: its
 ///     boundary samples (21) plus `interior_samples` interior ones. Slices hold the outputs
 ///     y = swing sole position (13).
@@ -23,9 +24,10 @@
 ///     one set inside the other's convex hull, or a pair closer than min(K, overlap_gap_max);
 ///     Prop. 2: d_H <= min(delta, K)) is reported (sets_meet, window) but decides nothing by
 ///     itself: in the walk the sets "overlapped" on steps no path joined.
-///  5. Sample budget (ReachConfig::quick_pass; docs/method.md Sec. 4.6): steps 1-4 with the
-///     quick budget first; the full budget only when that one neither certified the step nor
-///     ended its closest attempt beyond give_up_gap terminal tolerances of x_f (gave up).
+///  5. Sample budget (PassSchedule::forCheck, sample_budget.h; docs/method.md Sec. 4.6): with
+///     ReachConfig::quick_pass, steps 1-4 with budgets.quick first; budgets.full only when that
+///     one neither certified the step nor ended its closest attempt beyond give_up_gap terminal
+///     tolerances of x_f (gave up).
 ///
 /// Choosing the time line (see ReachConfig): for the biped's single support -> double support
 /// check, x_0 is a mid-swing state (swing sole in the air, moving toward the target; see
@@ -145,14 +147,18 @@ class ReachabilityAnalyzer {
   ReachResult check(const ReachProblem& problem) const;
   /// Same with another configuration (e.g. more samples) for this one call, reporting its
   /// progress after each slice to `progress` (reach_progress.h; may be empty; with two
-  /// budgets each reports its own slices).
-  /// With config.quick_pass (and not forward_set_only), the sample budget adapts: the quick
-  /// budget (config.quickPassConfig()) first; the check ends there when it certifies the step,
-  /// or when its closest attempt ended beyond config.give_up_gap terminal tolerances of x_f
-  /// (gave_up); otherwise the full budget (config.fullPassConfig()) decides.
+  /// budgets each reports its own slices). Runs PassSchedule::forCheck(config): with
+  /// config.quick_pass the budget adapts: config.budgets.quick first; the check ends there when
+  /// it certifies the step, or when its closest attempt ended beyond config.give_up_gap
+  /// terminal tolerances of x_f (gave_up); otherwise config.budgets.full decides.
   /// \throws ReachCancelled when `progress` returns false.
   ReachResult check(const ReachProblem& problem, const ReachConfig& config,
                     const ReachProgressCallback& progress = {}) const;
+  /// One pass: steps 1-4 of the file comment with `pass`'s budget and sets (the step
+  /// planner's passes). With PassSets::kForwardOnly the forward set alone, up to
+  /// pass.forward_until_s, and no verdict (reachable false).
+  ReachResult checkPass(const ReachProblem& problem, const ReachConfig& config,
+                        const CheckPass& pass, const ReachProgressCallback& progress = {}) const;
 
   /// The configuration q of sample `index` of a slice (exact, from its parent chain).
   /// \param forward  true: result.forward, false: result.backward
@@ -165,10 +171,6 @@ class ReachabilityAnalyzer {
   std::shared_ptr<const RobotModel> modelPtr() const { return model_; }
 
  private:
-  /// One sample budget: steps 1-4 of the file comment with `config` as it is.
-  ReachResult checkBudget(const ReachProblem& problem, const ReachConfig& config,
-                          const ReachProgressCallback& progress) const;
-
   std::shared_ptr<const RobotModel> model_;
   ContactConfig contact_;
   ReachConfig config_;

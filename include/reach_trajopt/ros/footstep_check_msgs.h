@@ -10,6 +10,8 @@
 
 #include <ros/time.h>
 
+#include <optional>
+
 #include "reach_trajopt/CheckFootstep.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/step/footstep_check.h"
@@ -20,22 +22,24 @@ namespace ros_bridge {
 /// What a check_footstep request asks.
 struct FootstepCheckCall {
   FootstepRequest request;
-  ReachConfig reach;         ///< the node's with the request's horizon and seed
+  ReachConfig reach;  ///< the node's with the request's horizon and seed
+  /// The pass to run (the request's budget and sets); none: the node's own pass schedule.
+  std::optional<CheckPass> pass;
   bool reachability = true;  ///< false: the kinematic stage only
   bool samples = true;       ///< the published result carries the output samples
 };
 
-/// The request of a check of `request` with the reachability settings `reach` (its horizon,
-/// seed, sample budget and eq. (23) hull margin are sent, so one pass of the step planner is
-/// checked as in process; the rest must be the node's), stamped t0.
-reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(const FootstepRequest& request,
-                                                                const ReachConfig& reach,
-                                                                bool reachability, bool samples,
-                                                                const ros::Time& t0);
+/// The request of a check of `request` with the reachability settings `reach` and one pass
+/// `pass` of the step planner (its horizon, seed, the pass's budget and sets are sent, so the
+/// pass is checked as in process; the rest must be the node's; no pass: the node's own pass
+/// schedule), stamped t0.
+reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(
+    const FootstepRequest& request, const ReachConfig& reach, const std::optional<CheckPass>& pass,
+    bool reachability, bool samples, const ros::Time& t0);
 
 /// The call of a request message for a model with `nq` coordinates; its reachability settings
-/// are `base` with the message's reach_horizon, seed, sample_budget and constraint_margin (each
-/// when given).
+/// are `base` with the message's reach_horizon and seed (each when given), its pass the
+/// message's budget, forward_set_only and forward_until (none without a budget).
 /// \throws RequestError naming the field: an unknown side or frame, wrong sizes, non-finite
 ///     numbers, a horizon outside [0, kMaxTransitionHorizon], a negative seed other than -1.
 FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep::Request& m,

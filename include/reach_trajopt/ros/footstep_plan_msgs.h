@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "reach_trajopt/PlanFootstep.h"
+#include "reach_trajopt/SampleBudget.h"
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/transition_result.h"
@@ -36,16 +37,10 @@ std::vector<double> pathViolationVector(const PathViolation& v);
 /// \throws ReachError "<service> response: witness_violation: ..." unless `v` has 9 numbers.
 PathViolation pathViolationFromVector(const std::vector<double>& v, const std::string& service);
 
-/// The `reach_config` field of check_footstep and plan_footstep: the whole reach section of
-/// the pass to run, as YAML (ReachConfig::fields().yaml(): every key of docs/parameters.md's
-/// reach table), so the node runs exactly the sender's pass whatever the pass changed
-/// (quickPassConfig() and the next one), not a hand-picked part of it.
-std::string reachConfigText(const ReachConfig& reach);
-/// `text` read over `base` (empty text: `base`), `threads` kept from `base` (a resource of the
-/// machine that runs the check; the results do not depend on it). Not validated: the caller
-/// validates after its other fields. \throws RequestError "reach_config: <key>: ..." on YAML
-/// that does not parse, an unknown key or a value of the wrong type.
-ReachConfig reachConfigFromText(const std::string& text, const ReachConfig& base);
+/// A sampling budget as its message (msg/SamplingBudget.msg) and back; the message's budget is
+/// not validated here (the caller validates it with the rest of its request).
+reach_trajopt::SampleBudget toSampleBudgetMsg(const SamplingBudget& budget);
+SamplingBudget fromSampleBudgetMsg(const reach_trajopt::SampleBudget& m);
 
 /// The names of the messages: "by_verdict" | "strict" | "auto".
 const char* ocpPolicyName(OcpPolicy p);
@@ -53,13 +48,15 @@ const char* ocpPolicyName(OcpPolicy p);
 const char* infeasibleFootholdPolicyName(InfeasibleFootholdPolicy p);
 
 /// The request message of `request` as planned with the reachability settings `reach` (its
-/// horizon and seed are sent; request.reach overrides them when set), stamped t0 in "world".
+/// horizon, seed and three sample budgets are sent; request.reach overrides them when set; the
+/// other keys must be the node's), stamped t0 in "world".
 reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlanRequest& request,
                                                               const ReachConfig& reach,
                                                               const ros::Time& t0);
 
 /// The FootstepPlanRequest of a request message for a model with `nq` coordinates; its
-/// reachability settings are `base` with the message's reach_horizon and seed (when given).
+/// reachability settings are `base` with the message's reach_horizon, seed and budgets (each
+/// when given).
 /// \throws RequestError naming the field: an unknown frame or name, wrong sizes, non-finite
 ///     numbers, a stance_pose whose rotation is not one, a horizon outside (0,
 ///     kMaxTransitionHorizon], a negative seed other than -1.

@@ -41,7 +41,7 @@ class RemoteFootstepCheck {
   /// The planner's FootstepCheck (setFootstepCheck).
   /// \throws RequestError with the node's reason when it rejects the request
   FootstepCheckResult check(const FootstepRequest& request, const ReachConfig& config,
-                            bool reachability);
+                            const CheckPass& pass, bool reachability);
   /// The ReachabilityResult of the step's check, before the OCP's verdict
   /// (checkedFootstepMsg), built where it ran.
   const reach_trajopt::ReachabilityResult& checkedMessage() const { return checked_; }
@@ -50,7 +50,7 @@ class RemoteFootstepCheck {
 
  private:
   FootstepCheckResult checkHere(const FootstepRequest& request, const ReachConfig& config,
-                                bool reachability);
+                                const CheckPass& pass, bool reachability);
   FallbackServiceCall<reach_trajopt::CheckFootstep> call_;
   std::shared_ptr<const FootstepTransitionPlanner> local_;
   ContactConfig contact_;

@@ -13,14 +13,15 @@
 ///      x_f), then relaxed (to the closest reachable foothold) when it fails;
 ///   5. the fallback of a kinematically infeasible foothold: the nearest feasible one
 ///      (planner/nearest_feasible_foothold.h), the relaxed OCP toward the target, or an error.
-/// With ReachConfig::quick_pass, steps 1-5 run first with the quick pass's smaller sample
-/// budget and again with the full one only when the quick pass certified nothing or its
-/// certified step got no strict trajectory (a quick certificate is kept when the full pass
-/// finds none; issue 16: most of the walk's steps end after the quick pass; bench/README.md).
-/// Between the two, the quick pass's strict OCP is solved again, its check and witness kept:
-/// first in its own hulls grown to ReachConfig::quick_retry_constraint_margin (one OCP, no
-/// sampling), then (ReachConfig::hull_pass) in the eq. (23) hulls of a forward set alone with
-/// the full budget's boundary.
+/// The passes follow PassSchedule::forStepPlanner (reach/sample_budget.h). With
+/// ReachConfig::quick_pass, steps 1-5 run first with budgets.quick and again with budgets.full
+/// only when the quick pass certified nothing or its certified step got no strict trajectory
+/// (a quick certificate is kept when the full pass finds none; most of the walk's steps end
+/// after the quick pass). Between the two, the quick pass's strict OCP is solved again, its
+/// check and witness kept: first in its own hulls grown to
+/// ReachConfig::quick_retry_constraint_margin (one OCP, no sampling), then
+/// (ReachConfig::hull_pass) in the eq. (23) hulls of a forward set alone drawn with
+/// budgets.hull.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -212,7 +213,7 @@ class FootstepTransitionPlanner {
   /// Steps 1-5 with the check's configuration `reach` (one pass of plan()); the OCP's eq. (23)
   /// slices into `slices_used` when given.
   FootstepTransition planWith(const FootstepPlanRequest& r, const ReachConfig& reach,
-                              const FootstepPlanProgress& progress,
+                              const CheckPass& pass, const FootstepPlanProgress& progress,
                               RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested,
                               std::vector<ReachableSlice>* slices_used = nullptr) const;
   /// Step 1: x_0 into `out`; returns the held stance sole pose.
@@ -221,12 +222,13 @@ class FootstepTransitionPlanner {
   /// Steps 2-3 for the x_0 and target of `out`: the check and the OCP's slices of its forward
   /// set (eq. 23; empty without a reachability check); its wall time into time_s [s].
   FootstepCheckResult runCheck(const FootstepPlanRequest& r, const ReachConfig& reach,
-                               const Touchdown& td, const ReachProgressCallback& progress,
-                               const FootstepTransition& out, double& time_s) const;
+                               const CheckPass& pass, const Touchdown& td,
+                               const ReachProgressCallback& progress, const FootstepTransition& out,
+                               double& time_s) const;
   /// Steps 2-3 into out.check and the verdict fields; returns the OCP's slices of the
   /// check's forward set (eq. 23; empty without a reachability check).
   std::vector<ReachableSlice> checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach,
-                                            const Touchdown& td,
+                                            const CheckPass& pass, const Touchdown& td,
                                             const ReachProgressCallback& progress,
                                             FootstepTransition& out) const;
   /// The check's fields of `out` (check, verdict, reason, d_H) from `check`; `checked`: the
@@ -234,13 +236,24 @@ class FootstepTransitionPlanner {
   static void recordCheck(FootstepResult check, bool checked, FootstepTransition& out);
   /// The OCP of a pass ended as asked: not asked for, or strict and converged.
   static bool hasStrictTrajectory(const FootstepPlanRequest& r, const FootstepTransition& step);
+  /// The passes planned and their summed times so far (plan()).
+  struct PassTotals {
+    int passes = 1;
+    double check_time_s = 0.0, ocp_time_s = 0.0;
+  };
+  /// A retry of the quick pass's strict OCP (`pass`: the wide hull retry or the hull pass)
+  /// when it applies; the step when it ended it, the sums of `totals` carried (updated with
+  /// this pass's).
+  std::optional<FootstepTransition> retryQuickOcp(
+      const FootstepPlanRequest& r, const ReachConfig& reach, const ScheduledPass& pass,
+      const CheckPass& quick_pass, const FootstepTransition& quick,
+      std::vector<ReachableSlice>& quick_slices, const FootstepPlanProgress& progress,
+      PassTotals& totals) const;
   /// The hull pass (ReachConfig::hull_pass): the quick pass's check and seed, its OCP solved
-  /// again in the hulls of a forward set alone (the full budget's boundary with
-  /// hull_initial_samples and hull_children_per_parent), propagated up to the quick witness's
-  /// junction
-  /// (reach.hullPassConfig(junctionTime(witness))).
+  /// again in the hulls of a forward set alone drawn with `hull_pass` (budgets.hull over the
+  /// full budget), propagated up to the quick witness's junction.
   FootstepTransition solveInFullHulls(const FootstepPlanRequest& r, const ReachConfig& reach,
-                                      const FootstepTransition& quick,
+                                      const CheckPass& hull_pass, const FootstepTransition& quick,
                                       const FootstepPlanProgress& progress) const;
   /// The wide hull retry (ReachConfig::quick_retry_constraint_margin): the quick pass's check
   /// and seed, its strict OCP solved again in its own slices `quick_slices` grown by
