@@ -172,14 +172,34 @@ void ReachConfig::requireResourcesWithinLimits(int nq, const SamplingBudget& b) 
   }
 }
 
-const ConfigFields<ReachConfig>& ReachConfig::fields() {
-  using C = ReachConfig;
-  // The error of a key that moved into a budget.
+namespace {
+
+/// The keys that moved into reach.budgets, and the check's internal mode that left the file:
+/// each an error naming its new place.
+ConfigFields<ReachConfig>& addRemovedKeys(ConfigFields<ReachConfig>& f) {
   const auto moved = [](const std::string& key, const std::string& budget) {
     return "removed: now reach.budgets." + budget + "." + key +
            " (reach.budgets: {full, quick, hull}, docs/parameters.md)";
   };
-  static const ConfigFields<C> f =
+  const char* budget_keys[] = {
+      "initial_samples",  "children_per_parent", "backward_children_per_parent",
+      "max_boundary",     "interior_samples",    "certificate_candidates",
+      "constraint_margin"};
+  for (const char* key : budget_keys) f.removed(key, moved(key, "full"));
+  for (const char* key : budget_keys) f.removed(std::string("quick_") + key, moved(key, "quick"));
+  f.removed("hull_initial_samples", moved("initial_samples", "hull"));
+  f.removed("hull_children_per_parent", moved("children_per_parent", "hull"));
+  f.removed("forward_set_only",
+            "removed: the forward set alone is how the step planner's hull pass runs one check "
+            "(CheckPass::sets, reach/sample_budget.h), not a setting of the file");
+  return f;
+}
+
+}  // namespace
+
+const ConfigFields<ReachConfig>& ReachConfig::fields() {
+  using C = ReachConfig;
+  static const ConfigFields<C> f = addRemovedKeys(
       ConfigFields<C>("ReachConfig", "reach", "include/reach_trajopt/reach/reach_config.h",
                       "The reachability check (eq. 13-21) and its certificate (docs/method.md "
                       "Sec. 4); the walk replaces `horizon` by walk.check_horizon.")
@@ -246,27 +266,7 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "this margin before the hull pass (0: no retry)")
           .add("hull_pass", &C::hull_pass, "",
                "when the quick pass's strict OCP fails, solve it again in the hulls of a forward "
-               "set alone drawn with budgets.hull before the full pass")
-          .removed("initial_samples", moved("initial_samples", "full"))
-          .removed("children_per_parent", moved("children_per_parent", "full"))
-          .removed("backward_children_per_parent", moved("backward_children_per_parent", "full"))
-          .removed("max_boundary", moved("max_boundary", "full"))
-          .removed("interior_samples", moved("interior_samples", "full"))
-          .removed("certificate_candidates", moved("certificate_candidates", "full"))
-          .removed("constraint_margin", moved("constraint_margin", "full"))
-          .removed("quick_initial_samples", moved("initial_samples", "quick"))
-          .removed("quick_children_per_parent", moved("children_per_parent", "quick"))
-          .removed("quick_backward_children_per_parent",
-                   moved("backward_children_per_parent", "quick"))
-          .removed("quick_max_boundary", moved("max_boundary", "quick"))
-          .removed("quick_interior_samples", moved("interior_samples", "quick"))
-          .removed("quick_certificate_candidates", moved("certificate_candidates", "quick"))
-          .removed("quick_constraint_margin", moved("constraint_margin", "quick"))
-          .removed("hull_initial_samples", moved("initial_samples", "hull"))
-          .removed("hull_children_per_parent", moved("children_per_parent", "hull"))
-          .removed("forward_set_only",
-                   "removed: the forward set alone is how the step planner's hull pass runs one "
-                   "check (CheckPass::sets, reach/sample_budget.h), not a setting of the file");
+               "set alone drawn with budgets.hull before the full pass"));
   return f;
 }
 
