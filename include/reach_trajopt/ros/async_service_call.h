@@ -73,7 +73,11 @@ std::shared_ptr<PendingCall<Service>> callAsync(const ros::NodeHandle& nh,
 
 /// @brief A persistent connection to one service, opened on the first call and after drop().
 /// Thread-safe; calls made while another is pending queue behind it on the same connection
-/// (roscpp serializes a persistent link's calls).
+/// (roscpp serializes a persistent link's calls). The connection is opened on the call's own
+/// thread: a persistent ros::ServiceClient connects in its constructor, and to a host cut off
+/// the network (its packets dropped) that blocks for the kernel's TCP connect timeout (about
+/// 2 min): on the caller's thread the call's deadline would not hold (issue 43: a partitioned
+/// worker stalled the search 2 min before it was noticed).
 template <class Service>
 class ServiceConnection {
  public:
@@ -83,12 +87,34 @@ class ServiceConnection {
 
   /// Calls the service on its own thread with `request`; wait on the returned PendingCall.
   std::shared_ptr<PendingCall<Service>> callAsync(typename Service::Request request) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!client_)
-      client_ = std::make_shared<ros::ServiceClient>(
-          nh_.serviceClient<Service>(service_, /*persistent=*/true));
+    std::shared_ptr<Link> link;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!link_) link_ = std::make_shared<Link>();
+      link = link_;
+    }
     auto answer = std::make_shared<PendingCall<Service>>();
-    startCall<Service>(client_, answer, std::move(request));
+    std::thread([link, nh = nh_, service = service_, answer,
+                 request = std::move(request)]() mutable {
+      std::shared_ptr<ros::ServiceClient> client;
+      {
+        // Opening the link may block (see the class comment): later calls on this link wait
+        // here, on their own threads, and their callers' deadlines hold.
+        std::lock_guard<std::mutex> lock(link->mutex);
+        if (!link->client)
+          link->client = std::make_shared<ros::ServiceClient>(
+              nh.serviceClient<Service>(service, /*persistent=*/true));
+        client = link->client;
+      }
+      Service srv;
+      srv.request = std::move(request);
+      const bool ok = client->call(srv);
+      std::lock_guard<std::mutex> lock(answer->mutex);
+      answer->done = true;
+      answer->ok = ok;
+      answer->response = std::move(srv.response);
+      answer->answered.notify_all();
+    }).detach();
     return answer;
   }
 
@@ -96,16 +122,21 @@ class ServiceConnection {
   /// thread still blocked on it keeps its own reference.
   void drop() {
     std::lock_guard<std::mutex> lock(mutex_);
-    client_.reset();
+    link_.reset();
   }
 
   const std::string& service() const { return service_; }
 
  private:
+  /// One connection: opened by the first call made on it.
+  struct Link {
+    std::mutex mutex;  ///< guards client
+    std::shared_ptr<ros::ServiceClient> client;
+  };
   ros::NodeHandle nh_;
   std::string service_;
-  std::mutex mutex_;  ///< guards client_
-  std::shared_ptr<ros::ServiceClient> client_;
+  std::mutex mutex_;  ///< guards link_
+  std::shared_ptr<Link> link_;
 };
 
 }  // namespace ros_bridge
