@@ -263,12 +263,7 @@ bool argumentsFit(const reach_trajopt::CliArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const reach_trajopt::CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return kTool.run(argc, argv, [](const reach_trajopt::CliArgs& args) {
     if (!argumentsFit(args)) return 2;
     const auto model = loadModel(args);
     if (args.value("--state").empty()) {
@@ -279,9 +274,6 @@ int main(int argc, char** argv) {
       return 0;
     }
     std::cout << statesJson(*model, args).dump() << "\n";
-  } catch (const std::exception& e) {  // e.g. a name that is not UTF-8 in the JSON output
-    std::cerr << "model_info: " << e.what() << "\n";
-    return 2;
-  }
-  return 0;
+    return 0;
+  });
 }

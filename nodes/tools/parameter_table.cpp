@@ -22,20 +22,12 @@ const reach_trajopt::CliTool kTool(
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const reach_trajopt::CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return kTool.run(argc, argv, [](const reach_trajopt::CliArgs& args) {
     if (!args.positional().empty()) {
       std::cerr << kTool.usageLine() << "\n";
       return 2;
     }
     std::cout << reach_trajopt::parameterTableMarkdown(reach_trajopt::parameterTables());
-  } catch (const std::exception& e) {
-    std::cerr << "parameter_table: " << e.what() << "\n";
-    return 2;
-  }
-  return 0;
+    return 0;
+  });
 }

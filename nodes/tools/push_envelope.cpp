@@ -171,12 +171,7 @@ PushEnvelope sweepPolicy(const WalkSetup& setup, const std::string& urdf,
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return kTool.run(argc, argv, [](const CliArgs& args) {
     if (!args.positional().empty())
       throw RequestError("unknown argument '" + args.positional()[0] + "'");
     const PushGrid grid = pushGrid(args);
@@ -193,9 +188,6 @@ int main(int argc, char** argv) {
       if (out.csv.is_open()) writeCsv(out.csv, policy, grid, envelopes.back());
     }
     if (out.svg.is_open()) out.svg << envelopeSvg(envelopes);
-  } catch (const std::exception& e) {
-    std::cerr << "push_envelope: " << e.what() << "\n";
-    return 2;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -290,12 +290,7 @@ json runCheck(const CheckInputs& in, const ReachProblem& p, bool samples) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return kTool.run(argc, argv, [](const CliArgs& args) {
     const std::optional<InputFiles> files = inputFiles(args);
     if (!files) {
       std::cerr << kTool.usageLine() << "\n";
@@ -305,8 +300,5 @@ int main(int argc, char** argv) {
     const ReachProblem problem = problemOf(in);
     std::cout << runCheck(in, problem, args.given("--samples")).dump() << "\n";
     return 0;
-  } catch (const std::exception& e) {
-    std::cerr << "reach_check: " << e.what() << "\n";
-    return 2;
-  }
+  });
 }

@@ -157,12 +157,7 @@ void writeRecords(const std::string& path, const std::vector<StepRecord>& record
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return kTool.run(argc, argv, [](const CliArgs& args) {
     if (!args.positional().empty())
       throw RequestError("unknown argument '" + args.positional()[0] + "'");
     WalkSetup setup = WalkSetup::fromYamlFile(args.value("--config"));
@@ -182,9 +177,6 @@ int main(int argc, char** argv) {
     const WalkResult r = experiment->run({}, printStep, on_check);
     if (!args.value("--records").empty()) writeRecords(args.value("--records"), r.records);
     std::printf("%s\n", r.summaryLine().c_str());
-  } catch (const std::exception& e) {
-    std::cerr << "walk_experiment: " << e.what() << "\n";
-    return 2;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -57,12 +57,7 @@ Eigen::Vector3d rpyOption(const reach_trajopt::CliArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const reach_trajopt::CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return kTool.run(argc, argv, [](const reach_trajopt::CliArgs& args) {
     if (!args.positional().empty())
       throw reach_trajopt::ReachError("unknown argument '" + args.positional()[0] + "'");
     const double mu = parseNumber("--mu", args.value("--mu").c_str());
@@ -83,8 +78,5 @@ int main(int argc, char** argv) {
     out["world"] = toJson(cone.worldMatrix(R));
     std::cout << out.dump() << "\n";
     return 0;
-  } catch (const std::exception& e) {
-    std::cerr << "wrench_cone: " << e.what() << "\n";
-    return 2;
-  }
+  });
 }

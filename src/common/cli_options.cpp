@@ -4,6 +4,7 @@
 #include "reach_trajopt/common/cli_options.h"
 
 #include <algorithm>
+#include <iostream>
 #include <set>
 #include <sstream>
 
@@ -52,6 +53,20 @@ const CliOption* CliTool::find(const std::string& arg) const {
   for (const CliOption& o : options_)
     if (arg == o.name || (!o.alias.empty() && arg == o.alias)) return &o;
   return nullptr;
+}
+
+int CliTool::run(int argc, char** argv, const std::function<int(const CliArgs&)>& body) const {
+  try {
+    const CliArgs args = parse(argc, argv);
+    if (args.help()) {
+      std::cout << usage();
+      return 0;
+    }
+    return body(args);
+  } catch (const std::exception& e) {
+    std::cerr << name_ << ": " << e.what() << "\n";
+    return 2;
+  }
 }
 
 CliArgs CliTool::parse(int argc, const char* const* argv) const {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "reach_trajopt/common/enum_names.h"
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
@@ -16,7 +17,7 @@ using OnFail = WalkingPolicy::OnFailedCheck;
 using Swing = WalkingPolicy::SwingSource;
 
 template <typename E>
-using Names = std::vector<std::pair<const char*, E>>;
+using Names = EnumNames<E>;
 
 const Names<bool>& boundNames() {
   static const Names<bool> n = {{"on", true}, {"off", false}};
@@ -39,22 +40,13 @@ const Names<Swing>& swingNames() {
   return n;
 }
 
+/// The value of `part=value` from its name table. \throws RequestError listing the names.
 template <typename E>
-const char* nameOf(const Names<E>& names, E value) {
+E partValue(const Names<E>& names, const std::string& part, const std::string& value) {
   for (const auto& n : names)
-    if (n.second == value) return n.first;
-  return "?";
-}
-
-template <typename E>
-E valueOf(const Names<E>& names, const std::string& part, const std::string& value) {
-  std::string expected;
-  for (const auto& n : names) {
     if (value == n.first) return n.second;
-    expected += std::string(expected.empty() ? "" : "|") + n.first;
-  }
   throw RequestError("walking policy: " + part + "=" + value + ": expected " + part + "=" +
-                     expected);
+                     namesList(names));
 }
 
 WalkingPolicy make(const char* name, bool bounds, Check check, OnFail on_fail, Swing swing) {
@@ -111,13 +103,13 @@ WalkingPolicy WalkingPolicy::parse(const std::string& spec) {
       throw RequestError("walking policy: '" + t + "': expected part=value after the preset");
     const std::string part = t.substr(0, eq), value = t.substr(eq + 1);
     if (part == "bounds")
-      p.heuristic_bounds = valueOf(boundNames(), part, value);
+      p.heuristic_bounds = partValue(boundNames(), part, value);
     else if (part == "check")
-      p.check = valueOf(checkNames(), part, value);
+      p.check = partValue(checkNames(), part, value);
     else if (part == "on_fail")
-      p.on_failed_check = valueOf(onFailNames(), part, value);
+      p.on_failed_check = partValue(onFailNames(), part, value);
     else if (part == "swing")
-      p.swing = valueOf(swingNames(), part, value);
+      p.swing = partValue(swingNames(), part, value);
     else
       throw RequestError("walking policy: unknown part '" + part +
                          "' (parts: bounds, check, on_fail, swing)");

@@ -6,6 +6,7 @@
 /// its value names the option. The values stay text: the tool parses them strictly
 /// (cli_args.h), so "--steps 5x" names --steps.
 
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -74,6 +75,10 @@ class CliTool {
   std::string usage() const;
   /// The usage line alone ("usage: tool [options] synopsis").
   std::string usageLine() const;
+  /// A tool's main: parses the command line, answers --help (usage on stdout, 0), else runs
+  /// `body` and returns its exit status; an exception (a bad option or input) is printed as
+  /// "<tool>: <what>" on stderr and gives 2.
+  int run(int argc, char** argv, const std::function<int(const CliArgs&)>& body) const;
   const std::string& name() const { return name_; }
   const std::vector<CliOption>& options() const { return options_; }
 
