@@ -93,9 +93,9 @@ TEST(Errors, BadConfigurationsAreConfigErrorsNamingTheKey) {
            {"quick_constraint_margin", "reach.budgets.quick.constraint_margin"},
            {"hull_children_per_parent", "reach.budgets.hull.children_per_parent"},
            {"forward_set_only", "hull pass"}}) {
-    const std::string moved = thrownMessage<ConfigError>([&] {
-      ReachConfig::fromYaml(
-          YamlSection::loadString("reach:\n  " + old_key + ": 1\n", "t.yaml").section("reach"));
+    const std::string yaml = "reach:\n  " + old_key + ": 1\n";  // clang: no binding in a lambda
+    const std::string moved = thrownMessage<ConfigError>([&yaml] {
+      ReachConfig::fromYaml(YamlSection::loadString(yaml, "t.yaml").section("reach"));
     });
     EXPECT_NE(moved.find("reach." + old_key), std::string::npos) << moved;
     EXPECT_NE(moved.find(new_key), std::string::npos) << moved;
