@@ -58,6 +58,10 @@ const CliTool kTool(
      {"--push", "vx,vy", "initial CoM velocity [m/s]", ""},
      {"--forward-speed", "v", "commanded forward speed [m/s]", ""},
      {"--settle", "S", "stand S seconds before the first step", ""},
+     {"--plan-latency", "L",
+      "when a step's plan takes effect: pause (the simulation waits), measured (after its wall "
+      "time), or a fixed latency in seconds (default: the config's walk.plan_latency)",
+      ""},
      {"--records", "FILE.csv", "write every step's record", ""},
      {"--plan-requests", "FILE.jsonl", "write each checked footstep's request (verdict_grid)", ""},
      {"--ocp-requests", "FILE.jsonl",
@@ -80,6 +84,17 @@ void applyOptions(const CliArgs& args, WalkConfig& walk) {
     walk.settle_duration =
         parseDoubleOption("--settle", args.value("--settle"), 0.0, kMaxSettleSeconds);
     walk.max_sim_time = std::max(walk.max_sim_time, walk.settle_duration + 1.0);
+  }
+  if (args.given("--plan-latency")) {
+    const std::string l = args.value("--plan-latency");
+    if (l == "pause") {
+      walk.plan_latency = WalkConfig::PlanLatency::kPause;
+    } else if (l == "measured") {
+      walk.plan_latency = WalkConfig::PlanLatency::kMeasured;
+    } else {
+      walk.plan_latency = WalkConfig::PlanLatency::kFixed;
+      walk.fixed_plan_latency = parseDoubleOption("--plan-latency", l, 0.0, 10.0);
+    }
   }
   if (args.given("--push")) {
     const std::string push = args.value("--push");
@@ -125,14 +140,15 @@ void printStep(const StepRecord& s) {
       "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s "
       "executed=(%.3f, %.3f) err=%.4f m verdict=%s certificate=%s witness_violation=%.3g "
       "junction_gap=%.3g/%.3g x_f_gap=%.3g/%.3g d_H=%.4g check_s=%.3f passes=%d "
-      "ocp_s=%.3f ocp=%s%s%s\n",
+      "ocp_s=%.3f ocp=%s latency_s=%.3f%s%s%s\n",
       s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
       s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.executed.x(),
       s.executed.y(), s.touchdown_error, s.verdictName(),
       s.certificate == Certificate::kNone ? "none" : s.certificateName(), s.witness_violation,
       s.junction_position_gap, s.junction_velocity_gap, s.terminal_position_gap,
       s.terminal_velocity_gap, s.hausdorff_distance, s.check_time_s, s.check_passes, s.ocp_time_s,
-      s.ocpStatusName(), s.reason.empty() ? "" : " reason: ", s.reason.c_str());
+      s.ocpStatusName(), s.plan_latency_s, s.plan_late ? " LATE" : "",
+      s.reason.empty() ? "" : " reason: ", s.reason.c_str());
   std::fflush(stdout);
 }
 
@@ -143,7 +159,7 @@ void writeRecords(const std::string& path, const std::vector<StepRecord>& record
   out << "index,swing,plan_time,touchdown_time,planned_tvr_x,planned_tvr_y,planned_x,"
          "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict,certificate,"
          "witness_violation,junction_position_gap,junction_velocity_gap,"
-         "terminal_position_gap,terminal_velocity_gap\n";
+         "terminal_position_gap,terminal_velocity_gap,plan_latency_s,plan_late\n";
   for (const StepRecord& s : records)
     out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
         << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
@@ -151,7 +167,7 @@ void writeRecords(const std::string& path, const std::vector<StepRecord>& record
         << s.touchdown_error << "," << s.offset_clipped << "," << s.verdictName() << ","
         << s.certificateName() << "," << s.witness_violation << "," << s.junction_position_gap
         << "," << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
-        << s.terminal_velocity_gap << "\n";
+        << s.terminal_velocity_gap << "," << s.plan_latency_s << "," << s.plan_late << "\n";
 }
 
 }  // namespace

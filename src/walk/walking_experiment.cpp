@@ -46,6 +46,7 @@ void WalkConfig::validate() const {
     throw ConfigError("WalkConfig: check_horizon must be shorter than single_support_duration");
   if (!(replan_fraction >= 0.0 && replan_fraction <= 1.0))
     throw ConfigError("WalkConfig: replan_fraction must be in [0, 1]");
+  nonNegative("fixed_plan_latency", fixed_plan_latency);
   nonNegative("knee_bend", knee_bend);
   positive("fall_pelvis_height", fall_pelvis_height);
   positive("max_sim_time", max_sim_time);
@@ -95,6 +96,14 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
           .add("replan_fraction", &C::replan_fraction, "",
                "eq. (11) re-evaluated from the measured CoM during this fraction of the swing, "
                "in [0, 1]")
+          .choice("plan_latency", &C::plan_latency,
+                  {{"pause", WalkConfig::PlanLatency::kPause},
+                   {"measured", WalkConfig::PlanLatency::kMeasured},
+                   {"fixed", WalkConfig::PlanLatency::kFixed}},
+                  "when a step's plan takes effect: pause (the simulation waits), measured (after "
+                  "its wall time in sim time), fixed (after fixed_plan_latency)")
+          .add("fixed_plan_latency", &C::fixed_plan_latency, "s",
+               "plan_latency fixed: the plan takes effect this long after its check starts")
           .add("knee_bend", &C::knee_bend, "rad", "standing posture")
           .add("forward_speed", &C::forward_speed, "m/s",
                "desired CoM speed along x (drives p_des of eq. 11)")
@@ -131,7 +140,10 @@ std::string WalkResult::summaryLine() const {
       infeasible += r.verdict == StepVerdict::kKinematicallyInfeasible;
       failed += r.failed_check_action.has_value();
     }
-    os << " kinematically_infeasible=" << infeasible << " failed_checks=" << failed;
+    int late = 0;
+    for (const StepRecord& r : records) late += r.plan_late;
+    os << " kinematically_infeasible=" << infeasible << " failed_checks=" << failed
+       << " late_plans=" << late;
   }
   if (policy.check == WalkingPolicy::FootholdCheck::kReachability) {
     // The verdicts: every "reachable" rests on a certified witness; its OCP was strict.
@@ -239,6 +251,15 @@ struct WalkingExperiment::Loop {
   WalkResult run();
 
  private:
+  /// A footstep's plan waiting for its latency to pass (WalkConfig::plan_latency).
+  struct PendingPlan {
+    bool active = false;
+    double ask_time = 0.0;  ///< sim time of the check's start: the trajectory's t = 0 [s]
+    double apply_at = 0.0;  ///< sim time it takes effect [s]
+    Eigen::Vector2d foothold = Eigen::Vector2d::Zero();
+    bool track_ocp = false;
+    TransitionResult trajectory;
+  };
   static TvrConfig plannerConfig(const TvrConfig& tvr, const WalkConfig& wc, double com_height);
   void measure();
   /// Phase transitions; false when the run ends here.
@@ -249,6 +270,15 @@ struct WalkingExperiment::Loop {
   void beginSingleSupport(double t);
   void planStep(double t, double time_in_swing);
   void checkStep(double t, double time_in_swing);
+  /// The check's plan as the policy takes it: the foothold, and the OCP's trajectory to track
+  /// or not (on_fail); records a failed check's action.
+  PendingPlan decidePlan(const FootstepTransition& step, double t);
+  /// The plan's latency in sim time by WalkConfig::plan_latency [s] (`wall_s`: its wall time).
+  double planLatency(double wall_s) const;
+  /// The plan in effect: the swing tracks the OCP's trajectory or goes to the foothold.
+  void applyPlan(const PendingPlan& plan);
+  /// A pending plan whose time has come takes effect (each single-support tick).
+  void applyPendingPlan(double t);
   FootstepPlanRequest footstepRequest(double time_in_swing) const;
   void recordCheck(const FootstepTransition& step);
   void touchdown(double t);
@@ -292,6 +322,7 @@ struct WalkingExperiment::Loop {
   bool checked_ = false;      ///< this swing's footstep check has run
   TransitionResult tracked_;  ///< the OCP trajectory tracked (empty when none)
   double tracked_start_ = 0.0;
+  PendingPlan pending_;
   WbcReference ref_;
   WalkResult result_;
   // The measured state of the current tick.
@@ -405,6 +436,7 @@ bool WalkingExperiment::Loop::singleSupport(double t) {
   if (impl_.footsteps && !checked_ &&
       ts >= wc_.single_support_duration - impl_.footsteps->horizon())
     checkStep(t, ts);
+  applyPendingPlan(t);
   const SoleContact& sc = world_->soleContacts()[static_cast<int>(swing_)];
   if (ts > 0.5 * wc_.single_support_duration && sc.in_contact &&
       sc.wrench[2] > wc_.touchdown_force) {
@@ -436,6 +468,7 @@ void WalkingExperiment::Loop::beginSingleSupport(double t) {
   com_ref_.startSingleSupport(current_.com_at_plan, current_.stance);
   checked_ = false;
   tracked_ = TransitionResult();
+  pending_ = PendingPlan();
 }
 
 // Eq. (11) from the measured CoM state predicted to the nominal touchdown (LIPM about the
@@ -475,39 +508,88 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
 // simulation waits (in sim time) for it and the OCP.
 void WalkingExperiment::Loop::checkStep(double t, double ts) {
   checked_ = true;
-  const WalkingPolicy& policy = wc_.policy;
   try {
+    const auto wall_start = std::chrono::steady_clock::now();
     const FootstepPlanRequest request = footstepRequest(ts);
     const FootstepTransition step =
         impl_.plan_footstep ? impl_.plan_footstep(request) : impl_.footsteps->plan(request);
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     recordCheck(step);
-    const bool failed =
-        !step.kinematically_feasible ||
-        (policy.check == WalkingPolicy::FootholdCheck::kReachability && !step.reachable);
-    Eigen::Vector2d foothold = xy(step.foothold);
-    bool track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
-    if (failed) {
-      current_.failed_check_action = policy.on_failed_check;
-      if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds) {
-        // The TVR step clipped to the heuristic bounds, reached by interpolation.
-        foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
-        track_ocp = false;
-      }
+    PendingPlan plan = decidePlan(step, t);
+    const double latency = planLatency(wall_s);
+    current_.plan_latency_s = latency;
+    if (latency <= 0.0) {  // the simulation waited for the plan
+      current_.planned = plan.foothold;
+      if (on_check_) on_check_(current_, step);
+      applyPlan(plan);
+      return;
     }
-    current_.planned = foothold;
     if (on_check_) on_check_(current_, step);
-    if (track_ocp) {
-      tracked_ = step.trajectory;
-      tracked_start_ = t;
-    } else {
-      swing_traj_->retarget(Eigen::Vector3d(foothold.x(), foothold.y(), ground_z_));
+    plan.apply_at = t + latency;
+    // Its deadline is the nominal touchdown: a later plan is dropped.
+    if (plan.apply_at > phase_start_ + wc_.single_support_duration) {
+      current_.plan_late = true;
+      return;
     }
+    plan.active = true;
+    pending_ = std::move(plan);
   } catch (const ReachError& e) {
     // The measured state is outside what the check accepts (e.g. a joint beyond its velocity
     // limit while the robot is already falling): the step goes on unchecked.
     current_.verdict = StepVerdict::kCheckError;
     current_.reason = e.what();
   }
+}
+
+WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
+    const FootstepTransition& step, double t) {
+  const WalkingPolicy& policy = wc_.policy;
+  const bool failed =
+      !step.kinematically_feasible ||
+      (policy.check == WalkingPolicy::FootholdCheck::kReachability && !step.reachable);
+  PendingPlan plan;
+  plan.ask_time = t;
+  plan.foothold = xy(step.foothold);
+  plan.track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
+  if (failed) {
+    current_.failed_check_action = policy.on_failed_check;
+    if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds) {
+      // The TVR step clipped to the heuristic bounds, reached by interpolation.
+      plan.foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
+      plan.track_ocp = false;
+    }
+  }
+  if (plan.track_ocp) plan.trajectory = step.trajectory;
+  return plan;
+}
+
+double WalkingExperiment::Loop::planLatency(double wall_s) const {
+  switch (wc_.plan_latency) {
+    case WalkConfig::PlanLatency::kPause:
+      return 0.0;
+    case WalkConfig::PlanLatency::kMeasured:
+      return wall_s;
+    case WalkConfig::PlanLatency::kFixed:
+      return wc_.fixed_plan_latency;
+  }
+  return 0.0;
+}
+
+void WalkingExperiment::Loop::applyPlan(const PendingPlan& plan) {
+  if (plan.track_ocp) {
+    tracked_ = plan.trajectory;
+    tracked_start_ = plan.ask_time;
+  } else {
+    swing_traj_->retarget(Eigen::Vector3d(plan.foothold.x(), plan.foothold.y(), ground_z_));
+  }
+}
+
+void WalkingExperiment::Loop::applyPendingPlan(double t) {
+  if (!pending_.active || t < pending_.apply_at) return;
+  current_.planned = pending_.foothold;
+  applyPlan(pending_);
+  pending_ = PendingPlan();
 }
 
 // The check's request from the measured state, with the policy's parts.
@@ -567,6 +649,10 @@ void WalkingExperiment::Loop::recordCheck(const FootstepTransition& step) {
 }
 
 void WalkingExperiment::Loop::touchdown(double t) {
+  if (pending_.active) {  // the sole landed before the plan arrived
+    current_.plan_late = true;
+    pending_ = PendingPlan();
+  }
   current_.touched_down = true;
   current_.touchdown_time = t;
   current_.executed = m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();

@@ -54,8 +54,17 @@ struct WalkConfig {
   double check_horizon = 0.2;     ///< policies with a check: the check and the OCP start this long
                                   ///< before the nominal touchdown (their t_f - t_0; it
                                   ///< replaces ReachConfig::horizon) [s]
-  double knee_bend = 0.6;         ///< standing posture [rad]
-  double forward_speed = 0.0;     ///< desired CoM speed along x (drives p_des of eq. 11)
+  /// When a footstep's plan (check + OCP) takes effect. kPause: at once, the simulation waiting
+  /// for it (the reference: a run is the same on any machine). kMeasured: the simulation goes
+  /// on for the plan's measured wall time first (what this machine would give a robot);
+  /// kFixed: for fixed_plan_latency (reproducible). Until the plan takes effect the swing
+  /// follows the one it has; a plan that would take effect after the nominal touchdown, or
+  /// after the swing sole touched down, is dropped (StepRecord::plan_late).
+  enum class PlanLatency { kPause, kMeasured, kFixed };
+  PlanLatency plan_latency = PlanLatency::kPause;
+  double fixed_plan_latency = 0.1;  ///< kFixed's latency [s], >= 0
+  double knee_bend = 0.6;           ///< standing posture [rad]
+  double forward_speed = 0.0;       ///< desired CoM speed along x (drives p_des of eq. 11)
   Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
   /// Which sole swings first. kFromCapturePoint: the one on the side the instantaneous capture
   /// point (CoM + CoM velocity / omega, eq. 9) lies toward, laterally from the soles' midpoint,
@@ -111,7 +120,12 @@ struct StepRecord {
   int check_passes =
       0;  ///< 0: no check; 1; 2: the quick pass certified nothing (see FootstepTransition)
   std::optional<OcpStatus> ocp_status;  ///< none: the policy solves no OCP
-  std::string reason;                   ///< the check's and the OCP's explanations
+  /// Sim time from the check's start to when its plan took effect (WalkConfig::plan_latency;
+  /// 0 in kPause) [s].
+  double plan_latency_s = 0.0;
+  /// The plan came after its deadline and was dropped: the swing went on as it was.
+  bool plan_late = false;
+  std::string reason;  ///< the check's and the OCP's explanations
 
   /// The enum fields' names at the edges (CSV, messages, WALK lines).
   const char* verdictName() const { return stepVerdictName(verdict); }

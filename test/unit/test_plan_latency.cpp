@@ -1,0 +1,71 @@
+// The latency-paying walking loop (WalkConfig::plan_latency): a plan takes effect only after
+// its latency has passed in sim time, and one that would take effect after the nominal
+// touchdown is dropped. Oracles: the walk up to the first check is the same whatever the
+// latency (the plan is computed from the same state), a dropped plan leaves the swing on the
+// TVR foothold, and pause mode is the reference loop (no latency, nothing late).
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "reach_trajopt/walk/walk_setup.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+WalkResult walk(WalkConfig::PlanLatency mode, double latency_s, int steps) {
+  WalkSetup setup =
+      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  setup.walk.policy = WalkingPolicy::parse("kinematic");
+  setup.walk.steps = steps;
+  setup.walk.plan_latency = mode;
+  setup.walk.fixed_plan_latency = latency_s;
+  return setup.experiment(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf")->run();
+}
+
+bool checked(const StepRecord& s) {
+  return s.verdict != StepVerdict::kNotChecked && s.verdict != StepVerdict::kCheckError;
+}
+
+}  // namespace
+
+TEST(PlanLatency, PauseIsTheReferenceLoop) {
+  const WalkResult r = walk(WalkConfig::PlanLatency::kPause, 0.0, 4);
+  ASSERT_FALSE(r.records.empty());
+  for (const StepRecord& s : r.records) {
+    EXPECT_EQ(s.plan_latency_s, 0.0) << s.index;
+    EXPECT_FALSE(s.plan_late) << s.index;
+  }
+  EXPECT_NE(r.summaryLine().find(" late_plans=0 "), std::string::npos) << r.summaryLine();
+}
+
+TEST(PlanLatency, APlanAfterTheNominalTouchdownIsDroppedAndTheSwingKeepsItsFoothold) {
+  // 0.25 s after the check starts is past the nominal touchdown (check_horizon 0.2 s before it).
+  const WalkResult r = walk(WalkConfig::PlanLatency::kFixed, 0.25, 4);
+  int late = 0;
+  for (const StepRecord& s : r.records) {
+    if (!checked(s)) continue;
+    EXPECT_TRUE(s.plan_late) << s.index;
+    EXPECT_EQ(s.planned, s.planned_tvr) << s.index;  // the plan never took effect
+    late += s.plan_late;
+  }
+  ASSERT_GT(late, 0) << r.summaryLine();
+  EXPECT_NE(r.summaryLine().find(" late_plans=" + std::to_string(late) + " "), std::string::npos)
+      << r.summaryLine();
+}
+
+TEST(PlanLatency, APlanInTimeTakesEffectAfterItsLatency) {
+  const WalkResult paused = walk(WalkConfig::PlanLatency::kPause, 0.0, 1);
+  const WalkResult delayed = walk(WalkConfig::PlanLatency::kFixed, 0.05, 1);
+  ASSERT_FALSE(paused.records.empty());
+  ASSERT_FALSE(delayed.records.empty());
+  const StepRecord& a = paused.records.front();
+  const StepRecord& b = delayed.records.front();
+  ASSERT_TRUE(checked(a) && checked(b));
+  // The same state at the check: the same plan, taken 50 ms later.
+  EXPECT_EQ(b.verdict, a.verdict);
+  EXPECT_EQ(b.planned, a.planned);
+  EXPECT_DOUBLE_EQ(b.plan_latency_s, 0.05);
+  EXPECT_FALSE(b.plan_late);
+}
