@@ -90,6 +90,17 @@ TEST(YamlAliases, AnchorsWithoutAliasesStillRead) {
   EXPECT_EQ(dt, 0.002);
 }
 
+TEST(YamlAliases, TheAliasScanEndsOnMalformedText) {
+  // ",:" (found by fuzz_yaml_config): the scan for aliases looped over documents forever.
+  for (const char* text : {",:", ",", ":,", "- ,:", "? ,\n: ,"}) {
+    try {
+      YamlSection::loadString(text, "fuzzed");
+    } catch (const ConfigError&) {
+    }
+  }
+  EXPECT_THROW(YamlSection::loadString(",:", "fuzzed"), ConfigError);
+}
+
 TEST(RobotConfigRoles, OneJointInTwoRolesNamesBothKeys) {
   const YamlSection y = YamlSection::loadString(
       "robot:\n  urdf: urdf/biped.urdf\n  left_knee: r_knee\n  right_knee: r_knee\n", "c.yaml");
