@@ -191,13 +191,12 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
       EXPECT_GT(g_worker_checked[i], 0u) << "worker " << i << " checked no candidate";
     if (g_hang_worker_after_steps > 0) {
       EXPECT_TRUE(g_hung) << "worker 0 was not hung";
-      // Every candidate of every ring after the hang went to worker 1: its own part of the
-      // first ring plus worker 0's timed-out part, then whole rings (none lost or made up).
+      // Candidates went to worker 1 after worker 0 hung. That none was lost or made up is the
+      // walk's byte equality above: a count of whole rings after the hang cannot tell, because
+      // the SIGSTOP races with the ring in flight (worker 0 may have answered part of it) and
+      // with worker 1's count messages (seen in CI: 174 after the hang, 14.5 rings of 12).
       const uint64_t after_hang = g_worker_checked[1] - g_worker1_checked_at_hang;
-      const int directions = setup.footsteps.nearest_foothold.directions;
       EXPECT_GT(after_hang, 0u) << "no candidate went to worker 1 after worker 0 hung";
-      EXPECT_EQ(after_hang % directions, 0u)
-          << after_hang << " candidates after the hang: not whole rings of " << directions;
     }
   }
   if (g_kill_after_steps == 0) {
