@@ -88,7 +88,6 @@ const reach_trajopt::CliTool kTool(
       "ocp.tolerance)",
       ""}});
 
-/// The two input files of the command line. \throws RequestError for another count.
 /// The trajectory must span the request's [0, horizon]: a time axis scaled (x10) or shifted
 /// (by 1 s) would be checked against the wrong x_0 and x_f times and pass with 1e-10.
 void requireTimeAxisOfRequest(const reach_trajopt::TransitionResult& traj, double horizon,
@@ -102,6 +101,7 @@ void requireTimeAxisOfRequest(const reach_trajopt::TransitionResult& traj, doubl
   throw reach_trajopt::RequestError(os.str());
 }
 
+/// The two input files of the command line. \throws RequestError for another count.
 void requireTwoFiles(const std::vector<std::string>& files) {
   if (files.size() != 2)
     throw reach_trajopt::RequestError(

@@ -276,7 +276,7 @@ struct WalkingExperiment::Loop {
   /// The plan's latency in sim time by WalkConfig::plan_latency [s] (`wall_s`: its wall time).
   double planLatency(double wall_s) const;
   /// The plan in effect: the swing tracks the OCP's trajectory or goes to the foothold.
-  void applyPlan(const PendingPlan& plan);
+  void applyPlan(PendingPlan& plan);
   /// A pending plan whose time has come takes effect (each single-support tick).
   void applyPendingPlan(double t);
   FootstepPlanRequest footstepRequest(double time_in_swing) const;
@@ -576,9 +576,9 @@ double WalkingExperiment::Loop::planLatency(double wall_s) const {
   return 0.0;
 }
 
-void WalkingExperiment::Loop::applyPlan(const PendingPlan& plan) {
+void WalkingExperiment::Loop::applyPlan(PendingPlan& plan) {
   if (plan.track_ocp) {
-    tracked_ = plan.trajectory;
+    tracked_ = std::move(plan.trajectory);
     tracked_start_ = plan.ask_time;
   } else {
     swing_traj_->retarget(Eigen::Vector3d(plan.foothold.x(), plan.foothold.y(), ground_z_));

@@ -42,19 +42,26 @@ struct PendingCall {
   }
 };
 
+/// `client.call(request)` on the calling thread, its answer into `answer` (waking its waiters).
+template <class Service>
+void callInto(ros::ServiceClient& client, PendingCall<Service>& answer,
+              typename Service::Request request) {
+  Service srv;
+  srv.request = std::move(request);
+  const bool ok = client.call(srv);
+  std::lock_guard<std::mutex> lock(answer.mutex);
+  answer.done = true;
+  answer.ok = ok;
+  answer.response = std::move(srv.response);
+  answer.answered.notify_all();
+}
+
 /// The thread of one call: `client->call(request)`, its answer into `answer`.
 template <class Service>
 void startCall(std::shared_ptr<ros::ServiceClient> client,
                std::shared_ptr<PendingCall<Service>> answer, typename Service::Request request) {
   std::thread([answer, client = std::move(client), request = std::move(request)]() mutable {
-    Service srv;
-    srv.request = std::move(request);
-    const bool ok = client->call(srv);
-    std::lock_guard<std::mutex> lock(answer->mutex);
-    answer->done = true;
-    answer->ok = ok;
-    answer->response = std::move(srv.response);
-    answer->answered.notify_all();
+    callInto<Service>(*client, *answer, std::move(request));
   }).detach();
 }
 
@@ -106,14 +113,7 @@ class ServiceConnection {
               nh.serviceClient<Service>(service, /*persistent=*/true));
         client = link->client;
       }
-      Service srv;
-      srv.request = std::move(request);
-      const bool ok = client->call(srv);
-      std::lock_guard<std::mutex> lock(answer->mutex);
-      answer->done = true;
-      answer->ok = ok;
-      answer->response = std::move(srv.response);
-      answer->answered.notify_all();
+      callInto<Service>(*client, *answer, std::move(request));
     }).detach();
     return answer;
   }
