@@ -4,16 +4,18 @@
 ///   push_envelope [--config config/biped.yaml] [--urdf urdf/biped.urdf]
 ///                 [--policies baseline,unbounded,kinematic,proposed] [--directions 8]
 ///                 [--magnitudes 0.2,0.4,0.6] [--seeds 1,2] [--steps 20] [--jobs 2] [--fine]
+///                 [--protocol standing|midswing] [--forward-speed V] [--standing]
 ///                 [--svg FILE.svg] [--csv FILE.csv] [--force]
 ///
 /// --policies: walking policies separated by ';' or presets by ',' (a policy with parts:
-/// --policies "baseline;kinematic,swing=interpolation"). --fine: magnitudes 0.1 to 0.8 m/s by
-/// 0.1. --jobs: walks run side by side, each on one thread. Prints one line per walk and one
-/// `BENCH walk.envelope preset=<p> pushes=N survived=K max_lateral_mps=.. max_forward_mps=..`
-/// per policy; --svg writes the polar figure, --csv every walk. A sweep of more than 20000
-/// footsteps in all is refused unless --force, and --steps whose walks cannot end within the
-/// config's walk.max_sim_time is refused.
-/// Exit status: 0 ran, 2 bad input.
+/// --policies "baseline;kinematic,swing=interpolation"). --fine: magnitudes 0.1 to 1.0 m/s by
+/// 0.1. --protocol: the push at t = 0 with the feet still (standing) or at half swing of the
+/// 4th step (midswing). --standing: first the standing robot's envelope (the reference). --jobs:
+/// walks run side by side, each on one thread. Prints one line per walk and one `BENCH
+/// walk.envelope preset=<p> protocol=<standing|midswing> pushes=N survived=K max_lateral_mps=..
+/// max_forward_mps=..` per policy; --svg writes the polar figure, --csv every walk. A sweep of more
+/// than 20000 footsteps in all is refused unless --force, and --steps whose walks cannot end within
+/// the config's walk.max_sim_time is refused. Exit status: 0 ran, 2 bad input.
 
 #include "reach_trajopt/walk/push_envelope.h"
 
@@ -58,8 +60,14 @@ const CliTool kTool("push_envelope", "",
                       "baseline,unbounded,kinematic,proposed"},
                      {"--directions", "N", "push directions, 1..64", "8"},
                      {"--magnitudes", "LIST", "push magnitudes [m/s], increasing", "0.2,0.4,0.6"},
-                     {"--fine", "", "magnitudes 0.1 to 0.8 m/s by 0.1 (instead of --magnitudes)",
+                     {"--fine", "", "magnitudes 0.1 to 1.0 m/s by 0.1 (instead of --magnitudes)",
                       ""},
+                     {"--protocol", "P",
+                      "standing (push at t = 0, feet still) or midswing (at half swing of the "
+                      "4th step)",
+                      "standing"},
+                     {"--forward-speed", "V", "commanded forward speed of the walks [m/s]", "0"},
+                     {"--standing", "", "first the standing robot's envelope (the reference)", ""},
                      {"--seeds", "LIST", "seeds of each push", "1,2"},
                      {"--steps", "N", "steps per walk, 1..1000", "20"},
                      {"--jobs", "N", "walks run side by side, each on one thread", "2"},
@@ -111,7 +119,7 @@ PushGrid pushGrid(const CliArgs& args) {
     throw RequestError("--fine and --magnitudes: give one of them");
   grid.magnitudes.clear();
   if (args.given("--fine"))
-    grid.magnitudes = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
+    grid.magnitudes = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
   else
     for (const std::string& m : split(args.value("--magnitudes"), ','))
       grid.magnitudes.push_back(parseDoubleOption("--magnitudes", m, 1e-3, 10.0));
@@ -119,6 +127,13 @@ PushGrid pushGrid(const CliArgs& args) {
   for (const std::string& s : split(args.value("--seeds"), ','))
     grid.seeds.push_back(static_cast<unsigned>(parseIntOption("--seeds", s, 0, 4294967295LL)));
   grid.steps = static_cast<int>(parseIntOption("--steps", args.value("--steps"), 1, 1000));
+  const std::string protocol = args.value("--protocol");
+  if (protocol == "midswing")
+    grid.protocol = PushGrid::Protocol::kMidswing;
+  else if (protocol != "standing")
+    throw RequestError("--protocol: 'standing' or 'midswing', got '" + protocol + "'");
+  grid.forward_speed =
+      parseDoubleOption("--forward-speed", args.value("--forward-speed"), -2.0, 2.0);
   grid.validate();
   return grid;
 }
@@ -145,10 +160,10 @@ Outputs openOutputs(const CliArgs& args) {
 }
 
 /// The walks of one policy's envelope as CSV rows.
-void writeCsv(std::ostream& csv, const WalkingPolicy& policy, const PushGrid& grid,
+void writeCsv(std::ostream& csv, const std::string& name, const PushGrid& grid,
               const PushEnvelope& env) {
   for (const PushWalk& w : env.walks)
-    csv << policy.name << "," << grid.angle(w.direction) * 180.0 / M_PI << ","
+    csv << name << "," << grid.angle(w.direction) * 180.0 / M_PI << ","
         << grid.magnitudes[w.magnitude] << "," << w.push.x() << "," << w.push.y() << ","
         << grid.seeds[w.seed] << "," << w.fell << "," << w.steps << "," << w.repeated << ","
         << w.wall_s << ",\"" << w.end_reason << "\"\n";
@@ -159,8 +174,8 @@ PushEnvelope sweepPolicy(const WalkSetup& setup, const std::string& urdf,
                          const WalkingPolicy& policy, const PushGrid& grid, int jobs) {
   const PushEnvelope env = sweepPushes(setup, urdf, policy, grid, jobs, [&](const PushWalk& w) {
     std::printf("walk %s push=(%.3f, %.3f) seed=%u steps=%d fell=%s wall_s=%.1f end=%s\n",
-                policy.name.c_str(), w.push.x(), w.push.y(), grid.seeds[w.seed], w.steps,
-                w.fell ? "yes" : "no", w.wall_s, w.end_reason.c_str());
+                grid.standing ? "standing" : policy.name.c_str(), w.push.x(), w.push.y(),
+                grid.seeds[w.seed], w.steps, w.fell ? "yes" : "no", w.wall_s, w.end_reason.c_str());
     std::fflush(stdout);
   });
   std::printf("%s\n", env.benchLine().c_str());
@@ -183,9 +198,15 @@ int main(int argc, char** argv) {
                          args.value("--config"));
     Outputs out = openOutputs(args);
     std::vector<PushEnvelope> envelopes;
+    if (args.given("--standing")) {
+      PushGrid standing = grid;
+      standing.standing = true;
+      envelopes.push_back(sweepPolicy(setup, args.value("--urdf"), list.front(), standing, jobs));
+      if (out.csv.is_open()) writeCsv(out.csv, "standing", grid, envelopes.back());
+    }
     for (const WalkingPolicy& policy : list) {
       envelopes.push_back(sweepPolicy(setup, args.value("--urdf"), policy, grid, jobs));
-      if (out.csv.is_open()) writeCsv(out.csv, policy, grid, envelopes.back());
+      if (out.csv.is_open()) writeCsv(out.csv, policy.name, grid, envelopes.back());
     }
     if (out.svg.is_open()) out.svg << envelopeSvg(envelopes);
     return 0;

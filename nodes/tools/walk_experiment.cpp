@@ -159,7 +159,7 @@ void writeRecords(const std::string& path, const std::vector<StepRecord>& record
   out << "index,swing,plan_time,touchdown_time,planned_tvr_x,planned_tvr_y,planned_x,"
          "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict,certificate,"
          "witness_violation,junction_position_gap,junction_velocity_gap,"
-         "terminal_position_gap,terminal_velocity_gap,plan_latency_s,plan_late\n";
+         "terminal_position_gap,terminal_velocity_gap,plan_latency_s,plan_late,swing_duration_s\n";
   for (const StepRecord& s : records)
     out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
         << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
@@ -167,7 +167,8 @@ void writeRecords(const std::string& path, const std::vector<StepRecord>& record
         << s.touchdown_error << "," << s.offset_clipped << "," << s.verdictName() << ","
         << s.certificateName() << "," << s.witness_violation << "," << s.junction_position_gap
         << "," << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
-        << s.terminal_velocity_gap << "," << s.plan_latency_s << "," << s.plan_late << "\n";
+        << s.terminal_velocity_gap << "," << s.plan_latency_s << "," << s.plan_late << ","
+        << s.swing_duration << "\n";
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 
 #include "reach_trajopt/control/com_reference.h"
 
+#include <cmath>
+
 namespace reach_trajopt {
 
 LipmComReference::LipmComReference(const Lipm& lipm, const Eigen::Vector3d& standing_com)
@@ -27,6 +29,19 @@ void LipmComReference::advance(double dt, double transfer, WbcReference& ref) {
   com_.p += dt * com_.pd + 0.5 * dt * dt * acc;
   com_.pd += dt * acc;
   fill(ref);
+}
+
+void LipmComReference::steerCapturePoint(double dt, const Eigen::Vector2d& target, double gain,
+                                         const Eigen::Vector2d& support_min,
+                                         const Eigen::Vector2d& support_max, WbcReference& ref) {
+  const double omega = lipm_.omega();
+  const Eigen::Vector2d xi = com_.p + com_.pd / omega;
+  Eigen::Vector2d pivot = xi;
+  for (int axis = 0; axis < 2; ++axis)
+    if (std::isfinite(target[axis])) pivot[axis] += (gain / omega) * (xi[axis] - target[axis]);
+  pivot = pivot.cwiseMax(support_min).cwiseMin(support_max);
+  pivot_from_ = pivot_to_ = pivot;
+  advance(dt, 1.0, ref);
 }
 
 void LipmComReference::hold(WbcReference& ref) {

@@ -406,6 +406,14 @@ Eigen::Isometry3d BulletWorld::framePose(const std::string& link) const {
   return world_to_principal * tree_.bodies[f.first].principal.inverse() * f.second;
 }
 
+void BulletWorld::pushBase(const Eigen::Vector3d& delta) {
+  requireFinite("BulletWorld::pushBase delta", delta);
+  if (!floating_) throw ReachError("BulletWorld::pushBase: the robot has a fixed base");
+  btMultiBody& mb = *bt_->multibody;
+  mb.setBaseVel(mb.getBaseVel() + toBt(delta));
+  readState();
+}
+
 void BulletWorld::step(const Eigen::Ref<const Eigen::VectorXd>& u) {
   requireSize("BulletWorld::step u", u.size(), nu_);
   requireFinite("BulletWorld::step u", u);

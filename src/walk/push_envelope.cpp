@@ -18,6 +18,9 @@
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
+namespace {
+constexpr double kStandingDuration = 3.0;  ///< how long the standing reference stands [s]
+}  // namespace
 
 void PushGrid::validate() const {
   if (directions < 1 || directions > 64)
@@ -33,8 +36,14 @@ void PushGrid::validate() const {
   }
   if (seeds.empty() || seeds.size() > 64)
     throw RequestError("push grid: 1 to 64 seeds, got " + std::to_string(seeds.size()));
+  if (!std::isfinite(forward_speed) || std::abs(forward_speed) > 2.0)
+    throw RequestError("push grid: forward_speed must be in [-2, 2] m/s");
   if (steps < 1 || steps > 1000)
     throw RequestError("push grid: steps must be in [1, 1000], got " + std::to_string(steps));
+}
+
+const char* PushGrid::protocolName() const {
+  return protocol == Protocol::kMidswing ? "midswing" : "standing";
 }
 
 double PushGrid::angle(int direction) const { return 2.0 * M_PI * direction / directions; }
@@ -73,8 +82,9 @@ std::string PushEnvelope::benchLine() const {
   os.precision(3);
   double wall = 0.0;
   for (const PushWalk& w : walks) wall += w.repeated ? 0.0 : w.wall_s;
-  os << "BENCH walk.envelope preset=" << policy.name << " protocol=standing pushes=" << pushes()
-     << " survived=" << survived() << " max_lateral_mps=" << maxLateral()
+  os << "BENCH walk.envelope preset=" << (grid.standing ? "standing" : policy.name.c_str())
+     << " protocol=" << grid.protocolName() << " forward_mps=" << grid.forward_speed
+     << " pushes=" << pushes() << " survived=" << survived() << " max_lateral_mps=" << maxLateral()
      << " max_forward_mps=" << maxForward() << " radii_mps=";
   for (int d = 0; d < grid.directions; ++d) os << (d ? "/" : "") << radius(d);
   if (static_cast<int>(capture.size()) == grid.directions) {
@@ -90,8 +100,9 @@ std::string PushEnvelope::benchLine() const {
   os << " directions=" << grid.directions << " magnitudes_mps=";
   for (std::size_t m = 0; m < grid.magnitudes.size(); ++m)
     os << (m ? "/" : "") << grid.magnitudes[m];
-  os << " seeds=" << grid.seeds.size() << " steps=" << grid.steps << " walks_wall_s=" << wall << " "
-     << policy.definition();
+  os << " seeds=" << grid.seeds.size() << " steps=" << (grid.standing ? 0 : grid.steps)
+     << " walks_wall_s=" << wall;
+  if (!grid.standing) os << " " << policy.definition();
   return os.str();
 }
 
@@ -110,7 +121,7 @@ PushEnvelope sweepPushes(const WalkSetup& setup, const std::string& urdf_path,
   const int n_dir = grid.directions, n_mag = static_cast<int>(grid.magnitudes.size()),
             n_seed = static_cast<int>(grid.seeds.size());
   // Only the reachability check draws random samples: other policies repeat bit for bit.
-  const bool draws = policy.check == WalkingPolicy::FootholdCheck::kReachability;
+  const bool draws = policy.check == WalkingPolicy::FootholdCheck::kReachability && !grid.standing;
   const int seeds_run = draws ? n_seed : 1;
   for (int d = 0; d < n_dir; ++d)
     for (int m = 0; m < n_mag; ++m)
@@ -140,10 +151,18 @@ PushEnvelope sweepPushes(const WalkSetup& setup, const std::string& urdf_path,
         WalkSetup run = setup;
         run.walk.policy = policy;
         run.walk.steps = grid.steps;
-        run.walk.initial_com_velocity = w.push;
+        run.walk.forward_speed = grid.forward_speed;
+        if (grid.protocol == PushGrid::Protocol::kStanding)
+          run.walk.initial_com_velocity = w.push;
+        else
+          run.walk.midswing_push = w.push;
         run.walk.seed = grid.seeds[w.seed];
+        if (grid.standing) {
+          run.walk.steps = 0;
+          run.walk.settle_duration = kStandingDuration;
+        }
         const WalkResult r = run.experiment(urdf_path)->run();
-        w.fell = r.fell || r.steps < grid.steps;
+        w.fell = r.fell || r.steps < run.walk.steps;
         w.steps = r.steps;
         w.end_reason = r.end_reason;
         w.wall_s = r.wall_time;

@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "reach_trajopt/common/config_fields.h"
@@ -15,6 +17,7 @@
 #include "reach_trajopt/control/swing_trajectory.h"
 #include "reach_trajopt/control/transition_tracking.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
+#include "reach_trajopt/planner/step_timing.h"
 #include "reach_trajopt/sim/bullet_world.h"
 #include "reach_trajopt/walk/standing_pose.h"
 
@@ -42,6 +45,18 @@ void WalkConfig::validate() const {
   positive("touchdown_force", touchdown_force);
   nonNegative("late_touchdown", late_touchdown);
   positive("check_horizon", check_horizon);
+  if (!(max_double_support_duration >= double_support_duration) ||
+      !std::isfinite(max_double_support_duration))
+    throw ConfigError(
+        "WalkConfig: max_double_support_duration must be finite and >= double_support_duration");
+  positive("lift_off_capture_tolerance", lift_off_capture_tolerance);
+  positive("lift_off_capture_gain", lift_off_capture_gain);
+  positive("min_single_support_duration", min_single_support_duration);
+  if (!(max_single_support_duration >= min_single_support_duration) ||
+      !std::isfinite(max_single_support_duration))
+    throw ConfigError(
+        "WalkConfig: max_single_support_duration must be finite and >= "
+        "min_single_support_duration");
   if (!(check_horizon < single_support_duration))
     throw ConfigError("WalkConfig: check_horizon must be shorter than single_support_duration");
   if (!(replan_fraction >= 0.0 && replan_fraction <= 1.0))
@@ -52,6 +67,8 @@ void WalkConfig::validate() const {
   positive("max_sim_time", max_sim_time);
   if (!std::isfinite(forward_speed)) throw ConfigError("WalkConfig: forward_speed is not finite");
   requireFinite("WalkConfig: initial_com_velocity", initial_com_velocity);
+  requireFinite("WalkConfig: midswing_push", midswing_push);
+  if (midswing_push_step < 1) throw ConfigError("WalkConfig: midswing_push_step must be >= 1");
   policy.validate();
 }
 
@@ -81,6 +98,32 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
           .add("single_support_duration", &C::single_support_duration, "s", "nominal swing time")
           .add("double_support_duration", &C::double_support_duration, "s",
                "weight transfer between steps")
+          .choice("step_timing", &C::step_timing,
+                  {{"fixed", WalkConfig::StepTiming::kFixed},
+                   {"tvr_bounds", WalkConfig::StepTiming::kTvrBounds}},
+                  "swing duration: fixed (single_support_duration) or tvr_bounds (chosen at "
+                  "lift-off in [min_, max_single_support_duration] so that the TVR step fits "
+                  "the foot offset bounds; planner/step_timing.h)")
+          .add("min_single_support_duration", &C::min_single_support_duration, "s",
+               "step_timing tvr_bounds: shortest swing (policies with a check: at least "
+               "check_horizon + one tick), > 0")
+          .add("max_single_support_duration", &C::max_single_support_duration, "s",
+               "step_timing tvr_bounds: longest swing, >= min_single_support_duration")
+          .choice("lift_off", &C::lift_off,
+                  {{"timed", WalkConfig::LiftOff::kTimed},
+                   {"capture_point", WalkConfig::LiftOff::kCapturePoint}},
+                  "when a double support ends: timed (double_support_duration) or "
+                  "capture_point (the double support steers the capture point to the periodic "
+                  "gait's lift-off point and lifts off there, or at once when it leaves the "
+                  "soles; between double_support_duration and max_double_support_duration)")
+          .add("max_double_support_duration", &C::max_double_support_duration, "s",
+               "lift_off capture_point: longest double support, >= double_support_duration")
+          .add("lift_off_capture_tolerance", &C::lift_off_capture_tolerance, "m",
+               "lift_off capture_point: the capture point this close to its lift-off point "
+               "lets the swing sole lift off, > 0")
+          .add("lift_off_capture_gain", &C::lift_off_capture_gain, "1/s",
+               "lift_off capture_point: the rate at which the double support steers the "
+               "capture point, > 0")
           .add("settle_duration", &C::settle_duration, "s",
                "initial standing before the first lift-off")
           .add("swing_height", &C::swing_height, "m", "swing apex above the ground")
@@ -108,6 +151,11 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
           .add("forward_speed", &C::forward_speed, "m/s",
                "desired CoM speed along x (drives p_des of eq. 11)")
           .add("initial_com_velocity", &C::initial_com_velocity, "m/s", "push at t = 0, feet still")
+          .add("midswing_push", &C::midswing_push, "m/s",
+               "push while walking: a change of the base's horizontal velocity at half swing of "
+               "step midswing_push_step (a standing run: 1 s into its settle phase)")
+          .add("midswing_push_step", &C::midswing_push_step, "",
+               "the step midswing_push is applied in, >= 1")
           .choice("first_swing", &C::first_swing,
                   {{"capture_point", WalkConfig::FirstSwing::kFromCapturePoint},
                    {"left", WalkConfig::FirstSwing::kLeft},
@@ -236,6 +284,9 @@ namespace {
 
 Eigen::Vector2d xy(const Eigen::Vector3d& v) { return v.head<2>(); }
 
+/// How far inside the sole's edges the double support's pivot stays [m].
+constexpr double kSupportMargin = 0.02;
+
 }  // namespace
 
 /// One run of the stepping loop: the phase machine DS (settle) -> SS -> DS -> SS ... over the
@@ -268,6 +319,17 @@ struct WalkingExperiment::Loop {
   /// WalkConfig::FirstSwing::kFromCapturePoint's choice from the measured CoM state.
   Side firstSwingSide() const;
   void beginSingleSupport(double t);
+  /// Whether the double support ends now (WalkConfig::lift_off), `time_in_double` [s] into it.
+  bool liftOff(double time_in_double);
+  /// lift_off capture_point: where the capture point should be at lift-off [m].
+  Eigen::Vector2d liftOffCapturePoint() const;
+  /// The box around both soles the double support's pivot stays in [m].
+  void supportBox(Eigen::Vector2d& box_min, Eigen::Vector2d& box_max) const;
+  Eigen::Vector2d soleXy(Side side) const;
+  /// Applies WalkConfig::midswing_push (once per run) and measures the pushed state.
+  void pushOnce();
+  /// The swing's duration by WalkConfig::step_timing, from the measured CoM state at lift-off.
+  double swingDuration(double t) const;
   void planStep(double t, double time_in_swing);
   void checkStep(double t, double time_in_swing);
   /// The check's plan as the policy takes it: the foothold, and the OCP's trajectory to track
@@ -318,6 +380,9 @@ struct WalkingExperiment::Loop {
   Eigen::Vector2d feet_mid_ = Eigen::Vector2d::Zero();
   double ground_z_ = 0.0;
   std::unique_ptr<SwingTrajectory> swing_traj_;
+  bool pushed_ = false;          ///< WalkConfig::midswing_push was applied
+  bool initiating_ = false;      ///< the double support before the first lift-off
+  double swing_duration_ = 0.0;  ///< this swing's duration (WalkConfig::step_timing) [s]
   StepRecord current_;
   bool checked_ = false;      ///< this swing's footstep check has run
   TransitionResult tracked_;  ///< the OCP trajectory tracked (empty when none)
@@ -397,6 +462,8 @@ void WalkingExperiment::Loop::measure() {
 }
 
 bool WalkingExperiment::Loop::updatePhase(double t) {
+  if (phase_ == Phase::kSettle && wc_.steps == 0 && t >= std::min(1.0, 0.5 * wc_.settle_duration))
+    pushOnce();
   if (phase_ == Phase::kSettle && t >= wc_.settle_duration) {
     if (result_.steps >= wc_.steps) {
       result_.end_reason = "completed";
@@ -405,18 +472,81 @@ bool WalkingExperiment::Loop::updatePhase(double t) {
     feet_mid_ = 0.5 * (xy(m_.framePose(ws_, sole_[0]).translation()) +
                        xy(m_.framePose(ws_, sole_[1]).translation()));
     if (wc_.first_swing == WalkConfig::FirstSwing::kFromCapturePoint) swing_ = firstSwingSide();
-    beginSingleSupport(t);
+    if (wc_.lift_off == WalkConfig::LiftOff::kTimed) {
+      beginSingleSupport(t);
+    } else {  // gait initiation: the pivot under the swing sole shifts the weight to the stance
+      phase_ = Phase::kDouble;
+      phase_start_ = t;
+      initiating_ = true;
+      com_ref_.startDoubleSupport(LipmState{xy(com_), xy(vcom_)}, soleXy(swing_), soleXy(swing_));
+    }
   } else if (phase_ == Phase::kSingle) {
     return singleSupport(t);
-  } else if (phase_ == Phase::kDouble && t - phase_start_ >= wc_.double_support_duration) {
+  } else if (phase_ == Phase::kDouble && liftOff(t - phase_start_)) {
     if (result_.steps >= wc_.steps) {
       result_.end_reason = "completed";
       return false;
     }
-    swing_ = opposite(swing_);
+    if (!initiating_) swing_ = opposite(swing_);
+    initiating_ = false;
     beginSingleSupport(t);
   }
   return true;
+}
+
+bool WalkingExperiment::Loop::liftOff(double time_in_double) {
+  if (wc_.lift_off == WalkConfig::LiftOff::kTimed)
+    return time_in_double >= wc_.double_support_duration;
+  if (!initiating_ && time_in_double < wc_.double_support_duration) return false;
+  if (time_in_double >= wc_.max_double_support_duration) return true;
+  const Eigen::Vector2d capture = xy(com_) + xy(vcom_) / planner_.lipm().omega();
+  Eigen::Vector2d box_min, box_max;
+  supportBox(box_min, box_max);
+  if ((capture.array() < box_min.array()).any() || (capture.array() > box_max.array()).any()) {
+    // Only a step can catch it: with the sole on the side it leaves toward.
+    const Side toward = capture.y() > 0.5 * (soleXy(Side::kLeft).y() + soleXy(Side::kRight).y())
+                            ? Side::kLeft
+                            : Side::kRight;
+    swing_ = initiating_ ? toward : opposite(toward);  // updatePhase flips it after a touchdown
+    return true;
+  }
+  const Eigen::Vector2d target = liftOffCapturePoint();
+  const double dx = std::isfinite(target.x()) ? capture.x() - target.x() : 0.0;
+  return std::hypot(dx, capture.y() - target.y()) <= wc_.lift_off_capture_tolerance;
+}
+
+Eigen::Vector2d WalkingExperiment::Loop::liftOffCapturePoint() const {
+  // The next swing is the sole that is not the next stance: after a touchdown, the old stance.
+  const Side next_swing = initiating_ ? swing_ : opposite(swing_);
+  const Eigen::Vector2d stance = soleXy(opposite(next_swing)),
+                        mid = 0.5 * (stance + soleXy(next_swing));
+  // The periodic LIPM gait: lift-off with the capture point tanh(omega T / 2) of the way from
+  // the midpoint to the stance sole (heading 0).
+  const double omega = planner_.lipm().omega();
+  const double fraction = std::tanh(0.5 * omega * wc_.single_support_duration);
+  // Walking in place, both axes; walking at a speed, the lateral one (the sagittal capture
+  // point is held: the walk's speed is the TVR steps').
+  const Eigen::Vector2d target = mid + fraction * (stance - mid);
+  return Eigen::Vector2d(
+      wc_.forward_speed == 0.0 ? target.x() : std::numeric_limits<double>::quiet_NaN(), target.y());
+}
+
+void WalkingExperiment::Loop::supportBox(Eigen::Vector2d& box_min, Eigen::Vector2d& box_max) const {
+  const Eigen::Vector2d half(impl_.contact.half_length - kSupportMargin,
+                             impl_.contact.half_width - kSupportMargin);
+  box_min = soleXy(Side::kLeft).cwiseMin(soleXy(Side::kRight)) - half;
+  box_max = soleXy(Side::kLeft).cwiseMax(soleXy(Side::kRight)) + half;
+}
+
+void WalkingExperiment::Loop::pushOnce() {
+  if (pushed_ || wc_.midswing_push.isZero(0.0)) return;
+  pushed_ = true;
+  world_->pushBase(Eigen::Vector3d(wc_.midswing_push.x(), wc_.midswing_push.y(), 0.0));
+  measure();
+}
+
+Eigen::Vector2d WalkingExperiment::Loop::soleXy(Side side) const {
+  return xy(m_.framePose(ws_, sole_[static_cast<int>(side)]).translation());
 }
 
 Side WalkingExperiment::Loop::firstSwingSide() const {
@@ -429,19 +559,18 @@ Side WalkingExperiment::Loop::firstSwingSide() const {
 
 bool WalkingExperiment::Loop::singleSupport(double t) {
   const double ts = t - phase_start_;
-  if (ts < wc_.replan_fraction * wc_.single_support_duration) {
+  if (ts < wc_.replan_fraction * swing_duration_) {
     planStep(t, ts);
     swing_traj_->retarget(target3());
   }
-  if (impl_.footsteps && !checked_ &&
-      ts >= wc_.single_support_duration - impl_.footsteps->horizon())
+  if (impl_.footsteps && !checked_ && ts >= swing_duration_ - impl_.footsteps->horizon())
     checkStep(t, ts);
   applyPendingPlan(t);
+  if (current_.index == wc_.midswing_push_step && ts >= 0.5 * swing_duration_) pushOnce();
   const SoleContact& sc = world_->soleContacts()[static_cast<int>(swing_)];
-  if (ts > 0.5 * wc_.single_support_duration && sc.in_contact &&
-      sc.wrench[2] > wc_.touchdown_force) {
+  if (ts > 0.5 * swing_duration_ && sc.in_contact && sc.wrench[2] > wc_.touchdown_force) {
     touchdown(t);
-  } else if (ts > wc_.single_support_duration + wc_.late_touchdown) {
+  } else if (ts > swing_duration_ + wc_.late_touchdown) {
     fall("no touchdown of the swing sole");
     return false;
   }
@@ -462,13 +591,31 @@ void WalkingExperiment::Loop::beginSingleSupport(double t) {
   current_.swing = swing_;
   current_.stance = xy(stance_pos);
   ground_z_ = stance_pos.z();
+  swing_duration_ = swingDuration(t);
+  current_.swing_duration = swing_duration_;
   planStep(t, 0.0);
-  swing_traj_ = std::make_unique<SwingTrajectory>(swing_pos, target3(), wc_.single_support_duration,
+  swing_traj_ = std::make_unique<SwingTrajectory>(swing_pos, target3(), swing_duration_,
                                                   wc_.swing_height, wc_.touchdown_depth);
   com_ref_.startSingleSupport(current_.com_at_plan, current_.stance);
   checked_ = false;
   tracked_ = TransitionResult();
   pending_ = PendingPlan();
+}
+
+double WalkingExperiment::Loop::swingDuration(double t) const {
+  if (wc_.step_timing == WalkConfig::StepTiming::kFixed) return wc_.single_support_duration;
+  StepTimingRange range;
+  range.nominal = wc_.single_support_duration;
+  range.min = std::min(wc_.single_support_duration, wc_.min_single_support_duration);
+  // A checked step's check and OCP start check_horizon before touchdown, after lift-off.
+  if (impl_.footsteps) range.min = std::max(range.min, impl_.footsteps->horizon() + dt_);
+  range.min = std::min(range.min, range.nominal);
+  range.max = std::max(wc_.single_support_duration, wc_.max_single_support_duration);
+  const Eigen::Vector2d stance =
+      xy(m_.framePose(ws_, sole_[static_cast<int>(opposite(swing_))]).translation());
+  return adaptStepTiming(planner_, LipmState{xy(com_), xy(vcom_)}, stance, swing_, t, com0_.x(),
+                         wc_.forward_speed, feet_mid_.y(), range)
+      .swing_duration;
 }
 
 // Eq. (11) from the measured CoM state predicted to the nominal touchdown (LIPM about the
@@ -478,7 +625,7 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
   current_.com_at_plan.p = xy(com_);
   current_.com_at_plan.pd = xy(vcom_);
   current_.plan_time = t;
-  const double remaining = std::max(0.0, wc_.single_support_duration - time_in_swing);
+  const double remaining = std::max(0.0, swing_duration_ - time_in_swing);
   TvrProposal proposal;
   if (impl_.propose) {
     TvrProposalRequest request;
@@ -528,7 +675,7 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
     if (on_check_) on_check_(current_, step);
     plan.apply_at = t + latency;
     // Its deadline is the nominal touchdown: a later plan is dropped.
-    if (plan.apply_at > phase_start_ + wc_.single_support_duration) {
+    if (plan.apply_at > phase_start_ + swing_duration_) {
       current_.plan_late = true;
       return;
     }
@@ -604,9 +751,8 @@ FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts) const {
   request.qd = world_->qd();
   // The CoM velocity at touchdown: the LIPM about the stance sole from the measured CoM
   // state, over the time left to the nominal touchdown.
-  request.touchdown_com =
-      planner_.lipm().propagate(LipmState{xy(com_), xy(vcom_)}, current_.stance,
-                                std::max(0.0, wc_.single_support_duration - ts));
+  request.touchdown_com = planner_.lipm().propagate(LipmState{xy(com_), xy(vcom_)}, current_.stance,
+                                                    std::max(0.0, swing_duration_ - ts));
   request.check_reachability = policy.check == WalkingPolicy::FootholdCheck::kReachability;
   request.solve_ocp = policy.solvesOcp();
   switch (policy.on_failed_check) {
@@ -671,6 +817,11 @@ void WalkingExperiment::Loop::touchdown(double t) {
 void WalkingExperiment::Loop::references(double t) {
   if (phase_ == Phase::kSettle) {
     com_ref_.hold(ref_);
+  } else if (phase_ == Phase::kDouble && wc_.lift_off == WalkConfig::LiftOff::kCapturePoint) {
+    Eigen::Vector2d box_min, box_max;
+    supportBox(box_min, box_max);
+    com_ref_.steerCapturePoint(dt_, liftOffCapturePoint(), wc_.lift_off_capture_gain, box_min,
+                               box_max, ref_);
   } else {
     const double transfer = phase_ == Phase::kDouble
                                 ? std::min(1.0, (t - phase_start_) / wc_.double_support_duration)
@@ -698,6 +849,16 @@ bool WalkingExperiment::Loop::controlAndStep(double t) {
   const Eigen::VectorXd& qd = world_->qd();
   const WbcOutput& out = wbc_.compute(q, qd, mode_, ref_);
   if (out.status != qp::QpStatus::kOptimal) ++result_.qp_failures;
+  if (std::getenv("WALK_DEBUG")) {
+    const Eigen::Vector3d sw = m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();
+    std::fprintf(stderr,
+                 "T %.3f ph=%d ts=%.3f st=%d com=(%.3f %.3f %.3f) v=(%.3f %.3f) ref=(%.3f %.3f) "
+                 "sw=(%.3f %.3f %.3f) swref=(%.3f %.3f %.3f) umax=%.1f msg=%s\n",
+                 t, (int)phase_, t - phase_start_, (int)out.status, com_.x(), com_.y(), com_.z(),
+                 vcom_.x(), vcom_.y(), ref_.com_position.x(), ref_.com_position.y(), sw.x(), sw.y(),
+                 sw.z(), ref_.swing_position.x(), ref_.swing_position.y(), ref_.swing_position.z(),
+                 out.u.cwiseAbs().maxCoeff(), out.message.c_str());
+  }
   if (on_tick_) {
     WalkTick info;
     info.time = t;

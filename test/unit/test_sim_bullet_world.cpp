@@ -476,3 +476,31 @@ TEST(SimBulletWorld, LegsCollideWithEachOtherOnly) {
   EXPECT_TRUE(apart->legContacts().empty());
   for (int leg : apart->bodyLegs()) EXPECT_EQ(leg, -1);
 }
+
+TEST(SimBulletWorld, APushChangesTheComVelocityByItsDelta) {
+  // pushBase adds its delta to every link's velocity: our model's CoM velocity J_com qd (an
+  // independent computation from the simulator's state) changes by exactly the delta, and
+  // the joint velocities do not change.
+  const auto model = loadModel(Eigen::Vector3d(0, 0, -9.81));
+  auto world = BulletWorld::fromUrdfFile(kUrdf, *model, defaultConfig());
+  Workspace ws(*model);
+  Eigen::Matrix3Xd Jc(3, model->nq());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const Eigen::VectorXd q = standingPosture(*model);
+  Eigen::VectorXd qd(model->nq());
+  for (int i = 0; i < model->nq(); ++i) qd[i] = 0.3 * U(rng);
+  world->reset(q, qd);
+  const auto comVelocity = [&]() {
+    model->update(ws, world->q(), world->qd());
+    model->centerOfMassJacobian(ws, Jc);
+    return Eigen::Vector3d(Jc * world->qd());
+  };
+  const Eigen::Vector3d before = comVelocity();
+  const Eigen::VectorXd joints_before = world->qd().tail(model->nu());
+  const Eigen::Vector3d delta(0.4, -0.25, 0.05);
+  world->pushBase(delta);
+  EXPECT_LT((comVelocity() - before - delta).norm(), 1e-9);
+  EXPECT_LT((world->qd().tail(model->nu()) - joints_before).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_THROW(world->pushBase(Eigen::Vector3d(NAN, 0, 0)), ReachError);
+}

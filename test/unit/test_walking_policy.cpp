@@ -138,8 +138,8 @@ TEST(PushEnvelope, RadiusIsTheLargestPushBelowTheFirstFall) {
   EXPECT_EQ(e.pushes(), 24);
   EXPECT_EQ(e.survived(), 24 - 1 - 2 - 6);
   const std::string line = e.benchLine();
-  EXPECT_EQ(line.rfind("BENCH walk.envelope preset=baseline protocol=standing pushes=24 "
-                       "survived=15 ",
+  EXPECT_EQ(line.rfind("BENCH walk.envelope preset=baseline protocol=standing forward_mps=0 "
+                       "pushes=24 survived=15 ",
                        0),
             0u)
       << line;

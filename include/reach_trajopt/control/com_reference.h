@@ -26,6 +26,17 @@ class LipmComReference {
   /// One tick of `dt` [s] while walking; `transfer` in [0, 1] is how far the pivot has moved
   /// (1 in single support). Fills the CoM fields of `ref`.
   void advance(double dt, double transfer, WbcReference& ref);
+  /// One tick of `dt` [s] of double support that steers the reference's capture point
+  /// xi = p + pd / omega (eq. 9) to `target` [m] at the rate `gain` [1/s]: the pivot
+  /// r = xi + (gain / omega) (xi - target), so that xi' = omega (xi - r) = -gain (xi - target),
+  /// clamped to the box [support_min, support_max] [m] (the soles' support region; a capture
+  /// point the box cannot steer keeps moving, as the robot's would). A non-finite target
+  /// component leaves that axis unsteered: its pivot is the capture point (xi' = 0, held).
+  /// Englsberger, Ott, Albu-Schaeffer, "Three-dimensional bipedal walking control based on
+  /// divergent component of motion", IEEE T-RO 2015. Fills the CoM fields of `ref`.
+  void steerCapturePoint(double dt, const Eigen::Vector2d& target, double gain,
+                         const Eigen::Vector2d& support_min, const Eigen::Vector2d& support_max,
+                         WbcReference& ref);
   /// One tick while standing: the standing CoM at rest.
   void hold(WbcReference& ref);
 

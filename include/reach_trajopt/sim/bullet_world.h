@@ -80,6 +80,11 @@ class BulletWorld {
   /// Throws ReachError on wrong sizes, non-finite entries or gimbal lock (pitch = +-pi/2).
   void reset(const Eigen::Ref<const Eigen::VectorXd>& q,
              const Eigen::Ref<const Eigen::VectorXd>& qd);
+  /// A push: adds `delta` [m/s] (world) to the floating base's linear velocity, the joint
+  /// velocities and the base's angular velocity kept, so that every link's velocity and the
+  /// CoM's change by `delta` at once (an impulse through the CoM). Then qd() describes the new
+  /// state. Throws ReachError on a fixed-base robot or a non-finite delta.
+  void pushBase(const Eigen::Vector3d& delta);
   /// Advances one time step with joint torques u (size n_u) [Nm or N], held over the step and
   /// saturated at the URDF effort limits when config().clamp_torques. Then q(), qd(),
   /// soleContacts() and nonFootContacts() describe the new state. Throws ReachError on a

@@ -1,10 +1,14 @@
 #pragma once
 /// \file push_envelope.h
-/// The push-recovery envelope of a walking policy: walks of `steps` footsteps from a push (an
-/// initial CoM velocity, feet still) in `directions` directions (the first along +x, the
-/// forward direction, counter-clockwise; +y is the left) x `magnitudes` [m/s] x `seeds`, one
-/// walk per cell, and which survived (no fall). The envelope radius of a direction is the
-/// largest magnitude m such that every magnitude <= m of the grid survived with every seed.
+/// The push-recovery envelope of a walking policy: walks of `steps` footsteps from a push in
+/// `directions` directions (the first along +x, the forward direction, counter-clockwise; +y is
+/// the left) x `magnitudes` [m/s] x `seeds`, one walk per cell, and which survived (no fall).
+/// Two protocols: `standing`, the push an initial CoM velocity with the feet still
+/// (WalkConfig::initial_com_velocity); `midswing`, a change of the base's velocity at half
+/// swing of the 4th step while walking (WalkConfig::midswing_push), in place or forward. The
+/// standing robot (no step, 3 s) under the same pushes is the reference a stepping policy
+/// must not do worse than. The envelope radius of a direction is the largest magnitude m such
+/// that every magnitude <= m of the grid survived with every seed.
 
 #include <Eigen/Core>
 #include <functional>
@@ -22,6 +26,13 @@ struct PushGrid {
   std::vector<double> magnitudes = {0.2, 0.4, 0.6};  ///< [m/s], increasing, > 0
   std::vector<unsigned> seeds = {1, 2};              ///< WalkConfig::seed of each walk
   int steps = 20;                                    ///< footsteps per walk
+  enum class Protocol { kStanding, kMidswing };
+  Protocol protocol = Protocol::kStanding;  ///< how the push is given (see the file comment)
+  double forward_speed = 0.0;               ///< WalkConfig::forward_speed of every walk [m/s]
+  /// The standing reference: every walk stands (no step) for 3 s instead of walking; the
+  /// policy then only names it.
+  bool standing = false;
+  const char* protocolName() const;  ///< "standing", "midswing"
   /// \throws RequestError naming the bad field.
   void validate() const;
   double angle(int direction) const;                         ///< [rad] from +x
@@ -55,10 +66,10 @@ struct PushEnvelope {
   /// has no such direction (directions not a multiple of 4).
   double maxLateral() const;
   double maxForward() const;
-  /// `BENCH walk.envelope preset=<p> protocol=standing pushes=N survived=K max_lateral_mps=..
-  /// max_forward_mps=.. radii_mps=r0/r1/... capture0_mps=.. capture1_mps=.. captureN_mps=..
-  /// fraction_of_capture1=r0/c0/... walks_wall_s=..` plus the policy's definition (the
-  /// capture limits per direction, as the radii).
+  /// `BENCH walk.envelope preset=<p or standing> protocol=<standing|midswing> pushes=N survived=K
+  /// max_lateral_mps=.. max_forward_mps=.. radii_mps=r0/r1/... capture0_mps=.. capture1_mps=..
+  /// captureN_mps=.. fraction_of_capture1=r0/c0/... walks_wall_s=..` plus the policy's definition
+  /// (the capture limits per direction, as the radii).
   std::string benchLine() const;
 };
 

@@ -44,10 +44,34 @@ struct WalkConfig {
   int steps = 20;                         ///< footsteps to walk (touchdowns)
   double single_support_duration = 0.22;  ///< nominal swing time
   double double_support_duration = 0.04;  ///< weight transfer between steps
-  double settle_duration = 0.2;           ///< initial standing before the first lift-off
-  double swing_height = 0.07;             ///< swing apex above the ground
-  double replan_fraction = 0.0;           ///< eq. (11) is re-evaluated from the measured CoM
-                                          ///< state during this fraction of the swing
+  /// When a double support ends. kTimed: after double_support_duration (the CoM reference the
+  /// LIPM about a pivot moving from the old stance sole to the new one). kCapturePoint: the
+  /// double support steers the capture point (control/com_reference.h) to where the periodic
+  /// LIPM gait in place has it at lift-off (tanh(omega T_ss / 2) of the way from the soles'
+  /// midpoint to the next stance sole), its pivot kept on the soles, and the swing sole lifts
+  /// off once the measured capture point is within lift_off_capture_tolerance of it, after at
+  /// least double_support_duration (none before the first step) and at most
+  /// max_double_support_duration; a capture point that leaves the soles' box lifts off at once,
+  /// with the sole on the side it leaves toward (only a step can catch it). As standing, the
+  /// double support absorbs what the soles can; the first step starts from such a double
+  /// support (gait initiation).
+  enum class LiftOff { kTimed, kCapturePoint };
+  LiftOff lift_off = LiftOff::kTimed;
+  double max_double_support_duration = 0.3;  ///< [s]
+  double lift_off_capture_tolerance = 0.02;  ///< [m]
+  double lift_off_capture_gain = 10.0;       ///< [1/s]
+  /// How long each swing lasts. kFixed: single_support_duration. kTvrBounds: chosen at lift-off
+  /// in [min_single_support_duration, max_single_support_duration] so that the TVR step fits
+  /// the foot offset bounds (planner/step_timing.h; Khadiv et al. 2016); the nominal duration
+  /// when it fits there. Policies with a check swing at least check_horizon + one tick.
+  enum class StepTiming { kFixed, kTvrBounds };
+  StepTiming step_timing = StepTiming::kFixed;
+  double min_single_support_duration = 0.15;  ///< shortest adapted swing [s]
+  double max_single_support_duration = 0.35;  ///< longest adapted swing [s]
+  double settle_duration = 0.2;               ///< initial standing before the first lift-off
+  double swing_height = 0.07;                 ///< swing apex above the ground
+  double replan_fraction = 0.0;               ///< eq. (11) is re-evaluated from the measured CoM
+                                              ///< state during this fraction of the swing
   double touchdown_depth = 0.01;  ///< nominal swing end below the ground (touchdown by contact)
   double touchdown_force = 30.0;  ///< sole normal force that counts as touchdown [N]
   double late_touchdown = 0.15;   ///< time past the nominal swing end before a fall is declared
@@ -66,6 +90,11 @@ struct WalkConfig {
   double knee_bend = 0.6;           ///< standing posture [rad]
   double forward_speed = 0.0;       ///< desired CoM speed along x (drives p_des of eq. 11)
   Eigen::Vector2d initial_com_velocity = Eigen::Vector2d::Zero();  ///< push at t = 0, feet still
+  /// A push while walking: this change of the base's (and so every link's and the CoM's)
+  /// horizontal velocity [m/s] at half swing of step midswing_push_step (BulletWorld::pushBase);
+  /// a standing run (steps 0) gets it 1 s into its settle phase (at half of a shorter one).
+  Eigen::Vector2d midswing_push = Eigen::Vector2d::Zero();
+  int midswing_push_step = 4;  ///< the step pushed at half swing, >= 1
   /// Which sole swings first. kFromCapturePoint: the one on the side the instantaneous capture
   /// point (CoM + CoM velocity / omega, eq. 9) lies toward, laterally from the soles' midpoint,
   /// at the end of the settle phase (a push to the left steps with the left leg: the stance
@@ -92,6 +121,7 @@ struct StepRecord {
   Side swing = Side::kRight;    ///< the sole that stepped
   double plan_time = 0.0;       ///< sim time of lift-off and planning [s]
   double touchdown_time = 0.0;  ///< sim time of touchdown [s] (0 if none)
+  double swing_duration = 0.0;  ///< the swing's planned duration (WalkConfig::step_timing) [s]
   LipmState com_at_plan;        ///< measured CoM state at planning
   LipmState com_predicted;      ///< LIPM prediction at nominal touchdown (planner input)
   Eigen::Vector2d stance = Eigen::Vector2d::Zero();       ///< stance sole centre [m]

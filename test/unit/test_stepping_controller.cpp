@@ -1,0 +1,81 @@
+// The stepping behaviour of the walking loop (walk/walking_experiment.h) on the Bullet
+// simulation, each against what physics says rather than what the code printed: the first
+// swing leg is the one on the side the push carries the CoM to; a touchdown later than the
+// nominal swing end is waited for (the sole keeps descending until contact); and stepping
+// survives the pushes the standing robot survives (checked on the standing robot in the same
+// run, not assumed).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "reach_trajopt/walk/walk_setup.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+WalkSetup shipped() {
+  WalkSetup setup =
+      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  setup.robot.urdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf";
+  return setup;
+}
+
+WalkResult walk(WalkSetup setup, const std::string& policy, int steps,
+                const Eigen::Vector2d& push) {
+  setup.walk.policy = WalkingPolicy::parse(policy);
+  setup.walk.steps = steps;
+  setup.walk.initial_com_velocity = push;
+  return setup.experiment()->run();
+}
+
+}  // namespace
+
+TEST(SteppingController, TheFirstSwingLegIsOnTheSideThePushCarriesTheCom) {
+  WalkSetup setup = shipped();
+  setup.walk.first_swing = WalkConfig::FirstSwing::kFromCapturePoint;
+  for (const double vy : {0.3, -0.3}) {
+    const WalkResult r = walk(setup, "baseline", 2, Eigen::Vector2d(0.0, vy));
+    ASSERT_FALSE(r.records.empty()) << r.summaryLine();
+    EXPECT_EQ(r.records.front().swing, vy > 0.0 ? Side::kLeft : Side::kRight)
+        << "push vy=" << vy << ": " << r.summaryLine();
+  }
+}
+
+TEST(SteppingController, ALateTouchdownIsWaitedForUntilContact) {
+  // The swing ends at the ground (no depth) and a touchdown needs a sole force the sole does
+  // not reach by the nominal swing end: the sole keeps descending and lands later.
+  WalkSetup setup = shipped();
+  setup.walk.touchdown_depth = 0.0;
+  setup.walk.touchdown_force = 500.0;  // two thirds of the robot's weight (76 kg)
+  setup.walk.late_touchdown = 0.3;
+  const WalkResult r = walk(setup, "baseline", 4, Eigen::Vector2d::Zero());
+  EXPECT_FALSE(r.fell) << r.summaryLine();
+  ASSERT_EQ(r.records.size(), 4u) << r.summaryLine();
+  int late = 0;
+  for (const StepRecord& s : r.records) {
+    EXPECT_TRUE(s.touched_down);
+    EXPECT_NEAR(s.executed.z(), 0.0, 0.01) << "step " << s.index << " lands on the ground";
+    late += s.touchdown_time - s.plan_time > s.swing_duration + 1e-9;
+  }
+  EXPECT_GE(late, 3) << "touchdowns after the nominal swing end";
+}
+
+TEST(SteppingController, SteppingSurvivesThePushesStandingSurvives) {
+  // 8 directions at 0.3 m/s: each push the robot survives standing (the ankles and the two
+  // soles alone, 3 s) must be survived stepping in place for 20 steps.
+  int standing_survived = 0;
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * M_PI / 4.0;
+    const Eigen::Vector2d push = 0.3 * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    WalkSetup standing = shipped();
+    standing.walk.settle_duration = 3.0;
+    const WalkResult still = walk(standing, "baseline", 0, push);
+    if (still.fell) continue;
+    ++standing_survived;
+    const WalkResult stepping = walk(shipped(), "baseline", 20, push);
+    EXPECT_FALSE(stepping.fell) << "push " << push.transpose() << ": " << stepping.summaryLine();
+  }
+  EXPECT_GE(standing_survived, 6) << "the standing robot is the reference: it must survive most";
+}
