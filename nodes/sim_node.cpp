@@ -22,7 +22,8 @@
 /// policies with a check kinematic_feasibility, reach, ocp, nearest_foothold; default
 /// config/biped.yaml of the package), ~sim_config (YAML with a sim section, optional), ~policy (a
 /// walking policy: baseline|unbounded|kinematic|proposed[,part=value...]), ~steps, ~seed,
-/// ~forward_speed [m/s], ~push_vx, ~push_vy [m/s], ~publish_period [s of sim time, 0.01],
+/// ~forward_speed [m/s], ~push_vx, ~push_vy [m/s], ~midswing_push_vx,
+/// ~midswing_push_vy [m/s] (WalkConfig::midswing_push), ~publish_period [s of sim time, 0.01],
 /// ~clock_period [s, 0.001], ~marker_period [s, 0.1], ~wait_for_subscribers (N: wait until every
 /// topic has N subscribers, e.g. a recorder; 0), ~wait_for_com_subscribers (N: wait until com_state
 /// has N subscribers, e.g. + the planner), ~wait_timeout [s wall, 20], ~real_time_factor (0: as

@@ -56,6 +56,8 @@ const CliTool kTool(
       ""},
      {"--seed", "S", "seed of the walk's random perturbations", ""},
      {"--push", "vx,vy", "initial CoM velocity [m/s]", ""},
+     {"--midswing-push", "vx,vy",
+      "a push while walking: base velocity change [m/s] at half swing of the 4th step", ""},
      {"--forward-speed", "v", "commanded forward speed [m/s]", ""},
      {"--settle", "S", "stand S seconds before the first step", ""},
      {"--plan-latency", "L",
@@ -68,6 +70,18 @@ const CliTool kTool(
       "write each checked feasible footstep's strict OCP request (plan_transition)", ""}});
 
 /// The walk config of the file with the command line's changes, validated.
+
+/// A push option "vx,vy" [m/s]. \throws RequestError naming the option.
+Eigen::Vector2d pushOption(const CliArgs& args, const std::string& option) {
+  const std::string push = args.value(option);
+  const auto comma = push.find(',');
+  if (comma == std::string::npos)
+    throw RequestError(option + ": expected vx,vy [m/s], got '" + push + "'");
+  return Eigen::Vector2d(
+      parseDoubleOption(option, push.substr(0, comma), -kMaxPushMps, kMaxPushMps),
+      parseDoubleOption(option, push.substr(comma + 1), -kMaxPushMps, kMaxPushMps));
+}
+
 /// \throws ReachError naming a bad option value.
 void applyOptions(const CliArgs& args, WalkConfig& walk) {
   if (args.given("--policy")) walk.policy = WalkingPolicy::parse(args.value("--policy"));
@@ -96,15 +110,8 @@ void applyOptions(const CliArgs& args, WalkConfig& walk) {
       walk.fixed_plan_latency = parseDoubleOption("--plan-latency", l, 0.0, 10.0);
     }
   }
-  if (args.given("--push")) {
-    const std::string push = args.value("--push");
-    const auto comma = push.find(',');
-    if (comma == std::string::npos)
-      throw RequestError("--push: expected vx,vy [m/s], got '" + push + "'");
-    walk.initial_com_velocity = Eigen::Vector2d(
-        parseDoubleOption("--push", push.substr(0, comma), -kMaxPushMps, kMaxPushMps),
-        parseDoubleOption("--push", push.substr(comma + 1), -kMaxPushMps, kMaxPushMps));
-  }
+  if (args.given("--push")) walk.initial_com_velocity = pushOption(args, "--push");
+  if (args.given("--midswing-push")) walk.midswing_push = pushOption(args, "--midswing-push");
   walk.validate();
 }
 

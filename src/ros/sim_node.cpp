@@ -74,6 +74,8 @@ WalkSetup readSimWalkSetup(const ros::NodeHandle& pnh) {
   pnh.getParam("forward_speed", walk.forward_speed);
   pnh.getParam("push_vx", walk.initial_com_velocity.x());
   pnh.getParam("push_vy", walk.initial_com_velocity.y());
+  pnh.getParam("midswing_push_vx", walk.midswing_push.x());
+  pnh.getParam("midswing_push_vy", walk.midswing_push.y());
   walk.validate();
   return setup;
 }

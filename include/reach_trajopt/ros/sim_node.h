@@ -51,8 +51,8 @@ struct SimNodeParams {
 };
 
 /// The walk's configs of ~config and ~sim_config with the walk parameters (~policy, ~steps,
-/// ~seed, ~forward_speed, ~push_vx, ~push_vy) applied, validated.
-/// \throws ReachError naming the file, key or parameter.
+/// ~seed, ~forward_speed, ~push_vx, ~push_vy, ~midswing_push_vx, ~midswing_push_vy) applied,
+/// validated. \throws ReachError naming the file, key or parameter.
 WalkSetup readSimWalkSetup(const ros::NodeHandle& pnh);
 
 /// @brief The walking experiment as a ROS node (nodes/sim_node.cpp).

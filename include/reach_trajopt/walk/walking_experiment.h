@@ -56,8 +56,8 @@ struct WalkConfig {
   /// double support absorbs what the soles can; the first step starts from such a double
   /// support (gait initiation).
   enum class LiftOff { kTimed, kCapturePoint };
-  LiftOff lift_off = LiftOff::kTimed;
-  double max_double_support_duration = 0.3;  ///< [s]
+  LiftOff lift_off = LiftOff::kCapturePoint;
+  double max_double_support_duration = 1.0;  ///< [s]
   double lift_off_capture_tolerance = 0.02;  ///< [m]
   double lift_off_capture_gain = 10.0;       ///< [1/s]
   /// How long each swing lasts. kFixed: single_support_duration. kTvrBounds: chosen at lift-off
@@ -100,7 +100,7 @@ struct WalkConfig {
   /// at the end of the settle phase (a push to the left steps with the left leg: the stance
   /// leg is not crossed); within 1 cm of the midpoint, the right sole (as kRight).
   enum class FirstSwing { kFromCapturePoint, kLeft, kRight };
-  FirstSwing first_swing = FirstSwing::kRight;
+  FirstSwing first_swing = FirstSwing::kFromCapturePoint;
   double fall_pelvis_height = 0.6;  ///< pelvis origin below this height = fall [m]
   /// Seed of every random draw of the run: the reachability check's sampler (replaces
   /// reach.seed; the simulation, the controller and the other policies draw nothing).
