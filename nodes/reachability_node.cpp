@@ -81,11 +81,11 @@ class ReachabilityNode {
     return rb::answerOrReject(
         "check_reachability",
         [&] {
-          const rb::FootholdRequest r = rb::parseFootholdRequest(
+          const ContactTransition r = rb::parseFootholdRequest(
               *s_.model, s_.contact, req.header.frame_id, req.contact_mode, req.q, req.qd,
               req.foothold, req.swing_duration, s_.reach.horizon, s_.standing_q, s_.limits);
           // The window stays at the same fractions of the horizon (a no-op for duration 0).
-          ReachConfig config = rb::reachConfigForDuration(s_.reach, r.duration);
+          ReachConfig config = rb::reachConfigForDuration(s_.reach, r.horizon);
           if (req.forward_samples > static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
             throw RequestError("forward_samples " + std::to_string(req.forward_samples) +
                                " is over the limit of " +
@@ -100,7 +100,7 @@ class ReachabilityNode {
           config.validate();
           config.requireResourcesWithinLimits(s_.model->nq());  // reject before the IK runs
           const KinematicFeasibilityResult ik =
-              s_.planner->kinematics().check(r.stance, r.stance_contact, r.target, r.q);
+              s_.planner->kinematics().check(r.stance, r.stance_contact, r.target, r.q0);
           const std::string& swing_frame = rb::swingFrame(s_.contact, r.stance);
           if (!ik.feasible) {
             res.result = rb::infeasibleFootholdMsg(ik.reason, swing_frame, r.target.position, t0);

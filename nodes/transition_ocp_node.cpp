@@ -139,7 +139,7 @@ class TransitionOcpNode {
     remote_check_ = std::make_unique<rb::RemoteFootstepCheck>(nh, service, timeout, s_.planner,
                                                               s_.contact, reachability_samples_);
     footstep_planner_->setFootstepCheck(
-        [check = remote_check_.get()](const FootstepRequest& r, const ReachConfig& c,
+        [check = remote_check_.get()](const ContactTransition& r, const ReachConfig& c,
                                       const CheckPass& pass,
                                       bool reach) { return check->check(r, c, pass, reach); });
     ROS_INFO("transition_ocp_node: plan_footstep checks its footsteps on '%s'",
@@ -208,7 +208,7 @@ class TransitionOcpNode {
     return rb::answerOrReject(
         "plan_transition",
         [&] {
-          const rb::FootholdRequest r = rb::parseFootholdRequest(
+          const ContactTransition r = rb::parseFootholdRequest(
               *s_.model, s_.contact, req.header.frame_id, req.contact_mode, req.q, req.qd,
               req.foothold, req.swing_duration, default_horizon_, s_.standing_q, s_.limits);
           FootstepPlanRequest step_request;
@@ -216,12 +216,12 @@ class TransitionOcpNode {
           step_request.stance_pose = r.stance_contact.pose();
           step_request.target = r.target.position;
           step_request.target_yaw = r.target.yaw;
-          step_request.q = r.q;
-          step_request.qd = r.qd;
+          step_request.q = r.q0;
+          step_request.qd = r.qd0;
           step_request.make_contact_consistent = false;  // x_0 as requested
           step_request.check_reachability = req.check_reachability;
-          step_request.reach = rb::reachConfigForDuration(s_.reach, r.duration);
-          step_request.horizon = r.duration;
+          step_request.reach = rb::reachConfigForDuration(s_.reach, r.horizon);
+          step_request.horizon = r.horizon;
           step_request.ocp_policy = req.allow_relaxation ? OcpPolicy::kAuto : OcpPolicy::kStrict;
           step_request.on_infeasible = req.allow_relaxation
                                            ? InfeasibleFootholdPolicy::kRelaxTowardTarget

@@ -63,7 +63,7 @@ struct CaseTimes {
 /// result of each. The configurations take turns, one check each per repeat, so a machine whose
 /// speed drifts between runs slows them alike: their ratio (the 1 -> 2 thread speed-up) is not
 /// that of two different moments.
-std::vector<CaseTimes> timeCases(const FootstepReachability& check, const FootstepRequest& req,
+std::vector<CaseTimes> timeCases(const FootstepReachability& check, const ContactTransition& req,
                                  const std::vector<ReachConfig>& configs, int repeats) {
   const std::size_t n = configs.size();
   std::vector<std::vector<double>> tot(n), fw(n), bw(n), bd(n), hd(n), wt(n), cpu(n);
@@ -98,7 +98,7 @@ std::vector<CaseTimes> timeCases(const FootstepReachability& check, const Footst
 /// Times `configs` (one mode at 1 and 2 threads, taking turns) and prints a
 /// `BENCH reach.check mode=<mode>` line per configuration, then, when `speedup` is not null,
 /// `BENCH reach.speedup<speedup> threads=2 ratio=<first / second>`.
-void benchMode(const FootstepReachability& check, const FootstepRequest& req, const char* mode,
+void benchMode(const FootstepReachability& check, const ContactTransition& req, const char* mode,
                const std::vector<ReachConfig>& configs, int repeats, const char* speedup) {
   const std::vector<CaseTimes> times = timeCases(check, req, configs, repeats);
   for (std::size_t c = 0; c < configs.size(); ++c) {
@@ -140,9 +140,9 @@ int main(int argc, char** argv) {
   planner_config.reach = base;
   planner_config.kinematics = kfc;
   const FootstepPlanRequest bench_case = benchSwingCase(model, planner_config, contact);
-  FootstepRequest req;
+  ContactTransition req;
   req.stance = bench_case.stance;
-  req.stance_foothold.position = bench_case.stance_pose.translation();
+  req.stance_contact.position = bench_case.stance_pose.translation();
   req.target.position = bench_case.target;
   req.q0 = bench_case.q;
   req.qd0 = bench_case.qd;

@@ -267,9 +267,9 @@ json runCheck(const CheckInputs& in, const ReachProblem& p, bool samples) {
     addResult(analyzer->check(p), samples, out);
     return out;
   }
-  FootstepRequest fr;
+  ContactTransition fr;
   fr.stance = p.mode.stance();
-  fr.stance_foothold = in.request.stance;
+  fr.stance_contact = in.request.stance;
   fr.target = in.request.target;
   fr.q0 = p.q0;
   fr.qd0 = p.qd0;

@@ -106,13 +106,6 @@ KinematicFeasibilityConfig KinematicFeasibilityConfig::fromYaml(const YamlSectio
   return fields().read(s);
 }
 
-Eigen::Isometry3d FlatContact::pose() const {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  T.translation() = position;
-  return T;
-}
-
 namespace {
 
 /// Why a foothold is rejected before the IK (one foot through the other), or "" when not.

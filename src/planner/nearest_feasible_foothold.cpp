@@ -54,7 +54,7 @@ std::vector<CandidateOutcome> checkFootholdCandidates(const KinematicFeasibility
   for (const FlatContact& p : batch.candidates) {
     CandidateOutcome o;
     try {
-      o.kinematics = kinematics.check(batch.stance, batch.stance_foothold, p, batch.q_init,
+      o.kinematics = kinematics.check(batch.stance, batch.stance_contact, p, batch.q_init,
                                       batch.pelvis_position);
     } catch (const ReachError& e) {
       o.error = e.what();
@@ -81,10 +81,10 @@ std::vector<FlatContact> NearestFeasibleFoothold::ringCandidates(const FlatConta
 }
 
 std::optional<NearestFoothold> NearestFeasibleFoothold::find(
-    Side stance, const FlatContact& stance_foothold, const FlatContact& target,
+    Side stance, const FlatContact& stance_contact, const FlatContact& target,
     const Eigen::VectorXd& q_init, const std::optional<Eigen::Vector3d>& pelvis_position,
     const CandidateCheck& check) const {
-  FootholdCandidates batch{stance, stance_foothold, {}, q_init, pelvis_position};
+  FootholdCandidates batch{stance, stance_contact, {}, q_init, pelvis_position};
   for (int ring = 1; ring <= config_.rings; ++ring) {
     batch.candidates = ringCandidates(target, ring);
     std::vector<CandidateOutcome> outcomes =

@@ -33,8 +33,8 @@ reach_trajopt::CheckFootholds::Request toCheckFootholdsRequestMsg(const Foothold
   reach_trajopt::CheckFootholds::Request m;
   m.request_id = request_id;
   m.stance = batch.stance == Side::kLeft ? "left" : "right";
-  m.stance_position = toPoint(batch.stance_foothold.position);
-  m.stance_yaw = batch.stance_foothold.yaw;
+  m.stance_position = toPoint(batch.stance_contact.position);
+  m.stance_yaw = batch.stance_contact.yaw;
   for (const FlatContact& c : batch.candidates) {
     m.candidates.push_back(toPoint(c.position));
     m.candidate_yaw.push_back(c.yaw);
@@ -51,8 +51,8 @@ FootholdCandidates fromCheckFootholdsRequestMsg(const reach_trajopt::CheckFootho
     throw RequestError("stance: expected 'left' or 'right', got '" + m.stance + "'");
   b.stance = m.stance == "left" ? Side::kLeft : Side::kRight;
   const geometry_msgs::Point& s = m.stance_position;
-  b.stance_foothold.position = finiteVector({s.x, s.y, s.z}, 3, "stance_position");
-  b.stance_foothold.yaw = finiteVector({m.stance_yaw}, 1, "stance_yaw")[0];
+  b.stance_contact.position = finiteVector({s.x, s.y, s.z}, 3, "stance_position");
+  b.stance_contact.yaw = finiteVector({m.stance_yaw}, 1, "stance_yaw")[0];
   if (m.candidates.size() > kMaxFootholdCandidates)
     throw RequestError("candidates: " + std::to_string(m.candidates.size()) +
                        " candidates exceed the limit of " + std::to_string(kMaxFootholdCandidates) +

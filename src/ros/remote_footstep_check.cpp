@@ -29,7 +29,7 @@ void RemoteFootstepCheck::beginStep(const ros::Time& t0) {
   checked_ = reach_trajopt::ReachabilityResult();
 }
 
-FootstepCheckResult RemoteFootstepCheck::check(const FootstepRequest& request,
+FootstepCheckResult RemoteFootstepCheck::check(const ContactTransition& request,
                                                const ReachConfig& config, const CheckPass& pass,
                                                bool reachability) {
   const auto answer =
@@ -52,7 +52,7 @@ FootstepCheckResult RemoteFootstepCheck::check(const FootstepRequest& request,
   return checkHere(request, config, pass, reachability);
 }
 
-FootstepCheckResult RemoteFootstepCheck::checkHere(const FootstepRequest& request,
+FootstepCheckResult RemoteFootstepCheck::checkHere(const ContactTransition& request,
                                                    const ReachConfig& config, const CheckPass& pass,
                                                    bool reachability) {
   FootstepCheckResult result =

@@ -8,7 +8,7 @@
 namespace reach_trajopt {
 
 FootstepCheckResult checkFootstep(const FootstepReachability& footsteps,
-                                  const FootstepRequest& request, const ReachConfig& config,
+                                  const ContactTransition& request, const ReachConfig& config,
                                   const std::optional<CheckPass>& pass, bool reachability,
                                   const ReachProgressCallback& progress) {
   FootstepCheckResult out;

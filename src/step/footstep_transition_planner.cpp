@@ -282,10 +282,10 @@ FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown
   return td;
 }
 
-FootstepRequest FootstepTransitionPlanner::checkRequest(const FootstepTransition& step) {
-  FootstepRequest request;
+ContactTransition FootstepTransitionPlanner::checkRequest(const FootstepTransition& step) {
+  ContactTransition request;
   request.stance = step.stance;
-  request.stance_foothold = step.stance_contact;
+  request.stance_contact = step.stance_contact;
   request.target = step.target;
   request.q0 = step.q0;
   request.qd0 = step.qd0;
@@ -299,10 +299,10 @@ FootstepCheckResult FootstepTransitionPlanner::runCheck(const FootstepPlanReques
                                                         const FootstepTransition& out,
                                                         double& time_s) const {
   const auto check_start = std::chrono::steady_clock::now();
-  FootstepRequest request = checkRequest(out);
+  ContactTransition request = checkRequest(out);
   if (!r.touchdown_com) request.qdf = Eigen::VectorXd::Zero(model_->nq());  // x_f at rest
-  request.touchdown_com_velocity = td.com_velocity.head<2>();
-  request.touchdown_pelvis_position = td.pelvis;
+  request.touchdown.com_velocity = td.com_velocity.head<2>();
+  request.touchdown.pelvis_position = td.pelvis;
   FootstepCheckResult checked =
       footstep_check_
           ? footstep_check_(request, reach, pass, r.check_reachability)

@@ -39,16 +39,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double duration = in.ConsumeFloatingPoint<double>();
   const uint32_t samples = in.ConsumeIntegral<uint32_t>();
   try {
-    const rb::FootholdRequest r =
+    const ContactTransition r =
         rb::parseFootholdRequest(*model, contact, frame, mode, q, qd, p, duration, 0.4, standing);
-    ReachConfig config = rb::reachConfigForDuration(ReachConfig{}, r.duration);
+    ReachConfig config = rb::reachConfigForDuration(ReachConfig{}, r.horizon);
     if (samples > 0 && samples <= static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
       config.budgets.full.initial_samples = static_cast<int>(samples);
     config.validate();
     config.requireResourcesWithinLimits(model->nq());
     KinematicFeasibilityResult ik;
-    ik.q_f = r.q;
-    ik.qd_f = r.qd;
+    ik.q_f = r.q0;
+    ik.qd_f = r.qd0;
     (void)rb::toReachProblem(r, ik);
     (void)rb::fromPointMsg(p);
   } catch (const ReachError&) {

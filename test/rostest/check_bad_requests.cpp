@@ -360,7 +360,7 @@ TEST(BadRequests, CheckFootholdsRejectsNamingTheFieldAndServesOn) {
   batch.q_init = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
   Workspace ws(*model);
   model->update(ws, batch.q_init, Eigen::VectorXd::Zero(model->nq()));
-  batch.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
+  batch.stance_contact.position = model->framePose(ws, model->frameId("l_sole")).translation();
   for (double dx : {-0.02, 0.0, 0.02}) {
     FlatContact c;
     c.position = model->framePose(ws, model->frameId("r_sole")).translation();
@@ -413,13 +413,13 @@ TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
   ASSERT_TRUE(nh.getParam("robot_description", urdf));
   const auto model = RobotModel::fromUrdfString(urdf, {}, "robot_description");
   // Standing on the left sole, the right one to land where it stands (kinematic check only).
-  FootstepRequest request;
+  ContactTransition request;
   request.stance = Side::kLeft;
   request.q0 = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
   request.qd0 = Eigen::VectorXd::Zero(model->nq());
   Workspace ws(*model);
   model->update(ws, request.q0, request.qd0);
-  request.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
+  request.stance_contact.position = model->framePose(ws, model->frameId("l_sole")).translation();
   request.target.position = model->framePose(ws, model->frameId("r_sole")).translation();
   const reach_trajopt::CheckFootstep::Request valid = ros_bridge::toCheckFootstepRequestMsg(
       request, ReachConfig(), std::nullopt, false, false, ros::Time(0));
@@ -428,7 +428,7 @@ TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
       kinds = {
           {"header.frame_id", [](auto& r) { r.header.frame_id = "map"; }},
           {"stance", [](auto& r) { r.stance = "SS-L"; }},
-          {"stance_foothold", [](auto& r) { r.stance_foothold.assign(3, 0.0); }},
+          {"stance_contact", [](auto& r) { r.stance_contact.assign(3, 0.0); }},
           {"target", [](auto& r) { r.target[0] = kNaN; }},
           {"q0", [](auto& r) { r.q0.assign(200000, 0.0); }},
           {"qd0", [](auto& r) { r.qd0[0] = kNaN; }},

@@ -61,7 +61,7 @@ Eigen::VectorXd bentKnees(const RobotModel& m, double x, double y) {
 struct Scenario {
   std::shared_ptr<ReachabilityAnalyzer> analyzer;
   std::shared_ptr<KinematicFeasibility> kinematics;
-  FootstepRequest request;
+  ContactTransition request;
 };
 
 /// Left stance at (0, 0.1); the TVR target of the right sole from a CoM moving forward; x_0
@@ -85,14 +85,14 @@ Scenario normalStep(const ReachConfig& config) {
   in.stance = Eigen::Vector2d(0.0, 0.1);
   in.swing = Side::kRight;
   const TvrStep step = planner.plan(in);
-  FootstepRequest& r = s.request;
+  ContactTransition& r = s.request;
   r.stance = Side::kLeft;
-  r.stance_foothold.position << 0.0, 0.1, 0.0;
+  r.stance_contact.position << 0.0, 0.1, 0.0;
   r.target.position << step.alpha.x(), step.alpha.y(), 0.0;
   const Eigen::Vector3d p0 = r.target.position + Eigen::Vector3d(-0.03, 0.0, 0.02);
   const Eigen::Vector3d v0 = 2.0 * (r.target.position - p0) / config.horizon;
   const RobotState x0 =
-      swingState(model, KinematicFeasibilityConfig(), contact, Side::kLeft, r.stance_foothold, p0,
+      swingState(model, KinematicFeasibilityConfig(), contact, Side::kLeft, r.stance_contact, p0,
                  0.0, v0, bentKnees(*model, 0.5 * p0.x(), 0.5 * (0.1 + p0.y())));
   r.q0 = x0.q;
   r.qd0 = x0.qd;
@@ -150,11 +150,11 @@ void checkStep(const RobotModel& m, FrameId sole, const Eigen::VectorXd& q_e,
 }
 
 /// Every sample of both sets: its own state, and the step that produced it.
-void recheckAll(const ReachabilityAnalyzer& an, const ReachResult& r, const FootstepRequest& req,
+void recheckAll(const ReachabilityAnalyzer& an, const ReachResult& r, const ContactTransition& req,
                 Recheck& fwd, Recheck& bwd) {
   const RobotModel& m = an.model();
   const FrameId sole = m.frameId("l_sole");
-  const Eigen::Isometry3d foothold = req.stance_foothold.pose();
+  const Eigen::Isometry3d foothold = req.stance_contact.pose();
   for (bool forward : {true, false}) {
     const auto& slices = forward ? r.forward : r.backward;
     Recheck& out = forward ? fwd : bwd;
@@ -232,7 +232,7 @@ TEST(ReachBiped, NormalTvrFootstepEverySampleAndTheWitnessCheckOut) {
   Recheck wc;
   const FrameId sole = m.frameId("l_sole");
   for (int k = 0; k < w.q.cols(); ++k) {
-    checkState(m, s.request.stance_foothold.pose(), sole, w.q.col(k), w.qd.col(k), wc);
+    checkState(m, s.request.stance_contact.pose(), sole, w.q.col(k), w.qd.col(k), wc);
     if (k + 1 < w.q.cols() && k != w.junction) {
       checkStep(m, sole, w.q.col(k), w.qd.col(k), (w.qd.col(k + 1) - w.qd.col(k)) / r.dt,
                 w.u.col(k), w.lambda.col(k), wc);
@@ -272,7 +272,7 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
     const double mid = 0.5 * (lo + hi);
     t.position.x() = mid;
     const bool ok =
-        s.kinematics->check(Side::kLeft, s.request.stance_foothold, t, bentKnees(m, 0.5 * mid, 0.0))
+        s.kinematics->check(Side::kLeft, s.request.stance_contact, t, bentKnees(m, 0.5 * mid, 0.0))
             .feasible;
     (ok ? lo : hi) = mid;
   }
@@ -380,11 +380,11 @@ TEST(ReachBiped, StatesViolatingContactsAreErrors) {
   const RobotModel& m = s.analyzer->model();
   ReachProblem p;
   p.mode = ContactMode::singleSupport(Side::kLeft);
-  p.footholds[0] = s.request.stance_foothold.pose();
+  p.footholds[0] = s.request.stance_contact.pose();
   p.q0 = s.request.q0;
   p.qd0 = s.request.qd0;
   const auto kin =
-      s.kinematics->check(Side::kLeft, s.request.stance_foothold, s.request.target, s.request.q0);
+      s.kinematics->check(Side::kLeft, s.request.stance_contact, s.request.target, s.request.q0);
   ASSERT_TRUE(kin.feasible);
   p.qf = kin.q_f;
   p.qdf = Eigen::VectorXd::Zero(m.nq());

@@ -32,8 +32,8 @@ Eigen::VectorXd awkward(int n, unsigned seed) {
 FootholdCandidates makeBatch() {
   FootholdCandidates b;
   b.stance = Side::kRight;
-  b.stance_foothold.position = awkward(3, 1);
-  b.stance_foothold.yaw = 1.0 / 7.0;
+  b.stance_contact.position = awkward(3, 1);
+  b.stance_contact.yaw = 1.0 / 7.0;
   for (unsigned i = 0; i < 5; ++i) {
     FlatContact c;
     c.position = awkward(3, 10 + i);
@@ -51,8 +51,8 @@ TEST(RosFootholdCandidateMsgs, RequestRoundTripIsBitExact) {
   EXPECT_EQ(m.request_id, 42u);
   const FootholdCandidates back = rb::fromCheckFootholdsRequestMsg(m, kNq);
   EXPECT_EQ(back.stance, b.stance);
-  EXPECT_EQ(back.stance_foothold.position, b.stance_foothold.position);
-  EXPECT_EQ(back.stance_foothold.yaw, b.stance_foothold.yaw);
+  EXPECT_EQ(back.stance_contact.position, b.stance_contact.position);
+  EXPECT_EQ(back.stance_contact.yaw, b.stance_contact.yaw);
   ASSERT_EQ(back.candidates.size(), b.candidates.size());
   for (size_t i = 0; i < b.candidates.size(); ++i) {
     EXPECT_EQ(back.candidates[i].position, b.candidates[i].position);

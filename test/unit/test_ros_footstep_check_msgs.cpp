@@ -68,18 +68,18 @@ FootstepPlanRequest walkRequest(size_t index) {
 
 // The footstep check the planner makes of the fixture's step `index` (x_0 made contact
 // consistent by the planner's step 1, the foothold flat in the stance heading).
-FootstepRequest footstepRequest(size_t index) {
+ContactTransition footstepRequest(size_t index) {
   FootstepPlanRequest plan = walkRequest(index);
   plan.check_reachability = false;
   plan.solve_ocp = false;
   const FootstepTransition kinematic = pipeline().planner()->plan(plan);
-  FootstepRequest r;
+  ContactTransition r;
   r.stance = kinematic.stance;
-  r.stance_foothold = kinematic.stance_contact;
+  r.stance_contact = kinematic.stance_contact;
   r.target = kinematic.target;
   r.q0 = kinematic.q0;
   r.qd0 = kinematic.qd0;
-  if (plan.touchdown_com) r.touchdown_com_velocity = plan.touchdown_com->pd;
+  if (plan.touchdown_com) r.touchdown.com_velocity = plan.touchdown_com->pd;
   return r;
 }
 
@@ -92,7 +92,7 @@ TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
   const auto node = p.planner();
   auto there = p.planner();
   int calls = 0;
-  there->setFootstepCheck([&](const FootstepRequest& request, const ReachConfig& reach,
+  there->setFootstepCheck([&](const ContactTransition& request, const ReachConfig& reach,
                               const CheckPass& pass, bool reachability) {
     ++calls;
     const auto request_msg =
@@ -128,8 +128,8 @@ TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
 
 TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
   const Pipeline& p = pipeline();
-  FootstepRequest r = footstepRequest(1);
-  r.touchdown_pelvis_position = Eigen::Vector3d(0.01, -0.02, 0.9);
+  ContactTransition r = footstepRequest(1);
+  r.touchdown.pelvis_position = Eigen::Vector3d(0.01, -0.02, 0.9);
   ReachConfig reach = p.config.reach;
   reach.horizon = 0.17;
   reach.seed = 4000000000u;  // above INT_MAX: the walk's --seed range
@@ -146,10 +146,10 @@ TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
   EXPECT_TRUE(sameBits(c.request.qd0, r.qd0));
   EXPECT_TRUE(sameBits(c.request.target.position, r.target.position));
   EXPECT_EQ(c.request.target.yaw, r.target.yaw);
-  EXPECT_TRUE(sameBits(c.request.stance_foothold.position, r.stance_foothold.position));
-  EXPECT_TRUE(sameBits(c.request.touchdown_com_velocity, r.touchdown_com_velocity));
-  ASSERT_TRUE(c.request.touchdown_pelvis_position.has_value());
-  EXPECT_TRUE(sameBits(*c.request.touchdown_pelvis_position, *r.touchdown_pelvis_position));
+  EXPECT_TRUE(sameBits(c.request.stance_contact.position, r.stance_contact.position));
+  EXPECT_TRUE(sameBits(c.request.touchdown.com_velocity, r.touchdown.com_velocity));
+  ASSERT_TRUE(c.request.touchdown.pelvis_position.has_value());
+  EXPECT_TRUE(sameBits(*c.request.touchdown.pelvis_position, *r.touchdown.pelvis_position));
   EXPECT_TRUE(c.request.qdf.size() == 0);
   EXPECT_EQ(c.reach.horizon, 0.17);
   EXPECT_EQ(c.reach.seed, 4000000000u);
@@ -211,7 +211,7 @@ TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
   };
   reject([](auto& m) { m.header.frame_id = "map"; }, "header.frame_id");
   reject([](auto& m) { m.stance = "both"; }, "stance");
-  reject([](auto& m) { m.stance_foothold.resize(3); }, "stance_foothold");
+  reject([](auto& m) { m.stance_contact.resize(3); }, "stance_contact");
   reject([&](auto& m) { m.target[1] = nan; }, "target");
   reject([](auto& m) { m.q0.pop_back(); }, "q0");
   reject([&](auto& m) { m.qd0[0] = std::numeric_limits<double>::infinity(); }, "qd0");

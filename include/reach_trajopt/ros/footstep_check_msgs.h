@@ -21,7 +21,7 @@ namespace ros_bridge {
 
 /// What a check_footstep request asks.
 struct FootstepCheckCall {
-  FootstepRequest request;
+  ContactTransition request;
   ReachConfig reach;  ///< the node's with the request's horizon and seed
   /// The pass to run (the request's budget and sets); none: the node's own pass schedule.
   std::optional<CheckPass> pass;
@@ -34,7 +34,7 @@ struct FootstepCheckCall {
 /// pass is checked as in process; the rest must be the node's; no pass: the node's own pass
 /// schedule), stamped t0.
 reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(
-    const FootstepRequest& request, const ReachConfig& reach, const std::optional<CheckPass>& pass,
+    const ContactTransition& request, const ReachConfig& reach, const std::optional<CheckPass>& pass,
     bool reachability, bool samples, const ros::Time& t0);
 
 /// The call of a request message for a model with `nq` coordinates; its reachability settings

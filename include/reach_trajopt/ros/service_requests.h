@@ -29,7 +29,7 @@ namespace ros_bridge {
 
 /// A validated request: the robot in single support on `stance` at x_0 = (q, qd), the swing
 /// sole to land flat at `target` after `duration` seconds.
-struct FootholdRequest {
+struct ContactTransition {
   Side stance = Side::kLeft;
   Eigen::VectorXd q, qd;       ///< x_0, size n_q each [m, rad; m/s, rad/s]
   FlatContact stance_contact;  ///< the stance sole at x_0 (position [m], yaw [rad])
@@ -45,7 +45,7 @@ struct FootholdRequestLimits {
   double max_duration = kMaxTransitionHorizon;
 };
 
-/// Validates a request of either service and fills a FootholdRequest.
+/// Validates a request of either service and fills a ContactTransition.
 /// \param frame_id          header.frame_id of the request: "" or "world"
 /// \param contact_mode      "SS-L" | "SS-R" (the current mode during the swing)
 /// \param q, qd             x_0 (size n_q each), or both empty: `standing_q` with qd = 0
@@ -54,7 +54,7 @@ struct FootholdRequestLimits {
 ///         double support, wrong sizes, non-finite numbers, a non-positive duration or one over
 ///         limits.max_duration, a foothold
 ///         above (or below) the ground.
-FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
+ContactTransition parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
                                      const std::string& frame_id, const std::string& contact_mode,
                                      const std::vector<double>& q, const std::vector<double>& qd,
                                      const geometry_msgs::Point& foothold, double duration,
@@ -73,7 +73,7 @@ ReachConfig reachConfigForDuration(const ReachConfig& base, double duration);
 /// The reachability problem (13)-(21) of a validated request whose foothold passed the
 /// kinematic feasibility check `ik` (x_f = (ik.q_f, ik.qd_f)): mode SS(stance), the stance
 /// sole held where it is at x_0, the swing sole to land flat on the target.
-ReachProblem toReachProblem(const FootholdRequest& request, const KinematicFeasibilityResult& ik);
+ReachProblem toReachProblem(const ContactTransition& request, const KinematicFeasibilityResult& ik);
 
 /// A ReachabilityResult message from a check (verdict "reachable" | "unreachable").
 /// Per window slice: d_H, counts, boundaries; output samples when `samples` (at most
@@ -86,7 +86,7 @@ reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& res
                                                           bool samples, int max_points = 500);
 /// Same, the foothold taken from the request's target.
 reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& result,
-                                                          const FootholdRequest& request,
+                                                          const ContactTransition& request,
                                                           const std::string& swing_frame,
                                                           double delta, const ros::Time& t0,
                                                           bool samples, int max_points = 500);

@@ -30,7 +30,7 @@ struct FootstepCheckResult {
 /// Where the planner checks its footsteps: (request, reachability settings, the pass to run,
 /// run the reachability check or the kinematic stage only). It throws ReachError for a
 /// request it rejects, as the in-process check does.
-using FootstepCheck = std::function<FootstepCheckResult(const FootstepRequest&, const ReachConfig&,
+using FootstepCheck = std::function<FootstepCheckResult(const ContactTransition&, const ReachConfig&,
                                                         const CheckPass&, bool)>;
 
 /// @brief The in-process check: `footsteps.checkPass(request, config, *pass, progress)` (no
@@ -39,7 +39,7 @@ using FootstepCheck = std::function<FootstepCheckResult(const FootstepRequest&, 
 /// set grown by the pass's constraint_margin (no pass: config.budgets.full's).
 /// \throws ReachError as FootstepReachability::check does.
 FootstepCheckResult checkFootstep(const FootstepReachability& footsteps,
-                                  const FootstepRequest& request, const ReachConfig& config,
+                                  const ContactTransition& request, const ReachConfig& config,
                                   const std::optional<CheckPass>& pass, bool reachability,
                                   const ReachProgressCallback& progress = {});
 

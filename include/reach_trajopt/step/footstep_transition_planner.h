@@ -187,7 +187,7 @@ class FootstepTransitionPlanner {
   const FootstepReachability& footstepReachability() const { return footsteps_; }
   /// The footstep check's request of a planned step: its stance, held stance contact, target
   /// and x_0 (the touchdown velocity and pelvis prediction are plan()'s to add).
-  static FootstepRequest checkRequest(const FootstepTransition& step);
+  static ContactTransition checkRequest(const FootstepTransition& step);
 
  private:
   /// The LIPM's prediction at touchdown: pelvis position to hold [m], CoM velocity [m/s].
