@@ -106,7 +106,7 @@ class ReachabilityNode {
             res.result = rb::infeasibleFootholdMsg(ik.reason, swing_frame, r.target.position, t0);
           } else {
             const ReachResult result =
-                s_.planner->analyzer().check(rb::toReachProblem(r, ik), config, progress);
+                s_.planner->analyzer().check(footstepProblem(r, ik.q_f, ik.qd_f), config, progress);
             res.result = rb::toReachabilityResultMsg(result, r, swing_frame, config.delta, t0,
                                                      req.return_samples);
           }
@@ -185,10 +185,9 @@ class ReachabilityNode {
               reach_trajopt::checkFootstep(s_.planner->footstepReachability(), call.request,
                                            call.reach, call.pass, call.reachability);
           res = rb::toCheckFootstepResponseMsg(
-              check,
-              rb::checkedFootstepMsg(check.result, rb::swingFrame(s_.contact, call.request.stance),
-                                     call.request.target.position, call.reach.delta,
-                                     req.header.stamp, call.samples));
+              check, rb::checkedFootstepMsg(check, rb::swingFrame(s_.contact, call.request.stance),
+                                            call.request.target.position, call.reach.delta,
+                                            req.header.stamp, call.samples));
           std_msgs::UInt64 count;
           count.data = ++footsteps_checked_;
           footsteps_checked_pub_.publish(count);

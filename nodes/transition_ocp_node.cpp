@@ -211,17 +211,10 @@ class TransitionOcpNode {
           const ContactTransition r = rb::parseFootholdRequest(
               *s_.model, s_.contact, req.header.frame_id, req.contact_mode, req.q, req.qd,
               req.foothold, req.swing_duration, default_horizon_, s_.standing_q, s_.limits);
-          FootstepPlanRequest step_request;
-          step_request.stance = r.stance;
-          step_request.stance_pose = r.stance_contact.pose();
-          step_request.target = r.target.position;
-          step_request.target_yaw = r.target.yaw;
-          step_request.q = r.q0;
-          step_request.qd = r.qd0;
+          FootstepPlanRequest step_request(r);
           step_request.make_contact_consistent = false;  // x_0 as requested
           step_request.check_reachability = req.check_reachability;
           step_request.reach = rb::reachConfigForDuration(s_.reach, r.horizon);
-          step_request.horizon = r.horizon;
           step_request.ocp_policy = req.allow_relaxation ? OcpPolicy::kAuto : OcpPolicy::kStrict;
           step_request.on_infeasible = req.allow_relaxation
                                            ? InfeasibleFootholdPolicy::kRelaxTowardTarget
@@ -270,11 +263,11 @@ class TransitionOcpNode {
           StepRecord record;  // what the messages need of the walk's record: the swing side
           record.swing = opposite(request.stance);
           const rb::ProposedStepMsgs msgs =
-              remote_check_
-                  ? rb::toProposedStepMsgs(*s_.model, s_.contact, step,
-                                           remote_check_->checkedMessage(), t0)
-                  : rb::toProposedStepMsgs(*s_.model, s_.contact, record, step, request.target,
-                                           request.reach->delta, t0, reachability_samples_);
+              remote_check_ ? rb::toProposedStepMsgs(*s_.model, s_.contact, step,
+                                                     remote_check_->checkedMessage(), t0)
+                            : rb::toProposedStepMsgs(*s_.model, s_.contact, record, step,
+                                                     request.target.position, request.reach->delta,
+                                                     t0, reachability_samples_);
           reach_pub_.publish(msgs.reachability);
           reach_marker_pub_.publish(msgs.markers);
           traj_pub_.publish(msgs.trajectory);

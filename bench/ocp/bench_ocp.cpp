@@ -72,13 +72,13 @@ TransitionRequest stepRequest(const std::shared_ptr<const RobotModel>& m, double
   const auto final = kf.check(Side::kLeft, left, contactAt(target_x, -0.1), ikGuess(*m));
   TransitionRequest r;
   r.stance = Side::kLeft;
-  r.stance_pose = left.pose();
-  r.swing_target = contactAt(target_x, -0.1).pose();
+  r.stance_contact = left;
+  r.target = contactAt(target_x, -0.1);
   r.horizon = 0.3;
   r.qf = final.q_f;
   r.qdf = final.qd_f;
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
   Eigen::VectorXd qa = start.q_f.tail(m->nu());
   qa[m->jointIndex("r_knee") - 6] += 0.5;

@@ -56,7 +56,7 @@ double median(std::vector<double> v) {
 struct CaseTimes {
   double total = 0.0, total_min = 0.0, cpu = 0.0, forward = 0.0, backward = 0.0, boundary = 0.0,
          hausdorff = 0.0, witness = 0.0;
-  FootstepResult result;
+  FootstepCheckResult result;
 };
 
 /// Median stage times [s] of `repeats` checks of `req` with each of `configs`, and the last
@@ -103,7 +103,7 @@ void benchMode(const FootstepReachability& check, const ContactTransition& req, 
   const std::vector<CaseTimes> times = timeCases(check, req, configs, repeats);
   for (std::size_t c = 0; c < configs.size(); ++c) {
     const CaseTimes& m = times[c];
-    const FootstepResult& r = m.result;
+    const FootstepCheckResult& r = m.result;
     const ReachCounts& n = r.reach.counts;
     const long qps = n.forward_qps + n.backward_qps;
     std::printf(

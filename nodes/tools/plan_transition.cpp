@@ -115,7 +115,7 @@ void solveTerminalState(const reach_trajopt::FootstepPlannerSetup& setup,
                         reach_trajopt::TransitionRequestJson& in) {
   using namespace reach_trajopt;
   const KinematicFeasibility kf(model, setup.planner.kinematics, setup.contact);
-  const auto ik = kf.check(in.request.stance, in.stance, in.target);
+  const auto ik = kf.check(in.request.stance, in.request.stance_contact, in.request.target);
   // Planning to a foothold the IK rejected (e.g. inside the stance sole) would "succeed"
   // with a relaxed landing elsewhere: refuse it, as the services do.
   if (!ik.feasible)

@@ -276,7 +276,7 @@ json runCheck(const CheckInputs& in, const ReachProblem& p, bool samples) {
   const FootstepReachability check(
       analyzer, std::make_shared<KinematicFeasibility>(in.model, in.setup.planner.kinematics,
                                                        in.setup.contact));
-  const FootstepResult f = check.check(fr);
+  const FootstepCheckResult f = check.check(fr);
   out["kinematically_feasible"] = f.kinematically_feasible;
   if (!f.kinematically_feasible) {
     out["reachable"] = false;

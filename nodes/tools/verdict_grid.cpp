@@ -300,8 +300,8 @@ class VerdictGrid {
 /// the reference's config; a reachable verdict's bridge re-checked.
 void VerdictGrid::compareCheck(const Probe& p, const FootstepPlanRequest& request,
                                const FootstepTransition& checked) {
-  const ReachProblem problem = footstepProblem(FootstepTransitionPlanner::checkRequest(checked),
-                                               checked.check.kinematics.q_f, checked.check.qdf);
+  const ReachProblem problem =
+      footstepProblem(checked.transition, checked.check.kinematics.q_f, checked.check.qdf);
   ReachConfig own_config = request.reach ? *request.reach : cfg_.reach;
   ReachConfig ref_config = *g_.reference;
   ref_config.horizon = own_config.horizon;
@@ -410,7 +410,7 @@ std::vector<Probe> gridProbes(std::size_t s, const FootstepPlanRequest& state,
       const double dx = o.grid > 1 ? -o.half + 2.0 * o.half * ix / (o.grid - 1) : 0.0;
       const double dy = o.grid > 1 ? -o.half + 2.0 * o.half * iy / (o.grid - 1) : 0.0;
       Probe p{s, dx, dy, state};
-      p.request.target += Eigen::Vector3d(dx, dy, 0.0);
+      p.request.target.position += Eigen::Vector3d(dx, dy, 0.0);
       probes.push_back(std::move(p));
     }
   }

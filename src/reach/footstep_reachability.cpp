@@ -14,12 +14,12 @@ FootstepReachability::FootstepReachability(std::shared_ptr<const ReachabilityAna
   if (!analyzer_ || !kinematics_) throw ReachError("FootstepReachability: null component");
 }
 
-FootstepResult FootstepReachability::check(const ContactTransition& request) const {
+FootstepCheckResult FootstepReachability::check(const ContactTransition& request) const {
   return check(request, analyzer_->config());
 }
 
-FootstepResult FootstepReachability::kinematicStage(const ContactTransition& r) const {
-  FootstepResult out;
+FootstepCheckResult FootstepReachability::kinematicStage(const ContactTransition& r) const {
+  FootstepCheckResult out;
   out.kinematics =
       kinematics_->check(r.stance, r.stance_contact, r.target, r.q0, r.touchdown.pelvis_position);
   out.kinematically_feasible = out.kinematics.feasible;
@@ -56,9 +56,10 @@ ReachProblem footstepProblem(const ContactTransition& r, const Eigen::VectorXd& 
   return p;
 }
 
-FootstepResult FootstepReachability::check(const ContactTransition& r, const ReachConfig& config,
-                                           const ReachProgressCallback& progress) const {
-  FootstepResult out = kinematicStage(r);
+FootstepCheckResult FootstepReachability::check(const ContactTransition& r,
+                                                const ReachConfig& config,
+                                                const ReachProgressCallback& progress) const {
+  FootstepCheckResult out = kinematicStage(r);
   if (!out.kinematically_feasible) return out;
   out.reach = analyzer_->check(footstepProblem(r, out.kinematics.q_f, out.qdf), config, progress);
   out.reachable = out.reach.reachable;
@@ -66,10 +67,11 @@ FootstepResult FootstepReachability::check(const ContactTransition& r, const Rea
   return out;
 }
 
-FootstepResult FootstepReachability::checkPass(const ContactTransition& r, const ReachConfig& config,
-                                               const CheckPass& pass,
-                                               const ReachProgressCallback& progress) const {
-  FootstepResult out = kinematicStage(r);
+FootstepCheckResult FootstepReachability::checkPass(const ContactTransition& r,
+                                                    const ReachConfig& config,
+                                                    const CheckPass& pass,
+                                                    const ReachProgressCallback& progress) const {
+  FootstepCheckResult out = kinematicStage(r);
   if (!out.kinematically_feasible) return out;
   out.reach =
       analyzer_->checkPass(footstepProblem(r, out.kinematics.q_f, out.qdf), config, pass, progress);

@@ -138,7 +138,7 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
 reach_trajopt::CheckFootstep::Response toCheckFootstepResponseMsg(
     const FootstepCheckResult& check, const reach_trajopt::ReachabilityResult& published) {
   reach_trajopt::CheckFootstep::Response m;
-  const FootstepResult& f = check.result;
+  const FootstepCheckResult& f = check;
   m.success = true;
   m.kinematically_feasible = f.kinematically_feasible;
   m.reachable = f.reachable;
@@ -190,7 +190,7 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
                                                  int nq) {
   const size_t n = static_cast<size_t>(nq);
   FootstepCheckResult out;
-  FootstepResult& f = out.result;
+  FootstepCheckResult& f = out;
   f.kinematically_feasible = m.kinematically_feasible;
   f.reachable = m.reachable;
   f.reason = m.reason;

@@ -58,7 +58,7 @@ FootstepCheckResult RemoteFootstepCheck::checkHere(const ContactTransition& requ
   FootstepCheckResult result =
       checkFootstep(local_->footstepReachability(), request, config, pass, reachability);
   if (pass.forwardOnly()) return result;  // no verdict: the step's check is the one before
-  checked_ = checkedFootstepMsg(result.result, swingFrame(contact_, request.stance),
+  checked_ = checkedFootstepMsg(result, swingFrame(contact_, request.stance),
                                 request.target.position, config.delta, stamp_, samples_);
   return result;
 }

@@ -75,11 +75,11 @@ Eigen::MatrixXd fromRowMajor(const std::vector<double>& v, Eigen::Index rows, Ei
 }  // namespace
 
 ContactTransition parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
-                                     const std::string& frame_id, const std::string& contact_mode,
-                                     const std::vector<double>& q, const std::vector<double>& qd,
-                                     const geometry_msgs::Point& foothold, double duration,
-                                     double default_duration, const Eigen::VectorXd& standing_q,
-                                     const FootholdRequestLimits& limits) {
+                                       const std::string& frame_id, const std::string& contact_mode,
+                                       const std::vector<double>& q, const std::vector<double>& qd,
+                                       const geometry_msgs::Point& foothold, double duration,
+                                       double default_duration, const Eigen::VectorXd& standing_q,
+                                       const FootholdRequestLimits& limits) {
   if (!frame_id.empty() && frame_id != kWorldFrame)
     throw RequestError("unknown frame '" + frame_id + "': positions must be in 'world'");
   if (contact_mode.empty() || contact_mode == "flight")
@@ -118,8 +118,7 @@ ContactTransition parseFootholdRequest(const RobotModel& model, const ContactCon
   const std::string& stance_frame =
       r.stance == Side::kLeft ? contact.left_sole_frame : contact.right_sole_frame;
   const Eigen::Isometry3d stance = model.framePose(ws, model.frameId(stance_frame));
-  r.stance_contact.position = stance.translation();
-  r.stance_contact.yaw = yawOf(stance);
+  r.stance_contact = FlatContact::fromPose(stance);
   const double height = target.z() - stance.translation().z();
   if (std::abs(height) > limits.ground_tolerance) {
     std::ostringstream os;
@@ -175,16 +174,6 @@ ReachConfig reachConfigForDuration(const ReachConfig& base, double duration) {
     throw RequestError(os.str());
   }
   return config;
-}
-
-ReachProblem toReachProblem(const ContactTransition& r, const KinematicFeasibilityResult& ik) {
-  ContactTransition footstep;
-  footstep.stance = r.stance;
-  footstep.stance_contact = r.stance_contact;
-  footstep.target = r.target;
-  footstep.q0 = r.q0;
-  footstep.qd0 = r.qd0;
-  return footstepProblem(footstep, ik.q_f, ik.qd_f);
 }
 
 reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_reason,

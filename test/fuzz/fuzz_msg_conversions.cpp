@@ -1,6 +1,6 @@
 /// \file fuzz_msg_conversions.cpp
 /// Fuzzes the service request -> core conversions of src/ros/ (parseFootholdRequest, the
-/// duration's ReachConfig and its resource check, toReachProblem) with the fields of a
+/// duration's ReachConfig and its resource check, footstepProblem) with the fields of a
 /// CheckReachability / PlanTransition request drawn from the input: any frame and mode string,
 /// q / qd of any length, any doubles (NaN, inf, huge) and sample counts.
 
@@ -49,7 +49,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     KinematicFeasibilityResult ik;
     ik.q_f = r.q0;
     ik.qd_f = r.qd0;
-    (void)rb::toReachProblem(r, ik);
+    (void)footstepProblem(r, ik.q_f, ik.qd_f);
     (void)rb::fromPointMsg(p);
   } catch (const ReachError&) {
   }

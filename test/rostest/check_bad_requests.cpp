@@ -302,12 +302,13 @@ TEST(BadRequests, PlanFootstepRejectsNamingTheFieldAndServesOn) {
   // Standing on the left sole, the right one to land beside it (kinematic check only: fast).
   FootstepPlanRequest request;
   request.stance = Side::kLeft;
-  request.q = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
-  request.qd = Eigen::VectorXd::Zero(model->nq());
+  request.q0 = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
+  request.qd0 = Eigen::VectorXd::Zero(model->nq());
   Workspace ws(*model);
-  model->update(ws, request.q, request.qd);
-  request.stance_pose = model->framePose(ws, model->frameId("l_sole"));
-  request.target = model->framePose(ws, model->frameId("r_sole")).translation();
+  model->update(ws, request.q0, request.qd0);
+  request.stance_contact = FlatContact::fromPose(model->framePose(ws, model->frameId("l_sole")));
+  request.target = {model->framePose(ws, model->frameId("r_sole")).translation(),
+                    request.stance_contact.yaw};
   request.check_reachability = false;
   request.solve_ocp = false;
   const reach_trajopt::PlanFootstep::Request valid =

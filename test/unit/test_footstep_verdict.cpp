@@ -77,7 +77,7 @@ struct WitnessRecheck {
 WitnessRecheck recheck(const FootstepTransition& step) {
   const RobotModel& m = *pipeline().model;
   const WitnessPath& w = step.check.reach.witness;
-  const FrameId sole = m.frameId(pipeline().contact.soleFrame(step.stance));
+  const FrameId sole = m.frameId(pipeline().contact.soleFrame(step.transition.stance));
   Workspace ws(m);
   Eigen::MatrixXd M(m.nq(), m.nq()), J(6, m.nq());
   Eigen::VectorXd b(m.nq());
@@ -85,8 +85,9 @@ WitnessRecheck recheck(const FootstepTransition& step) {
   const double dt = step.request.reach ? step.request.reach->dt : pipeline().config.reach.dt;
   for (int k = 0; k < w.q.cols(); ++k) {
     m.update(ws, w.q.col(k), w.qd.col(k));
-    r.sole = std::max(r.sole,
-                      (m.framePose(ws, sole).translation() - step.stance_contact.position).norm());
+    r.sole = std::max(
+        r.sole,
+        (m.framePose(ws, sole).translation() - step.transition.stance_contact.position).norm());
     if (k + 1 == w.q.cols()) break;
     m.massMatrix(ws, M);
     m.bias(ws, b);
@@ -109,7 +110,7 @@ WitnessRecheck recheckTrajectory(const FootstepTransition& step) {
   const TransitionResult& t = step.trajectory;
   const FrameId left = m.frameId(p.contact.left_sole_frame);
   const FrameId right = m.frameId(p.contact.right_sole_frame);
-  const FrameId stance = step.stance == Side::kLeft ? left : right;
+  const FrameId stance = step.transition.stance == Side::kLeft ? left : right;
   Workspace ws(m);
   Eigen::MatrixXd M(m.nq(), m.nq()), J_left(6, m.nq()), J_right(6, m.nq());
   Eigen::VectorXd b(m.nq());
@@ -117,7 +118,8 @@ WitnessRecheck recheckTrajectory(const FootstepTransition& step) {
   for (int k = 0; k < t.q.cols(); ++k) {
     m.update(ws, t.q.col(k), t.qd.col(k));
     r.sole = std::max(
-        r.sole, (m.framePose(ws, stance).translation() - step.stance_contact.position).norm());
+        r.sole,
+        (m.framePose(ws, stance).translation() - step.transition.stance_contact.position).norm());
     m.massMatrix(ws, M);
     m.bias(ws, b);
     m.frameJacobian(ws, left, J_left);
@@ -175,7 +177,7 @@ TEST(FootstepVerdict, WalkStepCertifiedByTheBridge) {
   const WitnessPath& w = step.check.reach.witness;
   ASSERT_TRUE(w.certified);
   EXPECT_EQ(w.junction, -1);
-  EXPECT_NEAR(w.time.back(), step.horizon, 1e-12);
+  EXPECT_NEAR(w.time.back(), step.transition.horizon, 1e-12);
   const ReachConfig& reach = *step.request.reach;
   const WitnessRecheck r = recheck(step);
   std::cout << "witness: eq. (1) " << r.dynamics << " N, held sole " << r.sole
@@ -205,7 +207,7 @@ TEST(FootstepVerdict, FootholdsOutOfReachAreNeverReachable) {
   EXPECT_FALSE(narrow.reachable);
   // Step 5's foothold 0.6 m farther forward.
   FootstepPlanRequest far = requests[2];
-  far.target.x() += 0.6;
+  far.target.position.x() += 0.6;
   const FootstepTransition f = planStrict(far);
   EXPECT_FALSE(f.reachable) << f.reason;
   EXPECT_NE(f.verdict, StepVerdict::kReachable);

@@ -44,13 +44,13 @@ TransitionRequest request() {
   EXPECT_TRUE(ik.feasible) << ik.reason;
   TransitionRequest r;
   r.stance = Side::kLeft;
-  r.stance_pose = left.pose();
-  r.swing_target = right.pose();
+  r.stance_contact = left;
+  r.target = right;
   r.horizon = 0.2;
   r.qf = ik.q_f;
   r.qdf = ik.qd_f;
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
   Eigen::VectorXd qa = ik.q_f.tail(m->nu());
   qa[m->jointIndex("r_knee") - 6] += 0.5;
@@ -96,8 +96,8 @@ double relativeError(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
 TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
   const auto m = biped();
   const TransitionRequest r = request();
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
   const int nu = m->nu(), nq = m->nq();
   Eigen::VectorXd input = Eigen::VectorXd::Zero(d.inputCount());
@@ -112,7 +112,7 @@ TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
   EXPECT_LT((s.qd - r.qd0).cwiseAbs().maxCoeff(), 1e-12);
   Workspace ws(*m);
   m->update(ws, s.q, s.qd);
-  const ContactConstraint stance(*m, "l_sole", r.stance_pose);
+  const ContactConstraint stance(*m, "l_sole", r.heldPose());
   ContactConstraintTerms t(nq);
   stance.evaluate(*m, ws, t);
   EXPECT_LT(t.phi.cwiseAbs().maxCoeff(), 1e-12);
@@ -135,8 +135,8 @@ TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
 TEST(StanceReducedDynamics, SignalJacobianMatchesCentralDifferences) {
   const auto m = biped();
   const TransitionRequest r = request();
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
   const int nu = m->nu();
   Eigen::VectorXd input = Eigen::VectorXd::Zero(d.inputCount());

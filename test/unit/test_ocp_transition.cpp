@@ -86,13 +86,13 @@ TransitionRequest stepRequest(double target_x, double horizon = 0.3) {
   const auto final = kf.check(Side::kLeft, left, right, ikGuess(*m));
   TransitionRequest r;
   r.stance = Side::kLeft;
-  r.stance_pose = left.pose();
-  r.swing_target = right.pose();
+  r.stance_contact = left;
+  r.target = right;
   r.horizon = horizon;
   r.qf = final.q_f;
   r.qdf = final.qd_f;
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
   Eigen::VectorXd qa = start.q_f.tail(m->nu());
   qa[m->jointIndex("r_knee") - 6] += 0.5;
@@ -115,7 +115,7 @@ void expectFeasibleTrajectory(const TransitionRequest& req, const TransitionResu
   const double W = m.totalMass() * m.gravity().norm();
   const Eigen::VectorXd u_max = m.effortLimits();
   const FrameId fl = m.frameId("l_sole"), fr = m.frameId("r_sole");
-  Eigen::Isometry3d landing = req.swing_target;
+  Eigen::Isometry3d landing = req.targetPose();
   landing.translation().head<2>() += res.eps;
   Workspace ws(m);
   Eigen::MatrixXd M(nq, nq);
@@ -137,11 +137,11 @@ void expectFeasibleTrajectory(const TransitionRequest& req, const TransitionResu
     // Stance sole (left) fixed: position, rotation, velocity, acceleration.
     const Eigen::Isometry3d P = m.framePose(ws, fl);
     const double angle =
-        Eigen::AngleAxisd(Eigen::Matrix3d(P.linear() * req.stance_pose.linear().transpose()))
+        Eigen::AngleAxisd(Eigen::Matrix3d(P.linear() * req.heldPose().linear().transpose()))
             .angle();
     const Vector6d v = m.frameVelocity(ws, fl);
     const Vector6d a = Jl * qdd + m.frameJdotQd(ws, fl);
-    contact = std::max({contact, (P.translation() - req.stance_pose.translation()).norm(), angle,
+    contact = std::max({contact, (P.translation() - req.heldPose().translation()).norm(), angle,
                         v.cwiseAbs().maxCoeff(), a.cwiseAbs().maxCoeff()});
     // Cone (7) in the sole frame.
     const Eigen::Matrix3d Rt = P.linear().transpose();
@@ -230,7 +230,7 @@ TEST(TransitionOcp, ReachableStepConvergesAndPassesIndependentCheck) {
   const int n = static_cast<int>(res.time.size());
   EXPECT_LT((res.q.col(n - 1) - req.qf).cwiseAbs().maxCoeff(), kTol);
   EXPECT_LT((res.qd.col(n - 1) - req.qdf).cwiseAbs().maxCoeff(), kTol);
-  EXPECT_LT((res.landing_position - req.swing_target.translation()).norm(), kTol);
+  EXPECT_LT((res.landing_position - req.targetPose().translation()).norm(), kTol);
   // Inside every hull.
   for (const ReachableSlice& s : req.slices) {
     const Eigen::Vector2d y = swingAt(res, s.time);
@@ -264,7 +264,7 @@ TEST(TransitionOcp, StepBeyondReachableSetIsRelaxedToItsEdge) {
   expectFeasibleTrajectory(req, res);
   EXPECT_NEAR(res.eps.norm(), beyond, 0.2 * beyond);
   EXPECT_LE(res.landing_position.x(), edge + kTol);
-  EXPECT_NEAR((res.landing_position.head<2>() - req.swing_target.translation().head<2>()).norm(),
+  EXPECT_NEAR((res.landing_position.head<2>() - req.targetPose().translation().head<2>()).norm(),
               res.eps.norm(), kTol);
   // The landing is a kinematically feasible stance (Sec. III-B).
   const KinematicFeasibility kf(biped());
@@ -423,7 +423,7 @@ TEST(TransitionOcp, BadInputThrows) {
   r.seed.q = Eigen::MatrixXd::Zero(m->nq(), 2);
   expectThrow(r, "seed");
   r = good;
-  r.swing_target.translation().x() = 0.6;  // x_f no longer on the target
+  r.target.position.x() = 0.6;  // x_f no longer on the target
   r.relaxation = RelaxationMode::kStrict;
   expectThrow(r, "x_f does not hold both contacts");
   // Invalid configurations.
@@ -452,8 +452,8 @@ TEST(TransitionRequestJson, WriteThenReadGivesTheRequest) {
   const TransitionRequest& b = back.request;
   ASSERT_TRUE(back.has_qf);
   EXPECT_EQ(b.stance, r.stance);
-  EXPECT_TRUE(b.stance_pose.isApprox(r.stance_pose, 1e-12));
-  EXPECT_TRUE(b.swing_target.isApprox(r.swing_target, 1e-12));
+  EXPECT_TRUE(b.heldPose().isApprox(r.heldPose(), 1e-12));
+  EXPECT_TRUE(b.targetPose().isApprox(r.targetPose(), 1e-12));
   EXPECT_EQ(b.horizon, r.horizon);
   EXPECT_EQ(b.q0, r.q0);
   EXPECT_EQ(b.qd0, r.qd0);

@@ -201,7 +201,7 @@ TEST(ReachBiped, NormalTvrFootstepEverySampleAndTheWitnessCheckOut) {
   const Scenario s = normalStep(testConfig());
   std::cout << "TVR target " << s.request.target.position.transpose() << "\n";
   const FootstepReachability fr(s.analyzer, s.kinematics);
-  const FootstepResult res = fr.check(s.request);
+  const FootstepCheckResult res = fr.check(s.request);
   std::cout << res.reason << "\n";
   ASSERT_TRUE(res.kinematically_feasible) << res.reason;
   const ReachResult& r = res.reach;
@@ -255,7 +255,7 @@ TEST(ReachBiped, NormalTvrFootstepEverySampleAndTheWitnessCheckOut) {
 TEST(ReachBiped, LateralFootstepOf1_5mIsUnreachable) {
   Scenario s = normalStep(testConfig());
   s.request.target.position << 0.0, 0.1 - 1.5, 0.0;
-  const FootstepResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
+  const FootstepCheckResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
   std::cout << res.reason << "\n";
   EXPECT_FALSE(res.reachable);
   EXPECT_FALSE(res.kinematically_feasible);
@@ -278,14 +278,14 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
   }
   std::cout << "forward reach of the right sole: x = " << lo << " m\n";
   s.request.target.position.x() = hi + 0.02;  // 2 cm beyond
-  const FootstepResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
+  const FootstepCheckResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
   std::cout << res.reason << "\n";
   EXPECT_FALSE(res.reachable);
   // Within kinematic reach but 0.25 m beyond where the swing sole can get in the window: the
   // dynamic check says no.
   Scenario d = normalStep(testConfig());
   d.request.target.position.x() += 0.25;
-  const FootstepResult dyn = FootstepReachability(d.analyzer, d.kinematics).check(d.request);
+  const FootstepCheckResult dyn = FootstepReachability(d.analyzer, d.kinematics).check(d.request);
   std::cout << dyn.reason << "\n";
   ASSERT_TRUE(dyn.kinematically_feasible) << dyn.reason;
   EXPECT_FALSE(dyn.reachable);
@@ -296,7 +296,7 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
   EXPECT_EQ(dyn.reach.budgets, 1);
   ReachConfig full_alone = testConfig();
   full_alone.quick_pass = false;
-  const FootstepResult full =
+  const FootstepCheckResult full =
       FootstepReachability(d.analyzer, d.kinematics).check(d.request, full_alone);
   EXPECT_EQ(full.reach.budgets, 1);
   EXPECT_FALSE(full.reach.gave_up);
@@ -314,9 +314,9 @@ TEST(ReachBiped, OneAndTwoThreadsGiveIdenticalSetsAndVerdict) {
   const Scenario s = normalStep(c);
   const FootstepReachability fr(s.analyzer, s.kinematics);
   c.threads = 1;
-  const FootstepResult a = fr.check(s.request, c);
+  const FootstepCheckResult a = fr.check(s.request, c);
   c.threads = 2;
-  const FootstepResult b = fr.check(s.request, c);
+  const FootstepCheckResult b = fr.check(s.request, c);
   ASSERT_EQ(a.reach.forward.size(), b.reach.forward.size());
   ASSERT_EQ(a.reach.backward.size(), b.reach.backward.size());
   for (int dir = 0; dir < 2; ++dir) {
@@ -350,9 +350,9 @@ TEST(ReachBiped, BackwardPrefilterKeepsExactlyTheChildrenOfTheExactTest) {
     const Scenario s = normalStep(c);
     const FootstepReachability fr(s.analyzer, s.kinematics);
     c.backward_prefilter = false;
-    const FootstepResult exact = fr.check(s.request, c);
+    const FootstepCheckResult exact = fr.check(s.request, c);
     c.backward_prefilter = true;
-    const FootstepResult fast = fr.check(s.request, c);
+    const FootstepCheckResult fast = fr.check(s.request, c);
     ASSERT_TRUE(exact.kinematically_feasible);
     EXPECT_EQ(exact.reach.counts.backward_prefiltered, 0);
     const ReachCounts& n = fast.reach.counts;

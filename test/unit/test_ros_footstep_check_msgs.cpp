@@ -73,12 +73,12 @@ ContactTransition footstepRequest(size_t index) {
   plan.check_reachability = false;
   plan.solve_ocp = false;
   const FootstepTransition kinematic = pipeline().planner()->plan(plan);
-  ContactTransition r;
-  r.stance = kinematic.stance;
-  r.stance_contact = kinematic.stance_contact;
-  r.target = kinematic.target;
-  r.q0 = kinematic.q0;
-  r.qd0 = kinematic.qd0;
+  ContactTransition r;  // as checked, without the touchdown's pelvis and qd_f
+  r.stance = kinematic.transition.stance;
+  r.stance_contact = kinematic.transition.stance_contact;
+  r.target = kinematic.transition.target;
+  r.q0 = kinematic.transition.q0;
+  r.qd0 = kinematic.transition.qd0;
   if (plan.touchdown_com) r.touchdown.com_velocity = plan.touchdown_com->pd;
   return r;
 }
@@ -265,7 +265,7 @@ TEST(RosFootstepCheckMsgs, MalformedAnswersAreErrorsNamingTheField) {
   const FootstepCheckResult checked =
       checkFootstep(node->footstepReachability(), footstepRequest(1), p.config.reach,
                     CheckPass{p.config.reach.budgets.quick}, true);
-  ASSERT_TRUE(checked.result.kinematically_feasible) << checked.result.reason;
+  ASSERT_TRUE(checked.kinematically_feasible) << checked.reason;
   const auto good = rb::toCheckFootstepResponseMsg(checked, ReachabilityResult());
   ASSERT_NO_THROW(rb::fromCheckFootstepResponseMsg(good, nq));
   ASSERT_FALSE(good.window_time.empty());

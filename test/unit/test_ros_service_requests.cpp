@@ -30,8 +30,8 @@ struct Fixture {
   }();
 
   ContactTransition parse(const std::string& frame, const std::string& mode,
-                            const std::vector<double>& q, const std::vector<double>& qd,
-                            double duration = 0.0) const {
+                          const std::vector<double>& q, const std::vector<double>& qd,
+                          double duration = 0.0) const {
     return rb::parseFootholdRequest(*model, contact, frame, mode, q, qd, foothold, duration, 0.08,
                                     standing);
   }
@@ -149,7 +149,7 @@ TEST(RosServiceRequests, ReachProblemHoldsTheStanceSoleAndTargetsTheFoothold) {
   ik.q_f = f.standing;
   ik.q_f[0] += 0.01;
   ik.qd_f = Eigen::VectorXd::Zero(f.model->nq());
-  const ReachProblem p = rb::toReachProblem(r, ik);
+  const ReachProblem p = footstepProblem(r, ik.q_f, ik.qd_f);
   EXPECT_EQ(p.mode, ContactMode::singleSupport(Side::kRight));
   EXPECT_EQ(p.q0, r.q0);
   EXPECT_EQ(p.qd0, r.qd0);

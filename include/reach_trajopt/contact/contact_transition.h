@@ -20,11 +20,18 @@
 
 namespace reach_trajopt {
 
+/// Heading of a pose: the yaw of its x axis in the world's x-y plane [rad].
+double yawOf(const Eigen::Isometry3d& pose);
+
 /// A flat contact: sole centre position [m, world] and heading (yaw about world z) [rad].
 struct FlatContact {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double yaw = 0.0;
   Eigen::Isometry3d pose() const;  ///< world pose of the sole frame (z up)
+  /// The flat contact where `pose` is: its position and heading (yawOf).
+  static FlatContact fromPose(const Eigen::Isometry3d& pose) {
+    return {pose.translation(), yawOf(pose)};
+  }
 };
 
 /// What is predicted of the touchdown, for a check that builds x_f itself (the kinematic
@@ -49,7 +56,7 @@ struct ContactTransition {
   /// footstep check builds q_f by its kinematic check, and qd_f too when qdf is empty (from
   /// `touchdown`).
   Eigen::VectorXd qf, qdf;
-  double horizon = 0.0;            ///< t_f - t_0 [s]; 0 where the stage has a default
+  double horizon = 0.0;           ///< t_f - t_0 [s]; 0 where the stage has a default
   TouchdownPrediction touchdown;  ///< how the footstep check builds x_f (see above)
 
   /// The moving contact (the swing sole).

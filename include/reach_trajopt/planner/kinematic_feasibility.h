@@ -56,7 +56,6 @@ struct KinematicFeasibilityConfig {
   static KinematicFeasibilityConfig fromYaml(const YamlSection& section);
 };
 
-
 /// Outcome of one check.
 struct KinematicFeasibilityResult {
   bool feasible = false;

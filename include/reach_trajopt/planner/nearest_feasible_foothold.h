@@ -43,7 +43,7 @@ struct NearestFootholdConfig {
 /// One ring's candidate footholds, each checked with the same stance and IK start.
 struct FootholdCandidates {
   Side stance = Side::kLeft;            ///< the held sole
-  FlatContact stance_contact;          ///< where it is held [m, rad]
+  FlatContact stance_contact;           ///< where it is held [m, rad]
   std::vector<FlatContact> candidates;  ///< the swing sole's candidate footholds [m, rad]
   Eigen::VectorXd q_init;               ///< IK start (size n_q)
   std::optional<Eigen::Vector3d> pelvis_position;  ///< see KinematicFeasibility::check [m]

@@ -14,9 +14,9 @@ FootstepPlanRequest benchSwingCase(const std::shared_ptr<const RobotModel>& mode
   r.stance = Side::kLeft;
   FlatContact stance;
   stance.position << 0.0, 0.1, 0.0;
-  r.stance_pose = stance.pose();
-  r.target << 0.25, -0.12, 0.0;
-  const Eigen::Vector3d p0 = r.target + Eigen::Vector3d(-0.03, 0.0, 0.02);
+  r.stance_contact = stance;
+  r.target = {Eigen::Vector3d(0.25, -0.12, 0.0), stance.yaw};
+  const Eigen::Vector3d p0 = r.target.position + Eigen::Vector3d(-0.03, 0.0, 0.02);
   Eigen::VectorXd guess = Eigen::VectorXd::Zero(model->nq());
   guess.head<3>() << 0.5 * p0.x(), 0.5 * (0.1 + p0.y()), 1.1;
   for (const std::string s : {"l_", "r_"}) {
@@ -25,9 +25,9 @@ FootstepPlanRequest benchSwingCase(const std::shared_ptr<const RobotModel>& mode
     guess[model->jointIndex(s + "ankle_pitch")] = -0.4;
   }
   const RobotState x0 = swingState(model, config.kinematics, contact, Side::kLeft, stance, p0, 0.0,
-                                   2.0 * (r.target - p0) / config.reach.horizon, guess);
-  r.q = x0.q;
-  r.qd = x0.qd;
+                                   2.0 * (r.target.position - p0) / config.reach.horizon, guess);
+  r.q0 = x0.q;
+  r.qd0 = x0.qd;
   return r;
 }
 
