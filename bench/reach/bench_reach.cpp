@@ -140,12 +140,7 @@ int main(int argc, char** argv) {
   planner_config.reach = base;
   planner_config.kinematics = kfc;
   const FootstepPlanRequest bench_case = benchSwingCase(model, planner_config, contact);
-  ContactTransition req;
-  req.stance = bench_case.stance;
-  req.stance_contact.position = bench_case.stance_pose.translation();
-  req.target.position = bench_case.target;
-  req.q0 = bench_case.q;
-  req.qd0 = bench_case.qd;
+  ContactTransition req = bench_case;            // the planned step's transition
   req.qdf = Eigen::VectorXd::Zero(model->nq());  // x_f at rest
   const auto analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, base);
   const FootstepReachability check(analyzer,
@@ -176,8 +171,8 @@ int main(int argc, char** argv) {
   FootstepPlannerConfig walk_config = planner_config;
   walk_config.reach.horizon = 0.2;
   const FootstepPlanRequest walk_case = benchSwingCase(model, walk_config, contact);
-  req.q0 = walk_case.q;
-  req.qd0 = walk_case.qd;
+  req.q0 = walk_case.q0;
+  req.qd0 = walk_case.qd0;
   std::vector<ReachConfig> walk_configs;
   for (int threads : {1, 2}) {
     ReachConfig cfg = walk_config.reach;

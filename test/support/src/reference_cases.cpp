@@ -3,9 +3,56 @@
 
 #include "reach_trajopt/testing/reference_cases.h"
 
+#include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ocp/stance_reduced_dynamics.h"
+#include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/testing/swing_state.h"
 
 namespace reach_trajopt {
+
+FlatContact contactAt(double x, double y) {
+  FlatContact c;
+  c.position << x, y, 0.0;
+  return c;
+}
+
+Eigen::VectorXd bipedIkGuess(const RobotModel& m) {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
+  q[1] = 0.09;
+  q[2] = 1.05;
+  for (const std::string side : {"l_", "r_"}) {
+    q[m.jointIndex(side + "hip_pitch")] = -0.3;
+    q[m.jointIndex(side + "knee")] = 0.6;
+    q[m.jointIndex(side + "ankle_pitch")] = -0.3;
+  }
+  return q;
+}
+
+TransitionRequest ocpStepCase(const std::shared_ptr<const RobotModel>& m, double target_x,
+                              double start_x, double horizon) {
+  const KinematicFeasibility kf(m);
+  const FlatContact left = contactAt(0.0, 0.1);
+  const auto start = kf.check(Side::kLeft, left, contactAt(start_x, -0.1), bipedIkGuess(*m));
+  if (!start.feasible) throw ReachError("ocpStepCase: no IK for the start: " + start.reason);
+  const auto final = kf.check(Side::kLeft, left, contactAt(target_x, -0.1), bipedIkGuess(*m));
+  TransitionRequest r;
+  r.stance = Side::kLeft;
+  r.stance_contact = left;
+  r.target = contactAt(target_x, -0.1);
+  r.horizon = horizon;
+  r.qf = final.q_f;
+  r.qdf = final.qd_f;
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
+  StanceReducedDynamics::Scratch s(d);
+  Eigen::VectorXd qa = start.q_f.tail(m->nu());
+  qa[m->jointIndex("r_knee") - 6] += 0.5;
+  qa[m->jointIndex("r_ankle_pitch") - 6] -= 0.25;
+  r.q0.resize(m->nq());
+  d.configuration(s, qa, r.q0);
+  r.qd0 = Eigen::VectorXd::Zero(m->nq());
+  return r;
+}
 
 FootstepPlanRequest benchSwingCase(const std::shared_ptr<const RobotModel>& model,
                                    const FootstepPlannerConfig& config,
