@@ -125,13 +125,7 @@ class ReachabilityNode {
   // check_reachability_action: the service's check with feedback after each slice; a newer
   // goal or a cancel preempts it before its next slice.
   void execute(const reach_trajopt::CheckReachabilityGoalConstPtr& goal) {
-    reach_trajopt::CheckReachability::Request req;
-    req.header = goal->header;
-    req.contact_mode = goal->contact_mode;
-    req.q = goal->q;
-    req.qd = goal->qd;
-    req.foothold = goal->foothold;
-    req.swing_duration = goal->swing_duration;
+    auto req = rb::footholdRequestOf<reach_trajopt::CheckReachability::Request>(*goal);
     req.forward_samples = goal->forward_samples;
     req.backward_samples = goal->backward_samples;
     req.seed = goal->seed;

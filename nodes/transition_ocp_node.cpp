@@ -154,13 +154,7 @@ class TransitionOcpNode {
   // plan_transition_action: the service's plan with feedback from the check and the OCP; a
   // newer goal or a cancel preempts it at its next progress report.
   void executeTransition(const reach_trajopt::PlanTransitionGoalConstPtr& goal) {
-    reach_trajopt::PlanTransition::Request req;
-    req.header = goal->header;
-    req.contact_mode = goal->contact_mode;
-    req.q = goal->q;
-    req.qd = goal->qd;
-    req.foothold = goal->foothold;
-    req.swing_duration = goal->swing_duration;
+    auto req = rb::footholdRequestOf<reach_trajopt::PlanTransition::Request>(*goal);
     req.check_reachability = goal->check_reachability;
     req.allow_relaxation = goal->allow_relaxation;
     bool cancelled = false;

@@ -70,9 +70,8 @@ const reach_trajopt::CliTool kTool(
     "plan_transition", "[request.json | -]",
     "Solves one transition OCP (eq. 22-23) from a JSON request (standard input: -) and prints\n"
     "the trajectory as JSON.",
-    {{"--urdf", "path", "URDF to use instead of the config's robot.urdf", ""},
-     {"--config", "path", "config file (robot, contact, kinematic_feasibility, ocp)",
-      "config/biped.yaml"},
+    {reach_trajopt::urdfOption(),
+     reach_trajopt::configOption("config file (robot, contact, kinematic_feasibility, ocp)"),
      {"--stride", "k", "keep every k-th sample (and the last) in the output arrays", "1"}});
 
 /// The solve's result as plan_transition's output JSON (header comment), samples by `stride`.

@@ -81,9 +81,8 @@ const CliTool kTool(
     "verdict_grid", "",
     "The oracle of the reachability verdict: probes a grid of footholds around each state's\n"
     "target with the check and the strict OCP and re-checks every reachable verdict.",
-    {{"--config", "FILE", "config file (robot, contact, the planner's sections)",
-      "config/biped.yaml"},
-     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+    {configOption("config file (robot, contact, the planner's sections)"),
+     urdfOption(),
      {"--requests", "FILE.jsonl", "footstep requests, one JSON per line", ""},
      {"--bench-case", "", "add bench/reach's SS-L -> DS case", ""},
      {"--grid", "N", "N x N footholds per state (1.." + std::to_string(kMaxGrid) + ")", "7"},

@@ -46,8 +46,8 @@ const CliTool kTool(
     "walk_experiment", "",
     "The walking experiment of the paper's Sec. IV, headless: one line per step, then the WALK\n"
     "summary line and the policy's definition.",
-    {{"--config", "FILE", "the robot and its parameters", "config/biped.yaml"},
-     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+    {configOption("the robot and its parameters"),
+     urdfOption(),
      {"--policy", "P",
       "walking policy: baseline | unbounded | kinematic | proposed[,part=value...] (default: "
       "the config's walk.policy)",

@@ -23,18 +23,9 @@ namespace {
 
 const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
 
-struct Pipeline {
-  std::shared_ptr<const RobotModel> model;
-  ContactConfig contact;
-  FootstepPlannerConfig config;
-  std::unique_ptr<FootstepTransitionPlanner> planner;
-  Pipeline() {
-    const YamlSection file = YamlSection::loadFile(kRepo + "/config/biped.yaml");
-    contact = ContactConfig::fromYaml(file.section("contact"));
-    config = FootstepPlannerConfig::fromYaml(file);
-    model = RobotModel::fromUrdfFile(kRepo + "/urdf/biped.urdf");
-    planner = std::make_unique<FootstepTransitionPlanner>(model, contact, config);
-  }
+struct Pipeline : ShippedBiped {
+  Pipeline() : ShippedBiped(kRepo) {}
+  std::unique_ptr<FootstepTransitionPlanner> planner = makePlanner();
 };
 
 const Pipeline& pipeline() {
@@ -44,14 +35,7 @@ const Pipeline& pipeline() {
 
 std::vector<FootstepPlanRequest> requestsOf(const std::string& fixture) {
   const Pipeline& p = pipeline();
-  std::ifstream in(kRepo + "/test/fixtures/" + fixture);
-  std::vector<FootstepPlanRequest> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    const nlohmann::json j = JsonReader::parse(line, "fixture");
-    out.push_back(readFootstepPlanRequest(JsonReader(j, "fixture"), p.model->nq(), p.config.reach));
-  }
-  return out;
+  return readPlanRequests(kRepo + "/test/fixtures/" + fixture, p.model->nq(), p.config.reach);
 }
 
 std::vector<FootstepPlanRequest> walkRequests() { return requestsOf("pushed_walk_requests.jsonl"); }

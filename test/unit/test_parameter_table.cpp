@@ -19,6 +19,7 @@
 #include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/testing/parameter_tables.h"
 #include "reach_trajopt/walk/walking_experiment.h"
+#include "thrown_message.h"
 
 using namespace reach_trajopt;
 
@@ -33,15 +34,10 @@ std::string readFile(const std::string& path) {
   return os.str();
 }
 
-/// The message of the ConfigError that `f` throws ("no ConfigError" when none).
+/// The message of the ConfigError that `f` throws.
 template <typename F>
 std::string configError(F f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no ConfigError";
+  return test::thrownMessage<ConfigError>(f);
 }
 
 /// A config struct as a component would write it (see config_fields.h).

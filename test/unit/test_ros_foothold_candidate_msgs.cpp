@@ -12,22 +12,15 @@
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ros/foothold_candidate_msgs.h"
+#include "ros_message_checks.h"
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
+using reach_trajopt::test::awkward;
 
 namespace {
 
 constexpr int kNq = 18;
-
-// Numbers with every bit of the mantissa in use (a float32 or a printed decimal would lose some).
-Eigen::VectorXd awkward(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = u(rng) / 3.0;
-  return v;
-}
 
 FootholdCandidates makeBatch() {
   FootholdCandidates b;

@@ -22,6 +22,7 @@
 #include "reach_trajopt/ros/footstep_check_msgs.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/testing/reference_cases.h"
 #include "ros_message_checks.h"
 
 using namespace reach_trajopt;
@@ -33,37 +34,18 @@ namespace {
 
 const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
 
-struct Pipeline {
-  std::shared_ptr<const RobotModel> model;
-  ContactConfig contact;
-  FootstepPlannerConfig config;
-  Pipeline() {
-    const YamlSection file = YamlSection::loadFile(kRepo + "/config/biped.yaml");
-    contact = ContactConfig::fromYaml(file.section("contact"));
-    config = FootstepPlannerConfig::fromYaml(file);
-    model = RobotModel::fromUrdfFile(kRepo + "/urdf/biped.urdf");
-  }
-  std::unique_ptr<FootstepTransitionPlanner> planner() const {
-    return std::make_unique<FootstepTransitionPlanner>(model, contact, config);
-  }
-};
-
-const Pipeline& pipeline() {
-  static const Pipeline p;
+const ShippedBiped& pipeline() {
+  static const ShippedBiped p(kRepo);
   return p;
 }
 
 // The `index`-th footstep of the pushed walk fixture.
 FootstepPlanRequest walkRequest(size_t index) {
-  std::ifstream in(kRepo + "/test/fixtures/pushed_walk_requests.jsonl");
-  std::string line;
-  for (size_t i = 0; std::getline(in, line); ++i) {
-    if (i != index) continue;
-    const nlohmann::json j = JsonReader::parse(line, "fixture");
-    return readFootstepPlanRequest(JsonReader(j, "fixture"), pipeline().model->nq(),
-                                   pipeline().config.reach);
-  }
-  throw std::runtime_error("fixture: no request " + std::to_string(index));
+  const std::vector<FootstepPlanRequest> all =
+      readPlanRequests(kRepo + "/test/fixtures/pushed_walk_requests.jsonl", pipeline().model->nq(),
+                       pipeline().config.reach);
+  if (index >= all.size()) throw std::runtime_error("fixture: no request " + std::to_string(index));
+  return all[index];
 }
 
 // The footstep check the planner makes of the fixture's step `index` (x_0 made contact
@@ -72,7 +54,7 @@ ContactTransition footstepRequest(size_t index) {
   FootstepPlanRequest plan = walkRequest(index);
   plan.check_reachability = false;
   plan.solve_ocp = false;
-  const FootstepTransition kinematic = pipeline().planner()->plan(plan);
+  const FootstepTransition kinematic = pipeline().makePlanner()->plan(plan);
   ContactTransition r;  // as checked, without the touchdown's pelvis and qd_f
   r.stance = kinematic.transition.stance;
   r.stance_contact = kinematic.transition.stance_contact;
@@ -86,11 +68,11 @@ ContactTransition footstepRequest(size_t index) {
 }  // namespace
 
 TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
-  const Pipeline& p = pipeline();
-  const auto here = p.planner();
+  const ShippedBiped& p = pipeline();
+  const auto here = p.makePlanner();
   // What reachability_node does with each request, and transition_ocp_node with the answer.
-  const auto node = p.planner();
-  auto there = p.planner();
+  const auto node = p.makePlanner();
+  auto there = p.makePlanner();
   int calls = 0;
   there->setFootstepCheck([&](const ContactTransition& request, const ReachConfig& reach,
                               const CheckPass& pass, bool reachability) {
@@ -127,7 +109,7 @@ TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
 }
 
 TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
-  const Pipeline& p = pipeline();
+  const ShippedBiped& p = pipeline();
   ContactTransition r = footstepRequest(1);
   r.touchdown.pelvis_position = Eigen::Vector3d(0.01, -0.02, 0.9);
   ReachConfig reach = p.config.reach;
@@ -196,7 +178,7 @@ TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
 }
 
 TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
-  const Pipeline& p = pipeline();
+  const ShippedBiped& p = pipeline();
   const int nq = p.model->nq();
   const auto good = rb::toCheckFootstepRequestMsg(footstepRequest(1), p.config.reach,
                                                   CheckPass{p.config.reach.budgets.quick}, true,
@@ -258,10 +240,10 @@ TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
 }
 
 TEST(RosFootstepCheckMsgs, MalformedAnswersAreErrorsNamingTheField) {
-  const Pipeline& p = pipeline();
+  const ShippedBiped& p = pipeline();
   const int nq = p.model->nq();
   // A well-formed answer of a real check (the quick budget keeps it short).
-  const auto node = p.planner();
+  const auto node = p.makePlanner();
   const FootstepCheckResult checked =
       checkFootstep(node->footstepReachability(), footstepRequest(1), p.config.reach,
                     CheckPass{p.config.reach.budgets.quick}, true);

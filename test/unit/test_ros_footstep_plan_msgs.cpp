@@ -17,21 +17,13 @@
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
+using reach_trajopt::test::awkward;
 using reach_trajopt::test::expectRejected;
 using reach_trajopt::test::sameBits;
 
 namespace {
 
 const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf";
-
-// Numbers with every bit of the mantissa in use (a float32 or a printed decimal would lose some).
-Eigen::VectorXd awkward(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = u(rng) / 3.0;
-  return v;
-}
 
 FootstepPlanRequest makeRequest(int nq) {
   FootstepPlanRequest r;

@@ -3,12 +3,41 @@
 
 #include "reach_trajopt/testing/reference_cases.h"
 
+#include <fstream>
+
+#include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/ocp/stance_reduced_dynamics.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/testing/swing_state.h"
 
 namespace reach_trajopt {
+
+ShippedBiped::ShippedBiped(const std::string& repo) {
+  const YamlSection file = YamlSection::loadFile(repo + "/config/biped.yaml");
+  contact = ContactConfig::fromYaml(file.section("contact"));
+  config = FootstepPlannerConfig::fromYaml(file);
+  model = RobotModel::fromUrdfFile(repo + "/urdf/biped.urdf");
+}
+
+std::unique_ptr<FootstepTransitionPlanner> ShippedBiped::makePlanner() const {
+  return std::make_unique<FootstepTransitionPlanner>(model, contact, config);
+}
+
+std::vector<FootstepPlanRequest> readPlanRequests(const std::string& path, int nq,
+                                                  const ReachConfig& reach) {
+  std::ifstream in(path);
+  if (!in) throw RequestError("cannot read '" + path + "'");
+  std::vector<FootstepPlanRequest> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    const nlohmann::json j = JsonReader::parse(line, path);
+    out.push_back(readFootstepPlanRequest(JsonReader(j, path), nq, reach));
+  }
+  return out;
+}
 
 FlatContact contactAt(double x, double y) {
   FlatContact c;

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_transition.h"
@@ -11,6 +13,22 @@
 #include "reach_trajopt/step/footstep_transition_planner.h"
 
 namespace reach_trajopt {
+
+/// The shipped biped as the walk plans with it: urdf/biped.urdf with config/biped.yaml's
+/// contact and planner sections, below the repository root `repo`.
+struct ShippedBiped {
+  std::shared_ptr<const RobotModel> model;
+  ContactConfig contact;
+  FootstepPlannerConfig config;
+  explicit ShippedBiped(const std::string& repo);
+  std::unique_ptr<FootstepTransitionPlanner> makePlanner() const;
+};
+
+/// The footstep requests of a JSON-lines file (`walk_experiment --plan-requests`, e.g.
+/// test/fixtures/pushed_walk_requests.jsonl) for a model with `nq` coordinates, their
+/// reach_horizon over `reach`. \throws RequestError naming the file on a bad line.
+std::vector<FootstepPlanRequest> readPlanRequests(const std::string& path, int nq,
+                                                  const ReachConfig& reach);
 
 /// A flat contact at (x, y, 0), heading 0.
 FlatContact contactAt(double x, double y);

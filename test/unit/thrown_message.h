@@ -1,0 +1,24 @@
+#pragma once
+// The message of the exception a call throws, for the tests that check what an error says.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace reach_trajopt {
+namespace test {
+
+/// The message of the E that `f` throws ("" and a test failure when it throws none).
+template <typename E, typename F>
+std::string thrownMessage(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no exception of the expected type thrown";
+  return "";
+}
+
+}  // namespace test
+}  // namespace reach_trajopt
