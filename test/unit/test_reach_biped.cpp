@@ -16,6 +16,7 @@
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
+#include "reach_trajopt/testing/reference_cases.h"
 #include "reach_trajopt/testing/swing_state.h"
 
 using namespace reach_trajopt;
@@ -46,16 +47,7 @@ ReachConfig testConfig() {
 
 /// IK starting point with bent knees (the IK's own guess converges to stretched legs here).
 Eigen::VectorXd bentKnees(const RobotModel& m, double x, double y) {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
-  q[0] = x;
-  q[1] = y;
-  q[2] = 1.1;
-  for (const std::string s : {"l_", "r_"}) {
-    q[m.jointIndex(s + "hip_pitch")] = -0.4;
-    q[m.jointIndex(s + "knee")] = 0.8;
-    q[m.jointIndex(s + "ankle_pitch")] = -0.4;
-  }
-  return q;
+  return bipedPosture(m, Eigen::Vector3d(x, y, 1.1), 0.4);
 }
 
 struct Scenario {

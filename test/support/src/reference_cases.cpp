@@ -45,16 +45,19 @@ FlatContact contactAt(double x, double y) {
   return c;
 }
 
-Eigen::VectorXd bipedIkGuess(const RobotModel& m) {
+Eigen::VectorXd bipedPosture(const RobotModel& m, const Eigen::Vector3d& base, double bend) {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
-  q[1] = 0.09;
-  q[2] = 1.05;
+  q.head<3>() = base;
   for (const std::string side : {"l_", "r_"}) {
-    q[m.jointIndex(side + "hip_pitch")] = -0.3;
-    q[m.jointIndex(side + "knee")] = 0.6;
-    q[m.jointIndex(side + "ankle_pitch")] = -0.3;
+    q[m.jointIndex(side + "hip_pitch")] = -bend;
+    q[m.jointIndex(side + "knee")] = 2.0 * bend;
+    q[m.jointIndex(side + "ankle_pitch")] = -bend;
   }
   return q;
+}
+
+Eigen::VectorXd bipedIkGuess(const RobotModel& m) {
+  return bipedPosture(m, Eigen::Vector3d(0.0, 0.09, 1.05), 0.3);
 }
 
 TransitionRequest ocpStepCase(const std::shared_ptr<const RobotModel>& m, double target_x,
@@ -93,13 +96,8 @@ FootstepPlanRequest benchSwingCase(const std::shared_ptr<const RobotModel>& mode
   r.stance_contact = stance;
   r.target = {Eigen::Vector3d(0.25, -0.12, 0.0), stance.yaw};
   const Eigen::Vector3d p0 = r.target.position + Eigen::Vector3d(-0.03, 0.0, 0.02);
-  Eigen::VectorXd guess = Eigen::VectorXd::Zero(model->nq());
-  guess.head<3>() << 0.5 * p0.x(), 0.5 * (0.1 + p0.y()), 1.1;
-  for (const std::string s : {"l_", "r_"}) {
-    guess[model->jointIndex(s + "hip_pitch")] = -0.4;
-    guess[model->jointIndex(s + "knee")] = 0.8;
-    guess[model->jointIndex(s + "ankle_pitch")] = -0.4;
-  }
+  const Eigen::VectorXd guess =
+      bipedPosture(*model, Eigen::Vector3d(0.5 * p0.x(), 0.5 * (0.1 + p0.y()), 1.1), 0.4);
   const RobotState x0 = swingState(model, config.kinematics, contact, Side::kLeft, stance, p0, 0.0,
                                    2.0 * (r.target.position - p0) / config.reach.horizon, guess);
   r.q0 = x0.q;

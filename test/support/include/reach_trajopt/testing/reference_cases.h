@@ -33,6 +33,11 @@ std::vector<FootstepPlanRequest> readPlanRequests(const std::string& path, int n
 /// A flat contact at (x, y, 0), heading 0.
 FlatContact contactAt(double x, double y);
 
+/// A posture of the biped: the base at `base` [m], upright; both legs' hips and ankles pitched by
+/// -bend and knees by 2 bend [rad] (an IK start with bent knees: the IK's own converges to
+/// stretched legs).
+Eigen::VectorXd bipedPosture(const RobotModel& model, const Eigen::Vector3d& base, double bend);
+
 /// The biped's IK start: upright, knees slightly bent, pelvis above the stance (left) foot side.
 Eigen::VectorXd bipedIkGuess(const RobotModel& model);
 
