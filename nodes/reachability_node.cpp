@@ -81,11 +81,11 @@ class ReachabilityNode {
     return rb::answerOrReject(
         "check_reachability",
         [&] {
-          const rb::FootholdRequest r = rb::parseFootholdRequest(
+          const ContactTransition r = rb::parseFootholdRequest(
               *s_.model, s_.contact, req.header.frame_id, req.contact_mode, req.q, req.qd,
               req.foothold, req.swing_duration, s_.reach.horizon, s_.standing_q, s_.limits);
           // The window stays at the same fractions of the horizon (a no-op for duration 0).
-          ReachConfig config = rb::reachConfigForDuration(s_.reach, r.duration);
+          ReachConfig config = rb::reachConfigForDuration(s_.reach, r.horizon);
           if (req.forward_samples > static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
             throw RequestError("forward_samples " + std::to_string(req.forward_samples) +
                                " is over the limit of " +
@@ -100,13 +100,13 @@ class ReachabilityNode {
           config.validate();
           config.requireResourcesWithinLimits(s_.model->nq());  // reject before the IK runs
           const KinematicFeasibilityResult ik =
-              s_.planner->kinematics().check(r.stance, r.stance_contact, r.target, r.q);
+              s_.planner->kinematics().check(r.stance, r.stance_contact, r.target, r.q0);
           const std::string& swing_frame = rb::swingFrame(s_.contact, r.stance);
           if (!ik.feasible) {
             res.result = rb::infeasibleFootholdMsg(ik.reason, swing_frame, r.target.position, t0);
           } else {
             const ReachResult result =
-                s_.planner->analyzer().check(rb::toReachProblem(r, ik), config, progress);
+                s_.planner->analyzer().check(footstepProblem(r, ik.q_f, ik.qd_f), config, progress);
             res.result = rb::toReachabilityResultMsg(result, r, swing_frame, config.delta, t0,
                                                      req.return_samples);
           }
@@ -125,13 +125,7 @@ class ReachabilityNode {
   // check_reachability_action: the service's check with feedback after each slice; a newer
   // goal or a cancel preempts it before its next slice.
   void execute(const reach_trajopt::CheckReachabilityGoalConstPtr& goal) {
-    reach_trajopt::CheckReachability::Request req;
-    req.header = goal->header;
-    req.contact_mode = goal->contact_mode;
-    req.q = goal->q;
-    req.qd = goal->qd;
-    req.foothold = goal->foothold;
-    req.swing_duration = goal->swing_duration;
+    auto req = rb::footholdRequestOf<reach_trajopt::CheckReachability::Request>(*goal);
     req.forward_samples = goal->forward_samples;
     req.backward_samples = goal->backward_samples;
     req.seed = goal->seed;
@@ -185,10 +179,9 @@ class ReachabilityNode {
               reach_trajopt::checkFootstep(s_.planner->footstepReachability(), call.request,
                                            call.reach, call.pass, call.reachability);
           res = rb::toCheckFootstepResponseMsg(
-              check,
-              rb::checkedFootstepMsg(check.result, rb::swingFrame(s_.contact, call.request.stance),
-                                     call.request.target.position, call.reach.delta,
-                                     req.header.stamp, call.samples));
+              check, rb::checkedFootstepMsg(check, rb::swingFrame(s_.contact, call.request.stance),
+                                            call.request.target.position, call.reach.delta,
+                                            req.header.stamp, call.samples));
           std_msgs::UInt64 count;
           count.data = ++footsteps_checked_;
           footsteps_checked_pub_.publish(count);

@@ -139,7 +139,7 @@ class TransitionOcpNode {
     remote_check_ = std::make_unique<rb::RemoteFootstepCheck>(nh, service, timeout, s_.planner,
                                                               s_.contact, reachability_samples_);
     footstep_planner_->setFootstepCheck(
-        [check = remote_check_.get()](const FootstepRequest& r, const ReachConfig& c,
+        [check = remote_check_.get()](const ContactTransition& r, const ReachConfig& c,
                                       const CheckPass& pass,
                                       bool reach) { return check->check(r, c, pass, reach); });
     ROS_INFO("transition_ocp_node: plan_footstep checks its footsteps on '%s'",
@@ -154,13 +154,7 @@ class TransitionOcpNode {
   // plan_transition_action: the service's plan with feedback from the check and the OCP; a
   // newer goal or a cancel preempts it at its next progress report.
   void executeTransition(const reach_trajopt::PlanTransitionGoalConstPtr& goal) {
-    reach_trajopt::PlanTransition::Request req;
-    req.header = goal->header;
-    req.contact_mode = goal->contact_mode;
-    req.q = goal->q;
-    req.qd = goal->qd;
-    req.foothold = goal->foothold;
-    req.swing_duration = goal->swing_duration;
+    auto req = rb::footholdRequestOf<reach_trajopt::PlanTransition::Request>(*goal);
     req.check_reachability = goal->check_reachability;
     req.allow_relaxation = goal->allow_relaxation;
     bool cancelled = false;
@@ -208,20 +202,13 @@ class TransitionOcpNode {
     return rb::answerOrReject(
         "plan_transition",
         [&] {
-          const rb::FootholdRequest r = rb::parseFootholdRequest(
+          const ContactTransition r = rb::parseFootholdRequest(
               *s_.model, s_.contact, req.header.frame_id, req.contact_mode, req.q, req.qd,
               req.foothold, req.swing_duration, default_horizon_, s_.standing_q, s_.limits);
-          FootstepPlanRequest step_request;
-          step_request.stance = r.stance;
-          step_request.stance_pose = r.stance_contact.pose();
-          step_request.target = r.target.position;
-          step_request.target_yaw = r.target.yaw;
-          step_request.q = r.q;
-          step_request.qd = r.qd;
+          FootstepPlanRequest step_request(r);
           step_request.make_contact_consistent = false;  // x_0 as requested
           step_request.check_reachability = req.check_reachability;
-          step_request.reach = rb::reachConfigForDuration(s_.reach, r.duration);
-          step_request.horizon = r.duration;
+          step_request.reach = rb::reachConfigForDuration(s_.reach, r.horizon);
           step_request.ocp_policy = req.allow_relaxation ? OcpPolicy::kAuto : OcpPolicy::kStrict;
           step_request.on_infeasible = req.allow_relaxation
                                            ? InfeasibleFootholdPolicy::kRelaxTowardTarget
@@ -270,11 +257,11 @@ class TransitionOcpNode {
           StepRecord record;  // what the messages need of the walk's record: the swing side
           record.swing = opposite(request.stance);
           const rb::ProposedStepMsgs msgs =
-              remote_check_
-                  ? rb::toProposedStepMsgs(*s_.model, s_.contact, step,
-                                           remote_check_->checkedMessage(), t0)
-                  : rb::toProposedStepMsgs(*s_.model, s_.contact, record, step, request.target,
-                                           request.reach->delta, t0, reachability_samples_);
+              remote_check_ ? rb::toProposedStepMsgs(*s_.model, s_.contact, step,
+                                                     remote_check_->checkedMessage(), t0)
+                            : rb::toProposedStepMsgs(*s_.model, s_.contact, record, step,
+                                                     request.target.position, request.reach->delta,
+                                                     t0, reachability_samples_);
           reach_pub_.publish(msgs.reachability);
           reach_marker_pub_.publish(msgs.markers);
           traj_pub_.publish(msgs.trajectory);

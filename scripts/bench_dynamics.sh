@@ -29,7 +29,7 @@ mkdir -p "$build"
 # dependencies (Eigen, Boost, coal) from the wheels only, and let the rpaths pick libraries.
 env -u CMAKE_PREFIX_PATH cmake -S "$REPO/bench/dynamics" -B "$build" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_CMAKE_SYSTEM_PATH=OFF \
-  -DREACH_INCLUDE_DIR="$REPO/include" -DREACH_CORE_LIBRARY="$core" >"$build/configure.log" 2>&1 || {
+  -DREACH_CORE_LIBRARY="$core" >"$build/configure.log" 2>&1 || {
   cat "$build/configure.log" >&2; echo "[bench_dynamics] cmake configure failed" >&2; exit 1; }
 echo "[bench_dynamics] building (one Pinocchio translation unit, about 80 s when it changed)"
 cmake --build "$build" -j1 >"$build/build.log" 2>&1 || {

@@ -32,17 +32,23 @@ def read(path):
         return f.read()
 
 
+def string_end(code, i):
+    """The index after the string literal that starts at code[i] (a '"')."""
+    j, n = i + 1, len(code)
+    while j < n and code[j] != '"':
+        j += 2 if code[j] == "\\" else 1
+    return j + 1
+
+
 def strip_comments(code):
     """Code without // and /* */ comments (string literals kept)."""
     out, i, n = [], 0, len(code)
     while i < n:
         c = code[i]
         if c == '"':
-            j = i + 1
-            while j < n and code[j] != '"':
-                j += 2 if code[j] == "\\" else 1
-            out.append(code[i:j + 1])
-            i = j + 1
+            j = string_end(code, i)
+            out.append(code[i:j])
+            i = j
         elif code.startswith("//", i):
             j = code.find("\n", i)
             i = n if j < 0 else j
@@ -78,10 +84,7 @@ def units(code):
     while i < n:
         c = code[i]
         if c == '"':
-            j = i + 1
-            while j < n and code[j] != '"':
-                j += 2 if code[j] == "\\" else 1
-            i = j + 1
+            i = string_end(code, i)
             continue
         if c in ";}":
             start = i + 1
@@ -96,10 +99,7 @@ def units(code):
             depth, j = 0, i
             while j < n:
                 if code[j] == '"':
-                    k = j + 1
-                    while k < n and code[k] != '"':
-                        k += 2 if code[k] == "\\" else 1
-                    j = k + 1
+                    j = string_end(code, j)
                     continue
                 if code[j] == "{":
                     depth += 1

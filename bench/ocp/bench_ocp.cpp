@@ -41,52 +41,15 @@
 #include "reach_trajopt/ocp/transition_nlp.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
 namespace {
 
-FlatContact contactAt(double x, double y) {
-  FlatContact c;
-  c.position << x, y, 0.0;
-  return c;
-}
-
-Eigen::VectorXd ikGuess(const RobotModel& m) {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
-  q[1] = 0.09;
-  q[2] = 1.05;
-  for (const std::string side : {"l_", "r_"}) {
-    q[m.jointIndex(side + "hip_pitch")] = -0.3;
-    q[m.jointIndex(side + "knee")] = 0.6;
-    q[m.jointIndex(side + "ankle_pitch")] = -0.3;
-  }
-  return q;
-}
-
 TransitionRequest stepRequest(const std::shared_ptr<const RobotModel>& m, double target_x,
                               double start_x) {
-  const KinematicFeasibility kf(m);
-  const FlatContact left = contactAt(0.0, 0.1);
-  const auto start = kf.check(Side::kLeft, left, contactAt(start_x, -0.1), ikGuess(*m));
-  const auto final = kf.check(Side::kLeft, left, contactAt(target_x, -0.1), ikGuess(*m));
-  TransitionRequest r;
-  r.stance = Side::kLeft;
-  r.stance_pose = left.pose();
-  r.swing_target = contactAt(target_x, -0.1).pose();
-  r.horizon = 0.3;
-  r.qf = final.q_f;
-  r.qdf = final.qd_f;
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
-  StanceReducedDynamics::Scratch s(d);
-  Eigen::VectorXd qa = start.q_f.tail(m->nu());
-  qa[m->jointIndex("r_knee") - 6] += 0.5;
-  qa[m->jointIndex("r_ankle_pitch") - 6] -= 0.25;
-  r.q0.resize(m->nq());
-  d.configuration(s, qa, r.q0);
-  r.qd0 = Eigen::VectorXd::Zero(m->nq());
-  return r;
+  return ocpStepCase(m, target_x, start_x, 0.3);
 }
 
 double median(std::vector<double> v) {

@@ -56,14 +56,14 @@ double median(std::vector<double> v) {
 struct CaseTimes {
   double total = 0.0, total_min = 0.0, cpu = 0.0, forward = 0.0, backward = 0.0, boundary = 0.0,
          hausdorff = 0.0, witness = 0.0;
-  FootstepResult result;
+  FootstepCheckResult result;
 };
 
 /// Median stage times [s] of `repeats` checks of `req` with each of `configs`, and the last
 /// result of each. The configurations take turns, one check each per repeat, so a machine whose
 /// speed drifts between runs slows them alike: their ratio (the 1 -> 2 thread speed-up) is not
 /// that of two different moments.
-std::vector<CaseTimes> timeCases(const FootstepReachability& check, const FootstepRequest& req,
+std::vector<CaseTimes> timeCases(const FootstepReachability& check, const ContactTransition& req,
                                  const std::vector<ReachConfig>& configs, int repeats) {
   const std::size_t n = configs.size();
   std::vector<std::vector<double>> tot(n), fw(n), bw(n), bd(n), hd(n), wt(n), cpu(n);
@@ -98,12 +98,12 @@ std::vector<CaseTimes> timeCases(const FootstepReachability& check, const Footst
 /// Times `configs` (one mode at 1 and 2 threads, taking turns) and prints a
 /// `BENCH reach.check mode=<mode>` line per configuration, then, when `speedup` is not null,
 /// `BENCH reach.speedup<speedup> threads=2 ratio=<first / second>`.
-void benchMode(const FootstepReachability& check, const FootstepRequest& req, const char* mode,
+void benchMode(const FootstepReachability& check, const ContactTransition& req, const char* mode,
                const std::vector<ReachConfig>& configs, int repeats, const char* speedup) {
   const std::vector<CaseTimes> times = timeCases(check, req, configs, repeats);
   for (std::size_t c = 0; c < configs.size(); ++c) {
     const CaseTimes& m = times[c];
-    const FootstepResult& r = m.result;
+    const FootstepCheckResult& r = m.result;
     const ReachCounts& n = r.reach.counts;
     const long qps = n.forward_qps + n.backward_qps;
     std::printf(
@@ -140,12 +140,7 @@ int main(int argc, char** argv) {
   planner_config.reach = base;
   planner_config.kinematics = kfc;
   const FootstepPlanRequest bench_case = benchSwingCase(model, planner_config, contact);
-  FootstepRequest req;
-  req.stance = bench_case.stance;
-  req.stance_foothold.position = bench_case.stance_pose.translation();
-  req.target.position = bench_case.target;
-  req.q0 = bench_case.q;
-  req.qd0 = bench_case.qd;
+  ContactTransition req = bench_case;            // the planned step's transition
   req.qdf = Eigen::VectorXd::Zero(model->nq());  // x_f at rest
   const auto analyzer = std::make_shared<ReachabilityAnalyzer>(model, contact, base);
   const FootstepReachability check(analyzer,
@@ -176,8 +171,8 @@ int main(int argc, char** argv) {
   FootstepPlannerConfig walk_config = planner_config;
   walk_config.reach.horizon = 0.2;
   const FootstepPlanRequest walk_case = benchSwingCase(model, walk_config, contact);
-  req.q0 = walk_case.q;
-  req.qd0 = walk_case.qd;
+  req.q0 = walk_case.q0;
+  req.qd0 = walk_case.qd0;
   std::vector<ReachConfig> walk_configs;
   for (int threads : {1, 2}) {
     ReachConfig cfg = walk_config.reach;

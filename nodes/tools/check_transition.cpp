@@ -81,8 +81,8 @@ const reach_trajopt::CliTool kTool(
     "check_transition", "request.json trajectory.json",
     "Re-checks a sampled transition trajectory with the OCP's full-model checker and prints the\n"
     "violations as JSON.",
-    {{"--config", "path", "config file (robot, contact, ocp)", "config/biped.yaml"},
-     {"--urdf", "path", "URDF to use instead of the config's robot.urdf", ""},
+    {reach_trajopt::configOption("config file (robot, contact, ocp)"),
+     reach_trajopt::urdfOption(),
      {"--threshold", "v",
       "violation above which a sample time / slice is listed (default: the config's "
       "ocp.tolerance)",

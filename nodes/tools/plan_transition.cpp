@@ -70,9 +70,8 @@ const reach_trajopt::CliTool kTool(
     "plan_transition", "[request.json | -]",
     "Solves one transition OCP (eq. 22-23) from a JSON request (standard input: -) and prints\n"
     "the trajectory as JSON.",
-    {{"--urdf", "path", "URDF to use instead of the config's robot.urdf", ""},
-     {"--config", "path", "config file (robot, contact, kinematic_feasibility, ocp)",
-      "config/biped.yaml"},
+    {reach_trajopt::urdfOption(),
+     reach_trajopt::configOption("config file (robot, contact, kinematic_feasibility, ocp)"),
      {"--stride", "k", "keep every k-th sample (and the last) in the output arrays", "1"}});
 
 /// The solve's result as plan_transition's output JSON (header comment), samples by `stride`.
@@ -115,7 +114,7 @@ void solveTerminalState(const reach_trajopt::FootstepPlannerSetup& setup,
                         reach_trajopt::TransitionRequestJson& in) {
   using namespace reach_trajopt;
   const KinematicFeasibility kf(model, setup.planner.kinematics, setup.contact);
-  const auto ik = kf.check(in.request.stance, in.stance, in.target);
+  const auto ik = kf.check(in.request.stance, in.request.stance_contact, in.request.target);
   // Planning to a foothold the IK rejected (e.g. inside the stance sole) would "succeed"
   // with a relaxed landing elsewhere: refuse it, as the services do.
   if (!ik.feasible)

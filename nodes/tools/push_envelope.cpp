@@ -54,8 +54,8 @@ std::vector<WalkingPolicy> parsePolicies(const std::string& text) {
 const CliTool kTool("push_envelope", "",
                     "The push-recovery envelope of walking policies: one line per walk, one BENCH\n"
                     "walk.envelope line per policy.",
-                    {{"--config", "FILE", "the robot and its parameters", "config/biped.yaml"},
-                     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+                    {configOption("the robot and its parameters"),
+                     urdfOption(),
                      {"--policies", "LIST", "walking policies separated by ';', or presets by ','",
                       "baseline,unbounded,kinematic,proposed"},
                      {"--directions", "N", "push directions, 1..64", "8"},

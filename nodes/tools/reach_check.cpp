@@ -267,16 +267,16 @@ json runCheck(const CheckInputs& in, const ReachProblem& p, bool samples) {
     addResult(analyzer->check(p), samples, out);
     return out;
   }
-  FootstepRequest fr;
+  ContactTransition fr;
   fr.stance = p.mode.stance();
-  fr.stance_foothold = in.request.stance;
+  fr.stance_contact = in.request.stance;
   fr.target = in.request.target;
   fr.q0 = p.q0;
   fr.qd0 = p.qd0;
   const FootstepReachability check(
       analyzer, std::make_shared<KinematicFeasibility>(in.model, in.setup.planner.kinematics,
                                                        in.setup.contact));
-  const FootstepResult f = check.check(fr);
+  const FootstepCheckResult f = check.check(fr);
   out["kinematically_feasible"] = f.kinematically_feasible;
   if (!f.kinematically_feasible) {
     out["reachable"] = false;

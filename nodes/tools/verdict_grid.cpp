@@ -81,9 +81,8 @@ const CliTool kTool(
     "verdict_grid", "",
     "The oracle of the reachability verdict: probes a grid of footholds around each state's\n"
     "target with the check and the strict OCP and re-checks every reachable verdict.",
-    {{"--config", "FILE", "config file (robot, contact, the planner's sections)",
-      "config/biped.yaml"},
-     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+    {configOption("config file (robot, contact, the planner's sections)"),
+     urdfOption(),
      {"--requests", "FILE.jsonl", "footstep requests, one JSON per line", ""},
      {"--bench-case", "", "add bench/reach's SS-L -> DS case", ""},
      {"--grid", "N", "N x N footholds per state (1.." + std::to_string(kMaxGrid) + ")", "7"},
@@ -300,8 +299,8 @@ class VerdictGrid {
 /// the reference's config; a reachable verdict's bridge re-checked.
 void VerdictGrid::compareCheck(const Probe& p, const FootstepPlanRequest& request,
                                const FootstepTransition& checked) {
-  const ReachProblem problem = footstepProblem(FootstepTransitionPlanner::checkRequest(checked),
-                                               checked.check.kinematics.q_f, checked.check.qdf);
+  const ReachProblem problem =
+      footstepProblem(checked.transition, checked.check.kinematics.q_f, checked.check.qdf);
   ReachConfig own_config = request.reach ? *request.reach : cfg_.reach;
   ReachConfig ref_config = *g_.reference;
   ref_config.horizon = own_config.horizon;
@@ -410,7 +409,7 @@ std::vector<Probe> gridProbes(std::size_t s, const FootstepPlanRequest& state,
       const double dx = o.grid > 1 ? -o.half + 2.0 * o.half * ix / (o.grid - 1) : 0.0;
       const double dy = o.grid > 1 ? -o.half + 2.0 * o.half * iy / (o.grid - 1) : 0.0;
       Probe p{s, dx, dy, state};
-      p.request.target += Eigen::Vector3d(dx, dy, 0.0);
+      p.request.target.position += Eigen::Vector3d(dx, dy, 0.0);
       probes.push_back(std::move(p));
     }
   }

@@ -80,9 +80,9 @@ inline Recheck recheckPath(const RobotModel& model, const ContactConfig& contact
     return out;
   }
   const double dt = L > 1 ? p.time[1] - p.time[0] : 0.0;
-  const FrameId stance = model.frameId(contact.soleFrame(step.stance));
-  const FrameId swing = model.frameId(contact.soleFrame(opposite(step.stance)));
-  const Eigen::Isometry3d held = step.stance_contact.pose();
+  const FrameId stance = model.frameId(contact.soleFrame(step.transition.stance));
+  const FrameId swing = model.frameId(contact.soleFrame(opposite(step.transition.stance)));
+  const Eigen::Isometry3d held = step.transition.stance_contact.pose();
   const ContactWrenchCone::Matrix C = ContactWrenchCone(contact).worldMatrix(held.linear());
   const Eigen::VectorXd u_max = model.effortLimits(), qd_max = model.velocityLimits();
   const Eigen::VectorXd q_lo = model.positionLowerLimits(), q_hi = model.positionUpperLimits();
@@ -99,8 +99,8 @@ inline Recheck recheckPath(const RobotModel& model, const ContactConfig& contact
     sole = std::max({sole, (X.translation() - held.translation()).norm(), std::abs(rot.angle())});
     model.frameJacobian(ws, stance, J);
     sole_v = std::max(sole_v, (J * qd).cwiseAbs().maxCoeff());
-    depth =
-        std::max(depth, step.target.position.z() - model.framePose(ws, swing).translation().z());
+    depth = std::max(
+        depth, step.transition.target.position.z() - model.framePose(ws, swing).translation().z());
     pos = std::max({pos, (q_lo - q).maxCoeff(), (q - q_hi).maxCoeff()});
     for (int i = 0; i < nq; ++i)
       if (std::isfinite(qd_max[i]) && qd_max[i] > 0)
@@ -132,10 +132,10 @@ inline Recheck recheckPath(const RobotModel& model, const ContactConfig& contact
   out.require("swing sole below the ground [m]", depth, reach.certificate_tolerance);
   out.require("Euler steps [m, rad]", euler, 1e-9);
   out.require("x(0) - x_0",
-              std::max((p.q.col(0) - step.q0).cwiseAbs().maxCoeff(),
-                       (p.qd.col(0) - step.qd0).cwiseAbs().maxCoeff()),
+              std::max((p.q.col(0) - step.transition.q0).cwiseAbs().maxCoeff(),
+                       (p.qd.col(0) - step.transition.qd0).cwiseAbs().maxCoeff()),
               1e-9);
-  out.require("t_f", std::abs(p.time[L - 1] - step.horizon), 1e-9);
+  out.require("t_f", std::abs(p.time[L - 1] - step.transition.horizon), 1e-9);
   out.require("|q(t_f) - q_f|", (p.q.col(L - 1) - step.check.kinematics.q_f).cwiseAbs().maxCoeff(),
               reach.terminal_position_tolerance);
   out.require("|qd(t_f) - qd_f|", (p.qd.col(L - 1) - step.check.qdf).cwiseAbs().maxCoeff(),
@@ -154,7 +154,7 @@ inline Recheck recheckCertificate(const RobotModel& model, const ContactConfig& 
   const double W = model.totalMass() * model.gravity().norm();
   const double tol = cfg.ocp.tolerance * std::max(W, model.effortLimits().maxCoeff());
   return recheckPath(model, contact, reach, tol, step,
-                     fromTrajectory(step.trajectory, step.stance));
+                     fromTrajectory(step.trajectory, step.transition.stance));
 }
 
 }  // namespace verdict

@@ -46,8 +46,8 @@ const CliTool kTool(
     "walk_experiment", "",
     "The walking experiment of the paper's Sec. IV, headless: one line per step, then the WALK\n"
     "summary line and the policy's definition.",
-    {{"--config", "FILE", "the robot and its parameters", "config/biped.yaml"},
-     {"--urdf", "FILE", "URDF to use instead of the config's robot.urdf", ""},
+    {configOption("the robot and its parameters"),
+     urdfOption(),
      {"--policy", "P",
       "walking policy: baseline | unbounded | kinematic | proposed[,part=value...] (default: "
       "the config's walk.policy)",
@@ -128,13 +128,7 @@ std::ofstream openOutput(const CliArgs& args, const std::string& option) {
 /// The strict transition OCP request of a checked, kinematically feasible footstep (x_0 as
 /// used, x_f and qd_f of the check, no hulls, no seed).
 TransitionRequest ocpRequest(const FootstepTransition& step) {
-  TransitionRequest ocp;
-  ocp.stance = step.stance;
-  ocp.stance_pose = step.stance_contact.pose();
-  ocp.swing_target = step.target.pose();
-  ocp.horizon = step.horizon;
-  ocp.q0 = step.q0;
-  ocp.qd0 = step.qd0;
+  TransitionRequest ocp(step.transition);
   ocp.qf = step.check.kinematics.q_f;
   ocp.qdf = step.check.qdf;
   ocp.relaxation = RelaxationMode::kStrict;
@@ -195,7 +189,7 @@ int main(int argc, char** argv) {
         ocp_requests_out << transitionRequestToJson(ocpRequest(step)).dump() << "\n";
       if (!requests_out.is_open()) return;
       nlohmann::json j = footstepPlanRequestJson(step.request);
-      j["reach_horizon"] = step.horizon;  // the walk's check horizon
+      j["reach_horizon"] = step.transition.horizon;  // the walk's check horizon
       requests_out << j.dump() << "\n";
     };
     const WalkResult r = experiment->run({}, printStep, on_check);

@@ -4,6 +4,7 @@
 #include "reach_trajopt/common/config_fields.h"
 
 #include <charconv>
+#include <cmath>
 #include <sstream>
 
 namespace reach_trajopt {
@@ -18,6 +19,36 @@ std::string parameterText(const std::vector<double>& v) {
   std::string out = "[";
   for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + parameterText(v[i]);
   return out + "]";
+}
+
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+}
+
+std::string Range::text() const {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  if (has_lo && has_hi)
+    return "in " + std::string(lo_open ? "(" : "[") + parameterText(lo) + ", " + parameterText(hi) +
+           (hi_open ? ")" : "]");
+  if (has_lo) return (lo_open ? "> " : ">= ") + parameterText(lo);
+  if (has_hi) return (hi_open ? "< " : "<= ") + parameterText(hi);
+  return "finite";
+}
+
+std::string Range::words(bool integer) const {
+  if (!std::isfinite(lo) && !std::isfinite(hi)) return "finite";
+  if (std::isfinite(lo) && std::isfinite(hi)) return text();
+  if (integer) return text();
+  if (lo == 0.0 && lo_open && !std::isfinite(hi)) return "positive and finite";
+  return text() + " and finite";
+}
+
+void throwOutOfRange(const std::string& owner, const std::string& key, const std::string& words,
+                     double v) {
+  std::ostringstream os;
+  os << owner << ": " << key << " must be " << words << ", got " << v;
+  throw ConfigError(os.str());
 }
 
 std::string quotedYaml(const std::string& text) {
@@ -62,10 +93,10 @@ std::string parameterTableMarkdown(const std::vector<ParameterTable>& tables) {
   for (const ParameterTable& t : tables) {
     os << "\n## `" << t.section << ":` (" << t.struct_name << ")\n\n"
        << t.summary << " Documented in `" << t.header << "`.\n\n"
-       << "| key | type | value | unit | meaning |\n|---|---|---|---|---|\n";
+       << "| key | type | value | unit | range | meaning |\n|---|---|---|---|---|---|\n";
     for (const ParameterRow& r : t.rows)
       os << "| `" << r.key << "` | " << cell(r.type) << " | " << cell(r.value) << " | "
-         << cell(r.unit) << " | " << cell(r.description) << " |\n";
+         << cell(r.unit) << " | " << cell(r.range) << " | " << cell(r.description) << " |\n";
     if (!t.removed.empty()) {
       os << "\nRemoved keys (a file that still has one is an error):\n\n";
       for (const auto& r : t.removed) os << "- `" << r.first << "`: " << r.second << "\n";

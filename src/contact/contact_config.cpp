@@ -8,16 +8,8 @@
 
 namespace reach_trajopt {
 
-namespace {
-void requirePositive(const char* name, double v) {
-  requirePositiveFinite("ContactConfig", name, v);
-}
-}  // namespace
-
 void ContactConfig::validate() const {
-  requirePositive("mu", mu);
-  requirePositive("half_length", half_length);
-  requirePositive("half_width", half_width);
+  fields().checkRanges(*this);
   if (left_sole_frame.empty() || right_sole_frame.empty()) {
     throw ConfigError("ContactConfig: sole frame names must not be empty");
   }
@@ -33,9 +25,11 @@ const ConfigFields<ContactConfig>& ContactConfig::fields() {
       ConfigFields<C>("ContactConfig", "contact", "include/reach_trajopt/contact/contact_config.h",
                       "Contact wrench cone (eq. 7-8) and the sole frames of the contact "
                       "constraints (eq. 5); the only place the sole frames are named.")
-          .add("mu", &C::mu, "", "friction coefficient, > 0")
-          .add("half_length", &C::half_length, "m", "X: sole half-length along its x axis, > 0")
-          .add("half_width", &C::half_width, "m", "Y: sole half-width along its y axis, > 0")
+          .add("mu", &C::mu, "", Range::positive(), "friction coefficient")
+          .add("half_length", &C::half_length, "m", Range::positive(),
+               "X: sole half-length along its x axis")
+          .add("half_width", &C::half_width, "m", Range::positive(),
+               "Y: sole half-width along its y axis")
           .add("left_sole_frame", &C::left_sole_frame, "",
                "frame at the left sole centre, z out of the sole")
           .add("right_sole_frame", &C::right_sole_frame, "",

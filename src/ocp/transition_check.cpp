@@ -35,10 +35,10 @@ class SampleCheck {
         traj_(traj),
         f_stance_(model.frameId(contact.soleFrame(request.stance))),
         f_swing_(model.frameId(contact.soleFrame(opposite(request.stance)))),
-        c_stance_(f_stance_, request.stance_pose),
+        c_stance_(f_stance_, request.heldPose()),
         c_new_(f_swing_, newContact(request, traj)),
-        C_s_(ContactWrenchCone(contact).worldMatrix(request.stance_pose.linear())),
-        C_n_(ContactWrenchCone(contact).worldMatrix(request.swing_target.linear())),
+        C_s_(ContactWrenchCone(contact).worldMatrix(request.heldPose().linear())),
+        C_n_(ContactWrenchCone(contact).worldMatrix(request.targetPose().linear())),
         W_(model.totalMass() * model.gravity().norm()),
         u_max_(model.effortLimits()),
         qd_max_(model.velocityLimits()),
@@ -126,7 +126,7 @@ class SampleCheck {
  private:
   static Eigen::Isometry3d newContact(const TransitionRequest& request,
                                       const TransitionResult& traj) {
-    Eigen::Isometry3d target = request.swing_target;
+    Eigen::Isometry3d target = request.targetPose();
     if (traj.relaxed) target.translation().head<2>() += traj.eps;
     return target;
   }

@@ -23,18 +23,18 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
       basis_(request.horizon, config.segments),
       pelvis_posture_(relaxed && config.terminal_pelvis_height > 0.0),
       pelvis_height_target_(
-          0.5 * (request.stance_pose.translation().z() + request.swing_target.translation().z()) +
+          0.5 * (request.heldPose().translation().z() + request.targetPose().translation().z()) +
           (std::isnan(request.terminal_pelvis_height) ? config.terminal_pelvis_height
                                                       : request.terminal_pelvis_height)) {
   const RobotModel& m = *model_;
   const Side swing = opposite(request.stance);
   dyn_ = std::make_unique<StanceReducedDynamics>(
-      model_, m.frameId(contact.soleFrame(request.stance)), request.stance_pose,
-      m.frameId(contact.soleFrame(swing)), request.swing_target, request.q0[3]);
+      model_, m.frameId(contact.soleFrame(request.stance)), request.heldPose(),
+      m.frameId(contact.soleFrame(swing)), request.targetPose(), request.q0[3]);
   scratch_ = std::make_unique<StanceReducedDynamics::Scratch>(*dyn_);
   const ContactWrenchCone cone(contact);
-  C_stance_ = cone.worldMatrix(request.stance_pose.linear());
-  C_new_ = cone.worldMatrix(request.swing_target.linear());
+  C_stance_ = cone.worldMatrix(request.heldPose().linear());
+  C_new_ = cone.worldMatrix(request.targetPose().linear());
   weight_ = m.totalMass() * m.gravity().norm();
   u_max_inv_ = m.effortLimits().cwiseInverse();
 
@@ -43,7 +43,7 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   Eigen::VectorXd q_start(nq_);
   dyn_->configuration(*scratch_, request.q0.tail(nu_), q_start);
   ground_clearance_ = config.ground_clearance;
-  ground_floor_ = std::min(request.swing_target.translation().z(), scratch_->swing_position.z());
+  ground_floor_ = std::min(request.targetPose().translation().z(), scratch_->swing_position.z());
 
   prepareSlices();
   rebuildSamples();

@@ -316,8 +316,8 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
   }
   // Poses: finite, proper rotations (ContactConstraint checks both).
   try {
-    ContactConstraint(0, r.stance_pose);
-    ContactConstraint(0, r.swing_target);
+    ContactConstraint(0, r.heldPose());
+    ContactConstraint(0, r.targetPose());
   } catch (const ReachError& e) {
     throw RequestError(std::string("TransitionOcp: stance_pose / swing_target: ") + e.what());
   }
@@ -326,7 +326,7 @@ void TransitionOcp::validate(const TransitionRequest& r) const {
   // x_0 on its stance contact.
   Workspace ws(m);
   m.update(ws, r.q0, r.qd0);
-  const ContactConstraint stance(m, contact_.soleFrame(r.stance), r.stance_pose);
+  const ContactConstraint stance(m, contact_.soleFrame(r.stance), r.heldPose());
   ContactConstraintTerms terms(nq);
   stance.evaluate(m, ws, terms);
   const double off = std::max(terms.phi.cwiseAbs().maxCoeff(), terms.phidot.cwiseAbs().maxCoeff());
@@ -351,7 +351,7 @@ bool TransitionOcp::finalStateOnContacts(const TransitionRequest& r) const {
   double off = 0.0;
   for (int k = 0; k < 2; ++k) {
     const Side s = k == 0 ? r.stance : opposite(r.stance);
-    const ContactConstraint c(m, contact_.soleFrame(s), k == 0 ? r.stance_pose : r.swing_target);
+    const ContactConstraint c(m, contact_.soleFrame(s), k == 0 ? r.heldPose() : r.targetPose());
     c.evaluate(m, ws, terms);
     off = std::max({off, terms.phi.cwiseAbs().maxCoeff(), terms.phidot.cwiseAbs().maxCoeff()});
   }

@@ -18,10 +18,8 @@ TransitionRequestJson readTransitionRequest(const JsonReader& r, int nq) {
   TransitionRequestJson out;
   TransitionRequest& q = out.request;
   q.stance = r.at("stance").choice({"left", "right"}) == "left" ? Side::kLeft : Side::kRight;
-  out.stance = readFoothold(r.at("stance_pose"));
-  out.target = readFoothold(r.at("swing_target"));
-  q.stance_pose = out.stance.pose();
-  q.swing_target = out.target.pose();
+  q.stance_contact = readFoothold(r.at("stance_pose"));
+  q.target = readFoothold(r.at("swing_target"));
   const JsonReader h = r.at("horizon");
   q.horizon = h.number();
   if (!(q.horizon > 0.0) || q.horizon > kMaxTransitionHorizon) {
@@ -89,8 +87,8 @@ std::vector<double> values(const Eigen::VectorXd& v) {
 nlohmann::json transitionRequestToJson(const TransitionRequest& r) {
   nlohmann::json j;
   j["stance"] = r.stance == Side::kLeft ? "left" : "right";
-  j["stance_pose"] = flatPose(r.stance_pose);
-  j["swing_target"] = flatPose(r.swing_target);
+  j["stance_pose"] = flatPose(r.heldPose());
+  j["swing_target"] = flatPose(r.targetPose());
   j["horizon"] = r.horizon;
   j["q0"] = values(r.q0);
   j["qd0"] = values(r.qd0);

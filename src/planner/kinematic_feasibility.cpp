@@ -18,10 +18,6 @@ namespace {
 constexpr int kTaskRows = 18;  // left sole 6, right sole 6, pelvis position 3 (x, y zeroed when
                                // free), pelvis rotation 3
 
-void requirePositive(const char* name, double v) {
-  requirePositiveFinite("KinematicFeasibilityConfig", name, v);
-}
-
 /// True when two rectangles (centre, heading, half extents hx, hy) intersect: separating axis
 /// test over the four edge normals.
 bool rectanglesOverlap(const Eigen::Vector2d& c1, double yaw1, const Eigen::Vector2d& c2,
@@ -52,24 +48,7 @@ std::string fmt(double v) {
 
 void KinematicFeasibilityConfig::validate() const {
   if (pelvis_frame.empty()) throw ConfigError("KinematicFeasibilityConfig: empty pelvis_frame");
-  requirePositive("pelvis_height", pelvis_height);
-  requirePositive("position_tolerance", position_tolerance);
-  requirePositive("orientation_tolerance", orientation_tolerance);
-  requirePositive("damping", damping);
-  requirePositive("max_joint_step", max_joint_step);
-  requirePositive("workspace_radius", workspace_radius);
-  requirePositive("workspace_height", workspace_height);
-  if (max_iterations < 1) {
-    throw ConfigError("KinematicFeasibilityConfig: max_iterations must be >= 1, got " +
-                      std::to_string(max_iterations));
-  }
-  if (!std::isfinite(sole_clearance) || sole_clearance < 0.0) {
-    throw ConfigError("KinematicFeasibilityConfig: sole_clearance must be >= 0, got " +
-                      fmt(sole_clearance));
-  }
-  if (!std::isfinite(min_lateral_offset)) {
-    throw ConfigError("KinematicFeasibilityConfig: min_lateral_offset must be finite");
-  }
+  fields().checkRanges(*this);
 }
 
 const ConfigFields<KinematicFeasibilityConfig>& KinematicFeasibilityConfig::fields() {
@@ -80,37 +59,31 @@ const ConfigFields<KinematicFeasibilityConfig>& KinematicFeasibilityConfig::fiel
                       "Kinematic feasibility of the next contact (Sec. III-B): joint-limited IK, "
                       "both soles flat; the sole frames and sizes are those of `contact:`.")
           .add("pelvis_frame", &C::pelvis_frame, "", "frame held upright at the nominal height")
-          .add("pelvis_height", &C::pelvis_height, "m",
-               "pelvis origin above the mean sole height, > 0; also the relaxed OCP's landing "
+          .add("pelvis_height", &C::pelvis_height, "m", Range::positive(),
+               "pelvis origin above the mean sole height; also the relaxed OCP's landing "
                "height (ocp.terminal_pelvis_height)")
-          .add("position_tolerance", &C::position_tolerance, "m",
-               "max sole / pelvis height error accepted, > 0")
-          .add("orientation_tolerance", &C::orientation_tolerance, "rad",
-               "max orientation error accepted, > 0")
-          .add("max_iterations", &C::max_iterations, "",
-               "Newton iterations, >= 1 (a few more per decade of tolerance)")
-          .add("damping", &C::damping, "m^2", "DLS damping lambda^2 floor, > 0")
-          .add("max_joint_step", &C::max_joint_step, "rad or m", "largest update per iteration")
-          .add("sole_clearance", &C::sole_clearance, "m",
-               "minimal gap between the two sole rectangles, >= 0")
-          .add("min_lateral_offset", &C::min_lateral_offset, "m",
+          .add("position_tolerance", &C::position_tolerance, "m", Range::positive(),
+               "max sole / pelvis height error accepted")
+          .add("orientation_tolerance", &C::orientation_tolerance, "rad", Range::positive(),
+               "max orientation error accepted")
+          .add("max_iterations", &C::max_iterations, "", Range::atLeast(1),
+               "Newton iterations (a few more per decade of tolerance)")
+          .add("damping", &C::damping, "m^2", Range::positive(), "DLS damping lambda^2 floor")
+          .add("max_joint_step", &C::max_joint_step, "rad or m", Range::positive(),
+               "largest update per iteration")
+          .add("sole_clearance", &C::sole_clearance, "m", Range::nonNegative(),
+               "minimal gap between the two sole rectangles")
+          .add("min_lateral_offset", &C::min_lateral_offset, "m", Range(),
                "swing sole centre towards its own side of the stance sole centre, at least this")
-          .add("workspace_radius", &C::workspace_radius, "m",
+          .add("workspace_radius", &C::workspace_radius, "m", Range::positive(),
                "soles farther apart horizontally: an error, not a step")
-          .add("workspace_height", &C::workspace_height, "m",
+          .add("workspace_height", &C::workspace_height, "m", Range::positive(),
                "same for the sole height difference");
   return f;
 }
 
 KinematicFeasibilityConfig KinematicFeasibilityConfig::fromYaml(const YamlSection& s) {
   return fields().read(s);
-}
-
-Eigen::Isometry3d FlatContact::pose() const {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  T.translation() = position;
-  return T;
 }
 
 namespace {

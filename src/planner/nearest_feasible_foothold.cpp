@@ -10,17 +10,7 @@
 
 namespace reach_trajopt {
 
-void NearestFootholdConfig::validate() const {
-  if (!(ring_step > 0.0) || !std::isfinite(ring_step))
-    throw ConfigError("NearestFootholdConfig: ring_step must be > 0 m, got " +
-                      std::to_string(ring_step));
-  if (rings < 1 || rings > 1000)
-    throw ConfigError("NearestFootholdConfig: rings must be in [1, 1000], got " +
-                      std::to_string(rings));
-  if (directions < 1 || directions > 360)
-    throw ConfigError("NearestFootholdConfig: directions must be in [1, 360], got " +
-                      std::to_string(directions));
-}
+void NearestFootholdConfig::validate() const { fields().checkRanges(*this); }
 
 const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
   using C = NearestFootholdConfig;
@@ -29,9 +19,10 @@ const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
                       "include/reach_trajopt/planner/nearest_feasible_foothold.h",
                       "Ring search for the closest kinematically feasible foothold when the TVR "
                       "one fails the kinematic check (not in config/biped.yaml: the defaults).")
-          .add("ring_step", &C::ring_step, "m", "radius increment between rings, > 0")
-          .add("rings", &C::rings, "", "rings searched, in [1, 1000]")
-          .add("directions", &C::directions, "", "points per ring, in [1, 360], first along +x");
+          .add("ring_step", &C::ring_step, "m", Range::positive(), "radius increment between rings")
+          .add("rings", &C::rings, "", Range::between(1, 1000), "rings searched")
+          .add("directions", &C::directions, "", Range::between(1, 360),
+               "points per ring, first along +x");
   return f;
 }
 
@@ -54,7 +45,7 @@ std::vector<CandidateOutcome> checkFootholdCandidates(const KinematicFeasibility
   for (const FlatContact& p : batch.candidates) {
     CandidateOutcome o;
     try {
-      o.kinematics = kinematics.check(batch.stance, batch.stance_foothold, p, batch.q_init,
+      o.kinematics = kinematics.check(batch.stance, batch.stance_contact, p, batch.q_init,
                                       batch.pelvis_position);
     } catch (const ReachError& e) {
       o.error = e.what();
@@ -81,10 +72,10 @@ std::vector<FlatContact> NearestFeasibleFoothold::ringCandidates(const FlatConta
 }
 
 std::optional<NearestFoothold> NearestFeasibleFoothold::find(
-    Side stance, const FlatContact& stance_foothold, const FlatContact& target,
+    Side stance, const FlatContact& stance_contact, const FlatContact& target,
     const Eigen::VectorXd& q_init, const std::optional<Eigen::Vector3d>& pelvis_position,
     const CandidateCheck& check) const {
-  FootholdCandidates batch{stance, stance_foothold, {}, q_init, pelvis_position};
+  FootholdCandidates batch{stance, stance_contact, {}, q_init, pelvis_position};
   for (int ring = 1; ring <= config_.rings; ++ring) {
     batch.candidates = ringCandidates(target, ring);
     std::vector<CandidateOutcome> outcomes =

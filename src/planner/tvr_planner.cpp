@@ -20,15 +20,6 @@ void requireFiniteValue(const char* name, double v) {
   }
 }
 
-void requirePositiveValue(const char* name, double v) {
-  requireFiniteValue(name, v);
-  if (v <= 0.0) {
-    std::ostringstream os;
-    os << "TvrConfig: " << name << " must be positive, got " << v;
-    throw ConfigError(os.str());
-  }
-}
-
 void requireInterval(const char* name, double lo, double hi) {
   requireFiniteValue(name, lo);
   requireFiniteValue(name, hi);
@@ -42,24 +33,10 @@ void requireInterval(const char* name, double lo, double hi) {
 }  // namespace
 
 void TvrConfig::validate() const {
-  requirePositiveValue("com_height", com_height);
-  requirePositiveValue("gravity", gravity);
-  requirePositiveValue("t_s", t_s);
-  requireFiniteValue("kappa_x", kappa_x);
-  requireFiniteValue("kappa_y", kappa_y);
+  fields().checkRanges(*this);
   requireInterval("foot_offset_x", foot_offset_x_min, foot_offset_x_max);
   requireInterval("foot_offset_y", foot_offset_y_min, foot_offset_y_max);
   requireInterval("com_speed", com_speed_min, com_speed_max);
-  if (foot_offset_y_min < 0.0) {
-    throw ConfigError(
-        "TvrConfig: foot_offset_y_min is a distance towards the swing side, "
-        "must be >= 0, got " +
-        std::to_string(foot_offset_y_min));
-  }
-  if (com_speed_min < 0.0) {
-    throw ConfigError("TvrConfig: com_speed_min must be >= 0, got " +
-                      std::to_string(com_speed_min));
-  }
 }
 
 const ConfigFields<TvrConfig>& TvrConfig::fields() {
@@ -68,22 +45,22 @@ const ConfigFields<TvrConfig>& TvrConfig::fields() {
       ConfigFields<C>("TvrConfig", "planner", "include/reach_trajopt/planner/tvr_planner.h",
                       "TVR footstep planner (eq. 9-12), values of Sec. IV-A; sign convention of "
                       "docs/method.md Sec. 3.")
-          .add("com_height", &C::com_height, "m",
-               "h of the LIPM, > 0 (the walk uses the standing CoM height)")
-          .add("gravity", &C::gravity, "m/s^2", "g, > 0")
-          .add("t_s", &C::t_s, "s", "time to velocity reversal, > 0")
-          .add("kappa_x", &C::kappa_x, "",
+          .add("com_height", &C::com_height, "m", Range::positive(),
+               "h of the LIPM (the walk uses the standing CoM height)")
+          .add("gravity", &C::gravity, "m/s^2", Range::positive(), "g")
+          .add("t_s", &C::t_s, "s", Range::positive(), "time to velocity reversal")
+          .add("kappa_x", &C::kappa_x, "", Range(),
                "sagittal bias (< 0 stabilizes); the authors' code value: with the paper's -0.66 "
                "our robot walks in place but not forward")
-          .add("kappa_y", &C::kappa_y, "", "lateral bias (the paper's)")
+          .add("kappa_y", &C::kappa_y, "", Range(), "lateral bias (the paper's)")
           .add("foot_offset_x_min", &C::foot_offset_x_min, "m",
                "heuristic bound: next sole x offset from the stance sole, in its heading")
           .add("foot_offset_x_max", &C::foot_offset_x_max, "m", ">= foot_offset_x_min")
-          .add("foot_offset_y_min", &C::foot_offset_y_min, "m",
-               "heuristic bound: |y| offset towards the swing side, >= 0")
+          .add("foot_offset_y_min", &C::foot_offset_y_min, "m", Range::nonNegative(),
+               "heuristic bound: |y| offset towards the swing side (a distance)")
           .add("foot_offset_y_max", &C::foot_offset_y_max, "m", ">= foot_offset_y_min")
-          .add("com_speed_min", &C::com_speed_min, "m/s",
-               "heuristic bound on the horizontal CoM speed the planner uses, >= 0")
+          .add("com_speed_min", &C::com_speed_min, "m/s", Range::nonNegative(),
+               "heuristic bound on the horizontal CoM speed the planner uses")
           .add("com_speed_max", &C::com_speed_max, "m/s", ">= com_speed_min")
           .removed("step_duration",
                    "removed: it had no effect on the gait; the step period is "

@@ -14,14 +14,14 @@ FootstepReachability::FootstepReachability(std::shared_ptr<const ReachabilityAna
   if (!analyzer_ || !kinematics_) throw ReachError("FootstepReachability: null component");
 }
 
-FootstepResult FootstepReachability::check(const FootstepRequest& request) const {
+FootstepCheckResult FootstepReachability::check(const ContactTransition& request) const {
   return check(request, analyzer_->config());
 }
 
-FootstepResult FootstepReachability::kinematicStage(const FootstepRequest& r) const {
-  FootstepResult out;
+FootstepCheckResult FootstepReachability::kinematicStage(const ContactTransition& r) const {
+  FootstepCheckResult out;
   out.kinematics =
-      kinematics_->check(r.stance, r.stance_foothold, r.target, r.q0, r.touchdown_pelvis_position);
+      kinematics_->check(r.stance, r.stance_contact, r.target, r.q0, r.touchdown.pelvis_position);
   out.kinematically_feasible = out.kinematics.feasible;
   if (!out.kinematics.feasible) {
     out.reason =
@@ -33,17 +33,17 @@ FootstepResult FootstepReachability::kinematicStage(const FootstepRequest& r) co
   return out;
 }
 
-Eigen::VectorXd FootstepReachability::touchdownVelocity(const FootstepRequest& r,
+Eigen::VectorXd FootstepReachability::touchdownVelocity(const ContactTransition& r,
                                                         const Eigen::VectorXd& qf) const {
   if (r.qdf.size()) return r.qdf;
   const RobotModel& m = analyzer_->model();
   const ContactConfig& c = analyzer_->contactConfig();
   return doubleSupportVelocity(
       m, qf, m.frameId(c.left_sole_frame), m.frameId(c.right_sole_frame),
-      Eigen::Vector3d(r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y(), 0.0));
+      Eigen::Vector3d(r.touchdown.com_velocity.x(), r.touchdown.com_velocity.y(), 0.0));
 }
 
-ReachProblem footstepProblem(const FootstepRequest& r, const Eigen::VectorXd& q_f,
+ReachProblem footstepProblem(const ContactTransition& r, const Eigen::VectorXd& q_f,
                              const Eigen::VectorXd& qd_f) {
   ReachProblem p;
   p.mode = ContactMode::singleSupport(r.stance);
@@ -51,14 +51,15 @@ ReachProblem footstepProblem(const FootstepRequest& r, const Eigen::VectorXd& q_
   p.qd0 = r.qd0;
   p.qf = q_f;
   p.qdf = qd_f;
-  p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_foothold.pose();
+  p.footholds[r.stance == Side::kLeft ? 0 : 1] = r.stance_contact.pose();
   p.target = r.target.pose();
   return p;
 }
 
-FootstepResult FootstepReachability::check(const FootstepRequest& r, const ReachConfig& config,
-                                           const ReachProgressCallback& progress) const {
-  FootstepResult out = kinematicStage(r);
+FootstepCheckResult FootstepReachability::check(const ContactTransition& r,
+                                                const ReachConfig& config,
+                                                const ReachProgressCallback& progress) const {
+  FootstepCheckResult out = kinematicStage(r);
   if (!out.kinematically_feasible) return out;
   out.reach = analyzer_->check(footstepProblem(r, out.kinematics.q_f, out.qdf), config, progress);
   out.reachable = out.reach.reachable;
@@ -66,10 +67,11 @@ FootstepResult FootstepReachability::check(const FootstepRequest& r, const Reach
   return out;
 }
 
-FootstepResult FootstepReachability::checkPass(const FootstepRequest& r, const ReachConfig& config,
-                                               const CheckPass& pass,
-                                               const ReachProgressCallback& progress) const {
-  FootstepResult out = kinematicStage(r);
+FootstepCheckResult FootstepReachability::checkPass(const ContactTransition& r,
+                                                    const ReachConfig& config,
+                                                    const CheckPass& pass,
+                                                    const ReachProgressCallback& progress) const {
+  FootstepCheckResult out = kinematicStage(r);
   if (!out.kinematically_feasible) return out;
   out.reach =
       analyzer_->checkPass(footstepProblem(r, out.kinematics.q_f, out.qdf), config, pass, progress);

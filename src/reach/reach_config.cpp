@@ -19,22 +19,6 @@ namespace {
   throw ConfigError("ReachConfig: " + field + " " + why);
 }
 
-void requirePositive(const char* field, double v) {
-  if (!std::isfinite(v) || v <= 0.0) {
-    std::ostringstream os;
-    os << "must be positive and finite, got " << v;
-    bad(field, os.str());
-  }
-}
-
-void requireNonNegative(const char* field, double v) {
-  if (!std::isfinite(v) || v < 0.0) {
-    std::ostringstream os;
-    os << "must be >= 0 and finite, got " << v;
-    bad(field, os.str());
-  }
-}
-
 void requireAtMost(const char* field, long long v, long long limit) {
   if (v > limit)
     bad(field,
@@ -47,10 +31,7 @@ bool onGrid(double t, double dt) { return std::abs(t / dt - std::round(t / dt)) 
 }  // namespace
 
 void ReachConfig::validate() const {
-  requirePositive("dt", dt);
-  requirePositive("horizon", horizon);
-  requireNonNegative("window_start", window_start);
-  requireNonNegative("window_end", window_end);
+  fields().checkRanges(*this);
   if (window_start > window_end + 1e-12 || window_end > horizon + 1e-12) {
     std::ostringstream os;
     os << "needs 0 <= window_start <= window_end <= horizon (the overlap window [t_2, t_1] "
@@ -70,18 +51,11 @@ void ReachConfig::validate() const {
   budgets.full.validate("budgets.full");
   if (quick_pass) budgets.quick.validate("budgets.quick");
   budgets.hullBudget().validate("budgets.hull");
-  if (angular_bins < 0) bad("angular_bins", "must be >= 0");
   requireAtMost("angular_bins", angular_bins, L::kMaxAngularBins);
   if (boundary_lookahead.empty()) bad("boundary_lookahead", "must hold at least one value");
   requireAtMost("boundary_lookahead (entries)", static_cast<long long>(boundary_lookahead.size()),
                 L::kMaxLookahead);
-  for (double tau : boundary_lookahead) requireNonNegative("boundary_lookahead", tau);
-  if (!(vertex_fraction >= 0.0 && vertex_fraction <= 1.0))
-    bad("vertex_fraction", "must be in [0, 1]");
-  if (redraw_rounds < 0) bad("redraw_rounds", "must be >= 0");
   requireAtMost("redraw_rounds", redraw_rounds, L::kMaxRedrawRounds);
-  if (!(redraw_below >= 0.0 && redraw_below <= 1.0)) bad("redraw_below", "must be in [0, 1]");
-  if (threads < 0) bad("threads", "must be >= 0");
   // Each thread owns a workspace; more threads than the machine has cannot run faster.
   if (threads > hardwareThreads())
     bad("threads", "must be <= the " + std::to_string(hardwareThreads()) +
@@ -90,20 +64,6 @@ void ReachConfig::validate() const {
   if (forward_integrator != "semi_implicit" && forward_integrator != "explicit")
     bad("forward_integrator",
         "must be 'semi_implicit' or 'explicit', got '" + forward_integrator + "'");
-  requirePositive("w_qdd", w_qdd);
-  requirePositive("w_du", w_du);
-  requirePositive("w_lambda", w_lambda);
-  if (!(contact_stabilization >= 0.0 && contact_stabilization <= 1.0))
-    bad("contact_stabilization", "must be in [0, 1]");
-  requirePositive("backward_joint_accel", backward_joint_accel);
-  requirePositive("backward_base_accel", backward_base_accel);
-  requireNonNegative("delta", delta);
-  requireNonNegative("overlap_gap_max", overlap_gap_max);
-  requirePositive("certificate_tolerance", certificate_tolerance);
-  requirePositive("certificate_contact_velocity_tolerance", certificate_contact_velocity_tolerance);
-  requirePositive("terminal_position_tolerance", terminal_position_tolerance);
-  requirePositive("terminal_velocity_tolerance", terminal_velocity_tolerance);
-  requireNonNegative("quick_retry_constraint_margin", quick_retry_constraint_margin);
   if (output_axes.empty() || output_axes.size() > 3) bad("output_axes", "must hold 1-3 axes");
   for (std::size_t i = 0; i < output_axes.size(); ++i) {
     const char c = output_axes[i];
@@ -112,9 +72,6 @@ void ReachConfig::validate() const {
   }
   if (std::isnan(swing_ground_margin) || swing_ground_margin == HUGE_VAL)
     bad("swing_ground_margin", "must be a number (-inf disables)");
-  requirePositive("contact_tolerance", contact_tolerance);
-  requirePositive("contact_velocity_tolerance", contact_velocity_tolerance);
-  requireNonNegative("limit_tolerance", limit_tolerance);
   if (!(give_up_gap >= 0.0)) bad("give_up_gap", "must be >= 0 (0: never give up)");
 }
 
@@ -203,57 +160,63 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
       ConfigFields<C>("ReachConfig", "reach", "include/reach_trajopt/reach/reach_config.h",
                       "The reachability check (eq. 13-21) and its certificate (docs/method.md "
                       "Sec. 4); the walk replaces `horizon` by walk.check_horizon.")
-          .add("dt", &C::dt, "s", "time step of (16) and (20), > 0 (paper: 1 ms)")
-          .add("horizon", &C::horizon, "s", "t_f - t_0, a multiple of dt")
-          .add("window_start", &C::window_start, "s", "t_2: the backward set reaches back to here")
-          .add("window_end", &C::window_end, "s",
+          .add("dt", &C::dt, "s", Range::positive(), "time step of (16) and (20) (paper: 1 ms)")
+          .add("horizon", &C::horizon, "s", Range::positive(), "t_f - t_0, a multiple of dt")
+          .add("window_start", &C::window_start, "s", Range::nonNegative(),
+               "t_2: the backward set reaches back to here")
+          .add("window_end", &C::window_end, "s", Range::nonNegative(),
                "t_1: the forward set reaches up to here; window_start <= window_end <= horizon")
           .nested("budgets", &C::budgets, ReachBudgets::fields())
-          .add("angular_bins", &C::angular_bins, "", "bins per output plane (keeps concave parts)")
-          .add("boundary_lookahead", &C::boundary_lookahead, "s",
-               "tau of y + tau ydot in the boundary rule, each >= 0")
-          .add("vertex_fraction", &C::vertex_fraction, "",
-               "share of bang-bang draws (antithetic pairs), in [0, 1]")
-          .add("redraw_rounds", &C::redraw_rounds, "",
+          .add("angular_bins", &C::angular_bins, "", Range::nonNegative(),
+               "bins per output plane (keeps concave parts)")
+          .add("boundary_lookahead", &C::boundary_lookahead, "s", Range::nonNegative(),
+               "tau of y + tau ydot in the boundary rule (each)")
+          .add("vertex_fraction", &C::vertex_fraction, "", Range::between(0, 1),
+               "share of bang-bang draws (antithetic pairs)")
+          .add("redraw_rounds", &C::redraw_rounds, "", Range::nonNegative(),
                "extra rounds of draws at a step whose slice came out thin (0: fixed draws)")
-          .add("redraw_below", &C::redraw_below, "",
-               "share of max_boundary + interior_samples under which a slice is thin, [0, 1]")
+          .add("redraw_below", &C::redraw_below, "", Range::between(0, 1),
+               "share of max_boundary + interior_samples under which a slice is thin")
           .add("seed", &C::seed, "", "random stream (same results for any thread count)")
-          .add("threads", &C::threads, "", "OpenMP threads, 0: OpenMP's default")
+          .add("threads", &C::threads, "", Range::nonNegative(),
+               "OpenMP threads, 0: OpenMP's default")
           .add("forward_integrator", &C::forward_integrator, "",
                "semi_implicit (the inverse of (20)) or explicit (eq. 16 as printed)")
-          .add("w_qdd", &C::w_qdd, "1/(rad/s^2)^2", "W_qdd of the forward QP (15), > 0")
-          .add("w_du", &C::w_du, "1/(N m)^2", "W_u of (15), > 0")
-          .add("w_lambda", &C::w_lambda, "1/N^2", "W_lambda of (15), > 0")
-          .add("contact_stabilization", &C::contact_stabilization, "",
-               "beta in [0, 1] of the drift stabilization (0: eq. 5 as printed)")
-          .add("backward_joint_accel", &C::backward_joint_accel, "rad/s^2",
+          .add("w_qdd", &C::w_qdd, "1/(rad/s^2)^2", Range::positive(),
+               "W_qdd of the forward QP (15)")
+          .add("w_du", &C::w_du, "1/(N m)^2", Range::positive(), "W_u of (15)")
+          .add("w_lambda", &C::w_lambda, "1/N^2", Range::positive(), "W_lambda of (15)")
+          .add("contact_stabilization", &C::contact_stabilization, "", Range::between(0, 1),
+               "beta of the drift stabilization (0: eq. 5 as printed)")
+          .add("backward_joint_accel", &C::backward_joint_accel, "rad/s^2", Range::positive(),
                "a_max of the backward draws (17), actuated joints")
           .add("backward_base_accel", &C::backward_base_accel, "m/s^2 or rad/s^2",
-               "same for the floating-base coordinates")
+               Range::positive(), "same for the floating-base coordinates")
           .add("backward_prefilter", &C::backward_prefilter, "",
                "reject single-support backward draws that the linearized (19) rejects by far, "
                "before their dynamics (same children)")
-          .add("delta", &C::delta, "m", "Prop. 2 threshold (paper 1e-5), reported only")
-          .add("overlap_gap_max", &C::overlap_gap_max, "m",
+          .add("delta", &C::delta, "m", Range::nonNegative(),
+               "Prop. 2 threshold (paper 1e-5), reported only")
+          .add("overlap_gap_max", &C::overlap_gap_max, "m", Range::nonNegative(),
                "output sets meet when a pair is closer than min(K, this); reported only")
           .add("certificate_tolerance", &C::certificate_tolerance, "N, N m, m, rad",
+               Range::positive(),
                "largest violation on a certified path of eq. (1), (8), the limits, the ground")
           .add("certificate_contact_velocity_tolerance", &C::certificate_contact_velocity_tolerance,
-               "m/s, rad/s", "|J qd| of the held soles on a certified path")
+               "m/s, rad/s", Range::positive(), "|J qd| of the held soles on a certified path")
           .add("terminal_position_tolerance", &C::terminal_position_tolerance, "m, rad",
-               "|q(t_f) - q_f| of a certified path")
+               Range::positive(), "|q(t_f) - q_f| of a certified path")
           .add("terminal_velocity_tolerance", &C::terminal_velocity_tolerance, "m/s, rad/s",
-               "|qd(t_f) - qd_f| of a certified path")
+               Range::positive(), "|qd(t_f) - qd_f| of a certified path")
           .add("output_frame", &C::output_frame, "", "frame of y; empty: the swing sole")
           .add("output_axes", &C::output_axes, "", "world axes of the frame origin in y")
           .add("swing_ground_margin", &C::swing_ground_margin, "m",
                "the swing sole may not go below the target foothold minus this")
-          .add("contact_tolerance", &C::contact_tolerance, "m, rad",
+          .add("contact_tolerance", &C::contact_tolerance, "m, rad", Range::positive(),
                "|phi| allowed at x_0, x_f and along a certified path")
           .add("contact_velocity_tolerance", &C::contact_velocity_tolerance, "m/s, rad/s",
-               "|J qd| allowed at x_0 and x_f")
-          .add("limit_tolerance", &C::limit_tolerance, "",
+               Range::positive(), "|J qd| allowed at x_0 and x_f")
+          .add("limit_tolerance", &C::limit_tolerance, "", Range::nonNegative(),
                "slack on the position / velocity / torque limits")
           .add("quick_pass", &C::quick_pass, "",
                "budgets.quick first, budgets.full only when it does not end the step (the step "
@@ -262,6 +225,7 @@ const ConfigFields<ReachConfig>& ReachConfig::fields() {
                "a check on its own stops after an uncertified quick budget whose closest "
                "attempt ends farther than this from x_f (0: never)")
           .add("quick_retry_constraint_margin", &C::quick_retry_constraint_margin, "m",
+               Range::nonNegative(),
                "when the quick pass's strict OCP fails, solve it again in its hulls grown to "
                "this margin before the hull pass (0: no retry)")
           .add("hull_pass", &C::hull_pass, "",

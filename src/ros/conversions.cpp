@@ -7,12 +7,20 @@
 namespace reach_trajopt {
 namespace ros_bridge {
 
-geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p) {
-  geometry_msgs::Point m;
-  m.x = p.x();
-  m.y = p.y();
-  m.z = p.z();
+namespace {
+/// A geometry_msgs message with fields x, y, z (Point, Vector3) from `v`.
+template <class Msg>
+Msg xyzMsg(const Eigen::Vector3d& v) {
+  Msg m;
+  m.x = v.x();
+  m.y = v.y();
+  m.z = v.z();
   return m;
+}
+}  // namespace
+
+geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p) {
+  return xyzMsg<geometry_msgs::Point>(p);
 }
 
 geometry_msgs::Point toPointMsg(const Eigen::Vector2d& xy, double z) {
@@ -20,11 +28,7 @@ geometry_msgs::Point toPointMsg(const Eigen::Vector2d& xy, double z) {
 }
 
 geometry_msgs::Vector3 toVector3Msg(const Eigen::Vector3d& v) {
-  geometry_msgs::Vector3 m;
-  m.x = v.x();
-  m.y = v.y();
-  m.z = v.z();
-  return m;
+  return xyzMsg<geometry_msgs::Vector3>(v);
 }
 
 geometry_msgs::Vector3 toVector3Msg(const Eigen::Vector2d& xy, double z) {

@@ -4,20 +4,13 @@
 #include <string>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ros/conversions.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
 
 namespace {
-
-geometry_msgs::Point toPoint(const Eigen::Vector3d& p) {
-  geometry_msgs::Point m;
-  m.x = p.x();
-  m.y = p.y();
-  m.z = p.z();
-  return m;
-}
 
 template <typename T>
 void requireSize(const std::vector<T>& v, size_t size, const char* field) {
@@ -33,10 +26,10 @@ reach_trajopt::CheckFootholds::Request toCheckFootholdsRequestMsg(const Foothold
   reach_trajopt::CheckFootholds::Request m;
   m.request_id = request_id;
   m.stance = batch.stance == Side::kLeft ? "left" : "right";
-  m.stance_position = toPoint(batch.stance_foothold.position);
-  m.stance_yaw = batch.stance_foothold.yaw;
+  m.stance_position = toPointMsg(batch.stance_contact.position);
+  m.stance_yaw = batch.stance_contact.yaw;
   for (const FlatContact& c : batch.candidates) {
-    m.candidates.push_back(toPoint(c.position));
+    m.candidates.push_back(toPointMsg(c.position));
     m.candidate_yaw.push_back(c.yaw);
   }
   m.q_init = asVector(batch.q_init);
@@ -51,8 +44,8 @@ FootholdCandidates fromCheckFootholdsRequestMsg(const reach_trajopt::CheckFootho
     throw RequestError("stance: expected 'left' or 'right', got '" + m.stance + "'");
   b.stance = m.stance == "left" ? Side::kLeft : Side::kRight;
   const geometry_msgs::Point& s = m.stance_position;
-  b.stance_foothold.position = finiteVector({s.x, s.y, s.z}, 3, "stance_position");
-  b.stance_foothold.yaw = finiteVector({m.stance_yaw}, 1, "stance_yaw")[0];
+  b.stance_contact.position = finiteVector({s.x, s.y, s.z}, 3, "stance_position");
+  b.stance_contact.yaw = finiteVector({m.stance_yaw}, 1, "stance_yaw")[0];
   if (m.candidates.size() > kMaxFootholdCandidates)
     throw RequestError("candidates: " + std::to_string(m.candidates.size()) +
                        " candidates exceed the limit of " + std::to_string(kMaxFootholdCandidates) +

@@ -46,20 +46,20 @@ Eigen::VectorXd responseVector(const std::vector<double>& v, size_t size, const 
 }  // namespace
 
 reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(
-    const FootstepRequest& r, const ReachConfig& reach, const std::optional<CheckPass>& pass,
+    const ContactTransition& r, const ReachConfig& reach, const std::optional<CheckPass>& pass,
     bool reachability, bool samples, const ros::Time& t0) {
   reach_trajopt::CheckFootstep::Request m;
   m.header.stamp = t0;
   m.header.frame_id = kWorldFrame;
   m.stance = r.stance == Side::kLeft ? "left" : "right";
-  m.stance_foothold = flatContact(r.stance_foothold);
+  m.stance_contact = flatContact(r.stance_contact);
   m.target = flatContact(r.target);
   m.q0 = asVector(r.q0);
   m.qd0 = asVector(r.qd0);
   m.qdf = asVector(r.qdf);
-  m.touchdown_com_velocity = {r.touchdown_com_velocity.x(), r.touchdown_com_velocity.y()};
-  if (r.touchdown_pelvis_position)
-    m.touchdown_pelvis_position = asVector(*r.touchdown_pelvis_position);
+  m.touchdown_com_velocity = {r.touchdown.com_velocity.x(), r.touchdown.com_velocity.y()};
+  if (r.touchdown.pelvis_position)
+    m.touchdown_pelvis_position = asVector(*r.touchdown.pelvis_position);
   m.check_reachability = reachability;
   m.reach_horizon = reach.horizon;
   m.seed = static_cast<int64_t>(reach.seed);
@@ -79,18 +79,18 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
     throw RequestError("header.frame_id: unknown frame '" + m.header.frame_id +
                        "': positions must be in 'world'");
   FootstepCheckCall c;
-  FootstepRequest& r = c.request;
+  ContactTransition& r = c.request;
   if (m.stance != "left" && m.stance != "right")
     throw RequestError("stance: expected 'left' or 'right', got '" + m.stance + "'");
   r.stance = m.stance == "left" ? Side::kLeft : Side::kRight;
-  r.stance_foothold = flatContact(m.stance_foothold, "stance_foothold");
+  r.stance_contact = flatContact(m.stance_contact, "stance_contact");
   r.target = flatContact(m.target, "target");
   r.q0 = finiteVector(m.q0, static_cast<size_t>(nq), "q0");
   r.qd0 = finiteVector(m.qd0, static_cast<size_t>(nq), "qd0");
   if (!m.qdf.empty()) r.qdf = finiteVector(m.qdf, static_cast<size_t>(nq), "qdf");
-  r.touchdown_com_velocity = finiteVector(m.touchdown_com_velocity, 2, "touchdown_com_velocity");
+  r.touchdown.com_velocity = finiteVector(m.touchdown_com_velocity, 2, "touchdown_com_velocity");
   if (!m.touchdown_pelvis_position.empty())
-    r.touchdown_pelvis_position =
+    r.touchdown.pelvis_position =
         finiteVector(m.touchdown_pelvis_position, 3, "touchdown_pelvis_position");
   c.reachability = m.check_reachability;
   c.samples = m.return_samples;
@@ -138,7 +138,7 @@ FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep
 reach_trajopt::CheckFootstep::Response toCheckFootstepResponseMsg(
     const FootstepCheckResult& check, const reach_trajopt::ReachabilityResult& published) {
   reach_trajopt::CheckFootstep::Response m;
-  const FootstepResult& f = check.result;
+  const FootstepCheckResult& f = check;
   m.success = true;
   m.kinematically_feasible = f.kinematically_feasible;
   m.reachable = f.reachable;
@@ -190,7 +190,7 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
                                                  int nq) {
   const size_t n = static_cast<size_t>(nq);
   FootstepCheckResult out;
-  FootstepResult& f = out.result;
+  FootstepCheckResult& f = out;
   f.kinematically_feasible = m.kinematically_feasible;
   f.reachable = m.reachable;
   f.reason = m.reason;

@@ -111,14 +111,15 @@ reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlan
   m.header.stamp = t0;
   m.header.frame_id = kWorldFrame;
   m.stance = r.stance == Side::kLeft ? "left" : "right";
-  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = r.stance_pose.linear();
+  // The stance sole as a flat pose (the planner reads its position and heading only).
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = r.stance_contact.pose().linear();
   m.stance_pose.assign(R.data(), R.data() + 9);
-  const Eigen::Vector3d p = r.stance_pose.translation();
+  const Eigen::Vector3d& p = r.stance_contact.position;
   m.stance_pose.insert(m.stance_pose.end(), p.data(), p.data() + 3);
-  m.target = toPointMsg(r.target);
-  if (r.target_yaw) m.target_yaw.push_back(*r.target_yaw);
-  m.q = asVector(r.q);
-  m.qd = asVector(r.qd);
+  m.target = toPointMsg(r.target.position);
+  m.target_yaw.push_back(r.target.yaw);
+  m.q = asVector(r.q0);
+  m.qd = asVector(r.qd0);
   if (r.touchdown_com)
     m.touchdown_com = {r.touchdown_com->p.x(), r.touchdown_com->p.y(), r.touchdown_com->pd.x(),
                        r.touchdown_com->pd.y()};
@@ -150,16 +151,19 @@ FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep
       Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(pose.data());
   if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || R.determinant() < 0.0)
     throw RequestError("stance_pose: the first 9 numbers are not a rotation matrix (row-major)");
-  r.stance_pose = Eigen::Isometry3d::Identity();
-  r.stance_pose.linear() = R;
-  r.stance_pose.translation() = pose.tail<3>();
-  r.target = finiteVector({m.target.x, m.target.y, m.target.z}, 3, "target");
+  Eigen::Isometry3d stance_pose = Eigen::Isometry3d::Identity();
+  stance_pose.linear() = R;
+  stance_pose.translation() = pose.tail<3>();
+  r.stance_contact = FlatContact::fromPose(stance_pose);
+  r.target.position = finiteVector({m.target.x, m.target.y, m.target.z}, 3, "target");
   if (m.target_yaw.size() > 1)
     throw RequestError("target_yaw: expected no value or one, got " +
                        std::to_string(m.target_yaw.size()));
-  if (!m.target_yaw.empty()) r.target_yaw = finiteVector(m.target_yaw, 1, "target_yaw")[0];
-  r.q = finiteVector(m.q, static_cast<size_t>(nq), "q");
-  r.qd = finiteVector(m.qd, static_cast<size_t>(nq), "qd");
+  // None: the stance sole's heading.
+  r.target.yaw =
+      m.target_yaw.empty() ? r.stance_contact.yaw : finiteVector(m.target_yaw, 1, "target_yaw")[0];
+  r.q0 = finiteVector(m.q, static_cast<size_t>(nq), "q");
+  r.qd0 = finiteVector(m.qd, static_cast<size_t>(nq), "qd");
   if (!m.touchdown_com.empty()) {
     const Eigen::VectorXd c = finiteVector(m.touchdown_com, 4, "touchdown_com");
     r.touchdown_com = LipmState{c.head<2>(), c.tail<2>()};
@@ -223,7 +227,7 @@ reach_trajopt::PlanFootstep::Response toPlanFootstepResponseMsg(const FootstepTr
   m.ocp_time = step.ocp_time_s;
   m.check_passes = static_cast<std::uint32_t>(step.check_passes);
   m.foothold = toPointMsg(step.foothold);
-  m.step_horizon = step.horizon;
+  m.step_horizon = step.transition.horizon;
   const WitnessPath& w = step.check.reach.witness;
   m.witness_valid = w.valid;
   if (w.valid) m.witness_violation = pathViolationVector(w.violation);
@@ -241,7 +245,7 @@ FootstepTransition fromPlanFootstepResponseMsg(const reach_trajopt::PlanFootstep
                                                const RobotModel& model) {
   FootstepTransition s;
   s.request = request;
-  s.stance = request.stance;
+  s.transition.stance = request.stance;
   s.kinematically_feasible = m.kinematically_feasible;
   s.check.kinematically_feasible = m.kinematically_feasible;
   s.check.kinematics.feasible = m.kinematically_feasible;
@@ -257,7 +261,7 @@ FootstepTransition fromPlanFootstepResponseMsg(const reach_trajopt::PlanFootstep
   s.ocp_time_s = m.ocp_time;
   s.check_passes = static_cast<int>(m.check_passes);
   s.foothold = fromPointMsg(m.foothold);
-  s.horizon = m.step_horizon;
+  s.transition.horizon = m.step_horizon;
   WitnessPath& w = s.check.reach.witness;
   w.valid = m.witness_valid;
   if (w.valid) {

@@ -15,7 +15,7 @@ Eigen::Vector3d checkedFoothold(const StepRecord& record, double ground_z) {
   return Eigen::Vector3d(record.planned_tvr.x(), record.planned_tvr.y(), ground_z);
 }
 
-reach_trajopt::ReachabilityResult checkedFootstepMsg(const FootstepResult& check,
+reach_trajopt::ReachabilityResult checkedFootstepMsg(const FootstepCheckResult& check,
                                                      const std::string& swing_frame,
                                                      const Eigen::Vector3d& foothold, double delta,
                                                      const ros::Time& t0, bool samples,

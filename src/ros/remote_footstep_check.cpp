@@ -29,7 +29,7 @@ void RemoteFootstepCheck::beginStep(const ros::Time& t0) {
   checked_ = reach_trajopt::ReachabilityResult();
 }
 
-FootstepCheckResult RemoteFootstepCheck::check(const FootstepRequest& request,
+FootstepCheckResult RemoteFootstepCheck::check(const ContactTransition& request,
                                                const ReachConfig& config, const CheckPass& pass,
                                                bool reachability) {
   const auto answer =
@@ -52,13 +52,13 @@ FootstepCheckResult RemoteFootstepCheck::check(const FootstepRequest& request,
   return checkHere(request, config, pass, reachability);
 }
 
-FootstepCheckResult RemoteFootstepCheck::checkHere(const FootstepRequest& request,
+FootstepCheckResult RemoteFootstepCheck::checkHere(const ContactTransition& request,
                                                    const ReachConfig& config, const CheckPass& pass,
                                                    bool reachability) {
   FootstepCheckResult result =
       checkFootstep(local_->footstepReachability(), request, config, pass, reachability);
   if (pass.forwardOnly()) return result;  // no verdict: the step's check is the one before
-  checked_ = checkedFootstepMsg(result.result, swingFrame(contact_, request.stance),
+  checked_ = checkedFootstepMsg(result, swingFrame(contact_, request.stance),
                                 request.target.position, config.delta, stamp_, samples_);
   return result;
 }

@@ -74,12 +74,12 @@ Eigen::MatrixXd fromRowMajor(const std::vector<double>& v, Eigen::Index rows, Ei
 
 }  // namespace
 
-FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
-                                     const std::string& frame_id, const std::string& contact_mode,
-                                     const std::vector<double>& q, const std::vector<double>& qd,
-                                     const geometry_msgs::Point& foothold, double duration,
-                                     double default_duration, const Eigen::VectorXd& standing_q,
-                                     const FootholdRequestLimits& limits) {
+ContactTransition parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
+                                       const std::string& frame_id, const std::string& contact_mode,
+                                       const std::vector<double>& q, const std::vector<double>& qd,
+                                       const geometry_msgs::Point& foothold, double duration,
+                                       double default_duration, const Eigen::VectorXd& standing_q,
+                                       const FootholdRequestLimits& limits) {
   if (!frame_id.empty() && frame_id != kWorldFrame)
     throw RequestError("unknown frame '" + frame_id + "': positions must be in 'world'");
   if (contact_mode.empty() || contact_mode == "flight")
@@ -89,37 +89,36 @@ FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfi
   if (!mode.isSingleSupport())
     throw RequestError("contact mode " + contact_mode +
                        " has no swing sole: the check needs single support (SS-L or SS-R)");
-  FootholdRequest r;
+  ContactTransition r;
   r.stance = mode.stance();
   if (q.empty() && qd.empty()) {
-    r.q = standing_q;
-    r.qd = Eigen::VectorXd::Zero(model.nq());
+    r.q0 = standing_q;
+    r.qd0 = Eigen::VectorXd::Zero(model.nq());
   } else {
     requireSize("q", static_cast<Eigen::Index>(q.size()), model.nq());
     requireSize("qd", static_cast<Eigen::Index>(qd.size()), model.nq());
-    r.q = toVector(q);
-    r.qd = toVector(qd);
+    r.q0 = toVector(q);
+    r.qd0 = toVector(qd);
   }
-  requireFinite("q", r.q);
-  requireFinite("qd", r.qd);
+  requireFinite("q", r.q0);
+  requireFinite("qd", r.qd0);
   const Eigen::Vector3d target = fromPointMsg(foothold);
   requireFinite("foothold", target);
-  r.duration = duration == 0.0 ? default_duration : duration;
-  if (!std::isfinite(r.duration))
-    throw RequestError("swing_duration must be finite, got " + std::to_string(r.duration));
-  if (!(r.duration > 0.0))
-    throw RequestError("swing_duration " + std::to_string(r.duration) + " s must be positive");
-  if (r.duration > limits.max_duration)
-    throw RequestError("swing_duration " + std::to_string(r.duration) + " s is over the limit of " +
+  r.horizon = duration == 0.0 ? default_duration : duration;
+  if (!std::isfinite(r.horizon))
+    throw RequestError("swing_duration must be finite, got " + std::to_string(r.horizon));
+  if (!(r.horizon > 0.0))
+    throw RequestError("swing_duration " + std::to_string(r.horizon) + " s must be positive");
+  if (r.horizon > limits.max_duration)
+    throw RequestError("swing_duration " + std::to_string(r.horizon) + " s is over the limit of " +
                        std::to_string(limits.max_duration) + " s");
 
   Workspace ws(model);
-  model.update(ws, r.q, r.qd);
+  model.update(ws, r.q0, r.qd0);
   const std::string& stance_frame =
       r.stance == Side::kLeft ? contact.left_sole_frame : contact.right_sole_frame;
   const Eigen::Isometry3d stance = model.framePose(ws, model.frameId(stance_frame));
-  r.stance_contact.position = stance.translation();
-  r.stance_contact.yaw = yawOf(stance);
+  r.stance_contact = FlatContact::fromPose(stance);
   const double height = target.z() - stance.translation().z();
   if (std::abs(height) > limits.ground_tolerance) {
     std::ostringstream os;
@@ -177,16 +176,6 @@ ReachConfig reachConfigForDuration(const ReachConfig& base, double duration) {
   return config;
 }
 
-ReachProblem toReachProblem(const FootholdRequest& r, const KinematicFeasibilityResult& ik) {
-  FootstepRequest footstep;
-  footstep.stance = r.stance;
-  footstep.stance_foothold = r.stance_contact;
-  footstep.target = r.target;
-  footstep.q0 = r.q;
-  footstep.qd0 = r.qd;
-  return footstepProblem(footstep, ik.q_f, ik.qd_f);
-}
-
 reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_reason,
                                                         const std::string& swing_frame,
                                                         const Eigen::Vector3d& foothold,
@@ -199,7 +188,7 @@ reach_trajopt::ReachabilityResult infeasibleFootholdMsg(const std::string& ik_re
 }
 
 reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& r,
-                                                          const FootholdRequest& request,
+                                                          const ContactTransition& request,
                                                           const std::string& swing_frame,
                                                           double delta, const ros::Time& t0,
                                                           bool samples, int max_points) {

@@ -341,16 +341,7 @@ void BulletWorld::reset(const Eigen::Ref<const Eigen::VectorXd>& q,
   q_ = q;
   qd_ = qd;
   readState();
-  for (SoleContact& s : soles_) {
-    s.in_contact = false;
-    s.num_points = 0;
-    s.wrench.setZero();
-  }
-  non_foot_contacts_.clear();
-  leg_contacts_.clear();
-  for (int s = 0; s < 2; ++s) {
-    soles_[s].sole_pose = framePose(soles_[s].frame);
-  }
+  clearContacts();
 }
 
 void BulletWorld::applyState(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -438,7 +429,7 @@ void BulletWorld::step(const Eigen::Ref<const Eigen::VectorXd>& u) {
   measureContacts();
 }
 
-void BulletWorld::measureContacts() {
+void BulletWorld::clearContacts() {
   for (SoleContact& s : soles_) {
     s.in_contact = false;
     s.num_points = 0;
@@ -447,6 +438,10 @@ void BulletWorld::measureContacts() {
   non_foot_contacts_.clear();
   leg_contacts_.clear();
   for (int s = 0; s < 2; ++s) soles_[s].sole_pose = framePose(soles_[s].frame);
+}
+
+void BulletWorld::measureContacts() {
+  clearContacts();
 
   const double inv_dt = 1.0 / config_.time_step;
   btDispatcher& dispatcher = *bt_->dispatcher;

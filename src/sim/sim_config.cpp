@@ -8,24 +8,9 @@
 
 namespace reach_trajopt {
 
-namespace {
-void requirePositive(const char* name, double v) { requirePositiveFinite("SimConfig", name, v); }
-}  // namespace
-
 void SimConfig::validate() const {
-  requirePositive("time_step", time_step);
-  requirePositive("mu", mu);
-  requirePositive("max_coordinate_velocity", max_coordinate_velocity);
+  fields().checkRanges(*this);
   if (!gravity.allFinite()) throw ConfigError("SimConfig: gravity must be finite");
-  if (solver_iterations < 1) {
-    throw ConfigError("SimConfig: solver_iterations must be >= 1, got " +
-                      std::to_string(solver_iterations));
-  }
-  if (!std::isfinite(collision_margin) || collision_margin < 0.0) {
-    std::ostringstream os;
-    os << "SimConfig: collision_margin must be >= 0 and finite, got " << collision_margin;
-    throw ConfigError(os.str());
-  }
   if (left_sole_frame.empty() || right_sole_frame.empty()) {
     throw ConfigError("SimConfig: sole frame names must not be empty");
   }
@@ -43,8 +28,8 @@ const ConfigFields<SimConfig>& SimConfig::fields() {
       ConfigFields<C>("SimConfig", "sim", "include/reach_trajopt/sim/sim_config.h",
                       "Bullet multibody world (config/sim.yaml); its sole frames are those of "
                       "`contact:`.")
-          .add("time_step", &C::time_step, "s", "fixed step (1 kHz), > 0")
-          .add("mu", &C::mu, "", "Coulomb friction with the ground, > 0")
+          .add("time_step", &C::time_step, "s", Range::positive(), "fixed step (1 kHz)")
+          .add("mu", &C::mu, "", Range::positive(), "Coulomb friction with the ground")
           .add("gravity", &C::gravity, "m/s^2", "world frame, finite")
           .add("contacts", &C::contacts, "", "false removes the ground (free-fall checks)")
           .add("joint_limits", &C::joint_limits, "",
@@ -53,13 +38,13 @@ const ConfigFields<SimConfig>& SimConfig::fields() {
           .add("leg_self_collision", &C::leg_self_collision, "",
                "the two legs' collision shapes collide with each other (a walk ends as a fall "
                "when they touch)")
-          .add("solver_iterations", &C::solver_iterations, "",
-               "Bullet constraint-solver iterations per step, >= 1: more, stiffer and more "
+          .add("solver_iterations", &C::solver_iterations, "", Range::atLeast(1),
+               "Bullet constraint-solver iterations per step: more, stiffer and more "
                "accurate contacts; slower steps")
-          .add("collision_margin", &C::collision_margin, "m",
-               "Bullet convex margin (rounds box corners), >= 0")
+          .add("collision_margin", &C::collision_margin, "m", Range::nonNegative(),
+               "Bullet convex margin (rounds box corners)")
           .add("max_coordinate_velocity", &C::max_coordinate_velocity, "m/s, rad/s",
-               "Bullet's velocity clamp, kept out of reach, > 0")
+               Range::positive(), "Bullet's velocity clamp, kept out of reach")
           .removed("left_sole_frame", frames)
           .removed("right_sole_frame", frames);
   return f;

@@ -10,8 +10,6 @@
 
 namespace reach_trajopt {
 
-double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
-
 ContactConsistentState contactConsistentState(const RobotModel& m, FrameId stance_frame,
                                               const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   m.checkState(q, qd);

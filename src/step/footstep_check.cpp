@@ -8,20 +8,16 @@
 namespace reach_trajopt {
 
 FootstepCheckResult checkFootstep(const FootstepReachability& footsteps,
-                                  const FootstepRequest& request, const ReachConfig& config,
+                                  const ContactTransition& request, const ReachConfig& config,
                                   const std::optional<CheckPass>& pass, bool reachability,
                                   const ReachProgressCallback& progress) {
-  FootstepCheckResult out;
-  if (!reachability) {
-    out.result = footsteps.kinematicStage(request);
-    return out;
-  }
-  out.result = pass ? footsteps.checkPass(request, config, *pass, progress)
-                    : footsteps.check(request, config, progress);
+  if (!reachability) return footsteps.kinematicStage(request);
+  FootstepCheckResult out = pass ? footsteps.checkPass(request, config, *pass, progress)
+                                 : footsteps.check(request, config, progress);
   const double margin =
       pass ? pass->budget.constraint_margin : config.budgets.full.constraint_margin;
-  if (out.result.kinematically_feasible)
-    out.set_constraint = reachableSetConstraint(out.result.reach, config.output_axes, margin);
+  if (out.kinematically_feasible)
+    out.set_constraint = reachableSetConstraint(out.reach, config.output_axes, margin);
   return out;
 }
 

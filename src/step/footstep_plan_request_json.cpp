@@ -19,15 +19,16 @@ std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
 }  // namespace
 
 nlohmann::json footstepPlanRequestJson(const FootstepPlanRequest& r) {
-  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = r.stance_pose.linear();
+  // The stance sole as a flat pose (the planner reads its position and heading only).
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = r.stance_contact.pose().linear();
   nlohmann::json j = {{"stance", r.stance == Side::kLeft ? "left" : "right"},
                       {"stance_pose",
-                       {{"position", asVector(r.stance_pose.translation())},
+                       {{"position", asVector(r.stance_contact.position)},
                         {"rotation", std::vector<double>(R.data(), R.data() + 9)}}},
-                      {"target", asVector(r.target)},
-                      {"q", asVector(r.q)},
-                      {"qd", asVector(r.qd)}};
-  if (r.target_yaw) j["target_yaw"] = *r.target_yaw;
+                      {"target", asVector(r.target.position)},
+                      {"target_yaw", r.target.yaw},
+                      {"q", asVector(r.q0)},
+                      {"qd", asVector(r.qd0)}};
   if (r.touchdown_com)
     j["touchdown_com"] = {{"p", asVector(r.touchdown_com->p)},
                           {"pd", asVector(r.touchdown_com->pd)}};
@@ -53,14 +54,15 @@ FootstepPlanRequest readFootstepPlanRequest(const JsonReader& r, int nq,
         Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rot.data());
     if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || R.determinant() < 0.0)
       pose.at("rotation").fail("expected a rotation matrix (orthonormal, determinant 1)");
-    out.stance_pose = Eigen::Isometry3d::Identity();
-    out.stance_pose.linear() = R;
-    out.stance_pose.translation() = p;
-    out.target = r.vector("target", 3);
-    double yaw = 0.0;
-    if (r.optionalNumber("target_yaw", yaw)) out.target_yaw = yaw;
-    out.q = r.vector("q", nq);
-    out.qd = r.vector("qd", nq);
+    Eigen::Isometry3d stance_pose = Eigen::Isometry3d::Identity();
+    stance_pose.linear() = R;
+    stance_pose.translation() = p;
+    out.stance_contact = FlatContact::fromPose(stance_pose);
+    out.target.position = r.vector("target", 3);
+    out.target.yaw = out.stance_contact.yaw;  // none: the stance sole's heading
+    r.optionalNumber("target_yaw", out.target.yaw);
+    out.q0 = r.vector("q", nq);
+    out.qd0 = r.vector("qd", nq);
     if (r.has("touchdown_com")) {
       const JsonReader c = r.at("touchdown_com");
       c.requireObject("{\"p\": [x, y], \"pd\": [vx, vy]}");

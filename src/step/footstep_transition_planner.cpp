@@ -21,7 +21,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-StepVerdict verdictOf(const FootstepResult& check, bool checked) {
+StepVerdict verdictOf(const FootstepCheckResult& check, bool checked) {
   if (!check.kinematically_feasible) return StepVerdict::kKinematicallyInfeasible;
   if (!checked) return StepVerdict::kKinematicallyFeasible;  // the kinematic check only
   return check.reachable ? StepVerdict::kReachable : StepVerdict::kUnreachable;
@@ -77,8 +77,8 @@ FootstepTransitionPlanner::FootstepTransitionPlanner(std::shared_ptr<const Robot
 FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
                                                    const FootstepPlanProgress& progress) const {
   const RobotModel& m = *model_;
-  m.checkState(r.q, r.qd);
-  requireFinite("FootstepTransitionPlanner: target", r.target);
+  m.checkState(r.q0, r.qd0);
+  requireFinite("FootstepTransitionPlanner: target", r.target.position);
   if (r.touchdown_com) {
     requireFinite("FootstepTransitionPlanner: touchdown CoM position", r.touchdown_com->p);
     requireFinite("FootstepTransitionPlanner: touchdown CoM velocity", r.touchdown_com->pd);
@@ -180,23 +180,21 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
     const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& hull_pass,
     const FootstepTransition& quick, const FootstepPlanProgress& progress) const {
   FootstepTransition out;
-  const PassStart start = startPass(r, quick.horizon, out);
+  const Eigen::Isometry3d held = startPass(r, quick.transition.horizon, out);
   // A forward set alone drawn with the hull budget (reach.budgets.hull over the full one),
   // propagated up to the quick witness's junction only: slicesUpToJunction drops the rest.
   double check_time_s = 0.0;
   const WitnessPath& witness = quick.check.reach.witness;
   CheckPass forward_pass = hull_pass;
   forward_pass.forward_until_s = junctionTime(witness);
-  FootstepCheckResult forward =
-      runCheck(r, reach, forward_pass, start.touchdown, progress.check, out, check_time_s);
+  FootstepCheckResult forward = runCheck(r, reach, forward_pass, progress.check, out, check_time_s);
   // The quick pass's check stands (verdict, IK, witness): only the OCP's hulls change, cut
   // where its witness leaves the sampled sets.
   recordCheck(quick.check, true, out);
   out.check_time_s = check_time_s;
-  if (!forward.result.kinematically_feasible) return out;  // not the quick pass's IK: no retry
-  solveTransition(r, start.held, start.touchdown,
-                  slicesUpToJunction(std::move(forward.set_constraint), witness), progress.ocp, out,
-                  RelaxedFallback::kNever);
+  if (!forward.kinematically_feasible) return out;  // not the quick pass's IK: no retry
+  solveTransition(r, held, slicesUpToJunction(std::move(forward.set_constraint), witness),
+                  progress.ocp, out, RelaxedFallback::kNever);
   return out;
 }
 
@@ -205,10 +203,9 @@ FootstepTransition FootstepTransitionPlanner::solveInGrownHulls(
     std::vector<ReachableSlice> quick_slices, double extra_margin,
     const FootstepPlanProgress& progress) const {
   FootstepTransition out;
-  const PassStart start = startPass(r, quick.horizon, out);
+  const Eigen::Isometry3d held = startPass(r, quick.transition.horizon, out);
   recordCheck(quick.check, true, out);  // the quick pass's check stands; no sample is drawn
-  solveTransition(r, start.held, start.touchdown,
-                  grownSlices(std::move(quick_slices), extra_margin), progress.ocp, out,
+  solveTransition(r, held, grownSlices(std::move(quick_slices), extra_margin), progress.ocp, out,
                   RelaxedFallback::kNever);
   return out;
 }
@@ -218,113 +215,93 @@ FootstepTransition FootstepTransitionPlanner::planWith(
     const FootstepPlanProgress& progress, RelaxedFallback relaxed_fallback,
     std::vector<ReachableSlice>* slices_used) const {
   FootstepTransition out;
-  const PassStart start = startPass(r, r.horizon > 0.0 ? r.horizon : reach.horizon, out);
-  std::vector<ReachableSlice> set_constraint =
-      checkFoothold(r, reach, pass, start.touchdown, progress.check, out);
+  const Eigen::Isometry3d held = startPass(r, r.horizon > 0.0 ? r.horizon : reach.horizon, out);
+  std::vector<ReachableSlice> set_constraint = checkFoothold(r, reach, pass, progress.check, out);
   if (slices_used) *slices_used = set_constraint;
-  solveTransition(r, start.held, start.touchdown, std::move(set_constraint), progress.ocp, out,
-                  relaxed_fallback);
+  solveTransition(r, held, std::move(set_constraint), progress.ocp, out, relaxed_fallback);
   return out;
 }
 
-FootstepTransitionPlanner::PassStart FootstepTransitionPlanner::startPass(
-    const FootstepPlanRequest& r, double horizon, FootstepTransition& out) const {
+Eigen::Isometry3d FootstepTransitionPlanner::startPass(const FootstepPlanRequest& r, double horizon,
+                                                       FootstepTransition& out) const {
   out.request = r;
-  out.stance = r.stance;
-  out.horizon = horizon;
-  PassStart start;
-  start.held = initialState(r, out);
-  start.touchdown = predictTouchdown(r, out);
-  return start;
+  ContactTransition& t = out.transition;
+  t.stance = r.stance;
+  t.horizon = horizon;
+  const Eigen::Isometry3d held = initialState(r, t);
+  t.touchdown = predictTouchdown(r, t);
+  if (!r.touchdown_com) t.qdf = Eigen::VectorXd::Zero(model_->nq());  // x_f at rest
+  return held;
 }
 
 Eigen::Isometry3d FootstepTransitionPlanner::initialState(const FootstepPlanRequest& r,
-                                                          FootstepTransition& out) const {
+                                                          ContactTransition& t) const {
   const RobotModel& m = *model_;
   const FrameId stance_frame = m.frameId(contact_.soleFrame(r.stance));
   Eigen::Isometry3d held;
   if (r.make_contact_consistent) {
-    ContactConsistentState x0 = contactConsistentState(m, stance_frame, r.q, r.qd);
-    out.q0 = std::move(x0.q);
-    out.qd0 = std::move(x0.qd);
+    ContactConsistentState x0 = contactConsistentState(m, stance_frame, r.q0, r.qd0);
+    t.q0 = std::move(x0.q);
+    t.qd0 = std::move(x0.qd);
     held = x0.stance_sole;
-    out.stance_contact.position = held.translation();
-    out.stance_contact.yaw = yawOf(held);
+    t.stance_contact = FlatContact::fromPose(held);
   } else {
-    out.q0 = r.q;
-    out.qd0 = r.qd;
+    t.q0 = r.q0;
+    t.qd0 = r.qd0;
     Workspace ws(m);
-    m.update(ws, out.q0, out.qd0);
-    const Eigen::Isometry3d sole = m.framePose(ws, stance_frame);
-    out.stance_contact.position = sole.translation();  // held flat where the sole is
-    out.stance_contact.yaw = yawOf(sole);
-    held = out.stance_contact.pose();
+    m.update(ws, t.q0, t.qd0);
+    // held flat where the sole is
+    t.stance_contact = FlatContact::fromPose(m.framePose(ws, stance_frame));
+    held = t.stance_contact.pose();
   }
-  out.target.position = r.target;
-  out.target.yaw = r.target_yaw ? *r.target_yaw : yawOf(r.stance_pose);
+  t.target = r.target;
   return held;
 }
 
-FootstepTransitionPlanner::Touchdown FootstepTransitionPlanner::predictTouchdown(
-    const FootstepPlanRequest& r, const FootstepTransition& out) const {
-  Touchdown td;
+TouchdownPrediction FootstepTransitionPlanner::predictTouchdown(const FootstepPlanRequest& r,
+                                                                const ContactTransition& t) const {
+  TouchdownPrediction td;
   if (!r.touchdown_com) return td;
   // x_f: where the CoM will have carried the pelvis by touchdown, at its current height.
   const RobotModel& m = *model_;
   Workspace ws(m);
-  m.update(ws, out.q0, out.qd0);
+  m.update(ws, t.q0, t.qd0);
   const Eigen::Vector3d com = m.centerOfMass(ws);
   const Eigen::Vector3d com_shift(r.touchdown_com->p.x() - com.x(),
                                   r.touchdown_com->p.y() - com.y(), 0.0);
-  td.pelvis =
+  td.pelvis_position =
       m.framePose(ws, m.frameId(kinematics_->config().pelvis_frame)).translation() + com_shift;
-  td.com_velocity.head<2>() = r.touchdown_com->pd;
+  td.com_velocity = r.touchdown_com->pd;
   return td;
 }
 
-FootstepRequest FootstepTransitionPlanner::checkRequest(const FootstepTransition& step) {
-  FootstepRequest request;
-  request.stance = step.stance;
-  request.stance_foothold = step.stance_contact;
-  request.target = step.target;
-  request.q0 = step.q0;
-  request.qd0 = step.qd0;
-  return request;
-}
-
-FootstepCheckResult FootstepTransitionPlanner::runCheck(const FootstepPlanRequest& r,
-                                                        const ReachConfig& reach,
-                                                        const CheckPass& pass, const Touchdown& td,
-                                                        const ReachProgressCallback& progress,
-                                                        const FootstepTransition& out,
-                                                        double& time_s) const {
+FootstepCheckResult FootstepTransitionPlanner::runCheck(
+    const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& pass,
+    const ReachProgressCallback& progress, const FootstepTransition& out, double& time_s) const {
   const auto check_start = std::chrono::steady_clock::now();
-  FootstepRequest request = checkRequest(out);
-  if (!r.touchdown_com) request.qdf = Eigen::VectorXd::Zero(model_->nq());  // x_f at rest
-  request.touchdown_com_velocity = td.com_velocity.head<2>();
-  request.touchdown_pelvis_position = td.pelvis;
   FootstepCheckResult checked =
       footstep_check_
-          ? footstep_check_(request, reach, pass, r.check_reachability)
-          : checkFootstep(footsteps_, request, reach, pass, r.check_reachability, progress);
+          ? footstep_check_(out.transition, reach, pass, r.check_reachability)
+          : checkFootstep(footsteps_, out.transition, reach, pass, r.check_reachability, progress);
   time_s = secondsSince(check_start);
   return checked;
 }
 
 std::vector<ReachableSlice> FootstepTransitionPlanner::checkFoothold(
     const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& pass,
-    const Touchdown& td, const ReachProgressCallback& progress, FootstepTransition& out) const {
+    const ReachProgressCallback& progress, FootstepTransition& out) const {
   double time_s = 0.0;
-  FootstepCheckResult checked = runCheck(r, reach, pass, td, progress, out, time_s);
-  recordCheck(std::move(checked.result), r.check_reachability, out);
+  FootstepCheckResult checked = runCheck(r, reach, pass, progress, out, time_s);
+  std::vector<ReachableSlice> set_constraint = std::move(checked.set_constraint);
+  recordCheck(std::move(checked), r.check_reachability, out);
   out.check_time_s = time_s;
-  return std::move(checked.set_constraint);
+  return set_constraint;
 }
 
-void FootstepTransitionPlanner::recordCheck(FootstepResult check, bool checked,
+void FootstepTransitionPlanner::recordCheck(FootstepCheckResult check, bool checked,
                                             FootstepTransition& out) {
   out.check = std::move(check);
-  const FootstepResult& c = out.check;
+  const FootstepCheckResult& c = out.check;
   out.kinematically_feasible = c.kinematically_feasible;
   out.reachable = c.reachable;
   out.verdict = verdictOf(c, checked);
@@ -337,23 +314,20 @@ void FootstepTransitionPlanner::recordCheck(FootstepResult check, bool checked,
 }
 
 void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
-                                                const Eigen::Isometry3d& held, const Touchdown& td,
+                                                const Eigen::Isometry3d& held,
                                                 std::vector<ReachableSlice> set_constraint,
                                                 const OcpProgressCallback& progress,
                                                 FootstepTransition& out,
                                                 RelaxedFallback relaxed_fallback) const {
   const RobotModel& m = *model_;
-  const FootstepResult& check = out.check;
-  TransitionRequest ocp;
-  ocp.stance = r.stance;
+  const FootstepCheckResult& check = out.check;
+  const TouchdownPrediction& td = out.transition.touchdown;
+  TransitionRequest ocp(out.transition);
   ocp.stance_pose = held;
-  ocp.swing_target = out.target.pose();
-  ocp.horizon = out.horizon;
-  ocp.q0 = out.q0;
-  ocp.qd0 = out.qd0;
-  if (td.pelvis)  // a relaxed landing stands at the predicted pelvis height
-    ocp.terminal_pelvis_height = td.pelvis->z() - 0.5 * (held.translation().z() + r.target.z());
-  Eigen::Vector3d nearest_feasible = r.target;
+  if (td.pelvis_position)  // a relaxed landing stands at the predicted pelvis height
+    ocp.terminal_pelvis_height =
+        td.pelvis_position->z() - 0.5 * (held.translation().z() + r.target.position.z());
+  Eigen::Vector3d nearest_feasible = r.target.position;
   if (check.kinematically_feasible) {
     ocp.qf = check.kinematics.q_f;
     ocp.qdf = check.qdf;
@@ -368,28 +342,30 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kNoFallback) {
     out.trajectory.status = OcpStatus::kFailed;
     out.trajectory.reason = "no OCP for an infeasible foothold (no fallback requested)";
-    out.foothold = r.target;
+    out.foothold = r.target.position;
     return;
   } else if (r.on_infeasible == InfeasibleFootholdPolicy::kRelaxTowardTarget) {
     ocp.qf = check.kinematics.q_f;
     ocp.qdf = check.kinematics.qd_f;
     ocp.relaxation = RelaxationMode::kRelaxed;  // land as close as the OCP can
   } else {
+    const ContactTransition& t = out.transition;
     const std::optional<NearestFoothold> near = nearest_.find(
-        r.stance, out.stance_contact, out.target, out.q0, td.pelvis, candidate_check_);
+        t.stance, t.stance_contact, t.target, t.q0, td.pelvis_position, candidate_check_);
     if (!near) {
       out.reason += "; no kinematically feasible foothold within " +
                     std::to_string(nearest_.config().searchRadius()) + " m of the target";
       out.trajectory.status = OcpStatus::kFailed;
       out.trajectory.reason = "no kinematically feasible foothold near the target";
-      out.foothold = r.target;
+      out.foothold = r.target.position;
       return;
     }
     nearest_feasible = near->foothold.position;
     ocp.qf = near->kinematics.q_f;
-    ocp.swing_target.translation() = nearest_feasible;
+    ocp.target.position = nearest_feasible;
     ocp.qdf = doubleSupportVelocity(m, ocp.qf, m.frameId(contact_.left_sole_frame),
-                                    m.frameId(contact_.right_sole_frame), td.com_velocity);
+                                    m.frameId(contact_.right_sole_frame),
+                                    Eigen::Vector3d(td.com_velocity.x(), td.com_velocity.y(), 0.0));
     ocp.relaxation = RelaxationMode::kAuto;
   }
   if (!r.solve_ocp) {

@@ -745,10 +745,11 @@ FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts) const {
   const Side stance = opposite(swing_);
   FootstepPlanRequest request;
   request.stance = stance;
-  request.stance_pose = m_.framePose(ws_, sole_[static_cast<int>(stance)]);
-  request.target = target3();
-  request.q = world_->q();
-  request.qd = world_->qd();
+  request.stance_contact =
+      FlatContact::fromPose(m_.framePose(ws_, sole_[static_cast<int>(stance)]));
+  request.target = {target3(), request.stance_contact.yaw};  // the stance sole's heading
+  request.q0 = world_->q();
+  request.qd0 = world_->qd();
   // The CoM velocity at touchdown: the LIPM about the stance sole from the measured CoM
   // state, over the time left to the nominal touchdown.
   request.touchdown_com = planner_.lipm().propagate(LipmState{xy(com_), xy(vcom_)}, current_.stance,

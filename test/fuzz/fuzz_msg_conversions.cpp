@@ -1,6 +1,6 @@
 /// \file fuzz_msg_conversions.cpp
 /// Fuzzes the service request -> core conversions of src/ros/ (parseFootholdRequest, the
-/// duration's ReachConfig and its resource check, toReachProblem) with the fields of a
+/// duration's ReachConfig and its resource check, footstepProblem) with the fields of a
 /// CheckReachability / PlanTransition request drawn from the input: any frame and mode string,
 /// q / qd of any length, any doubles (NaN, inf, huge) and sample counts.
 
@@ -39,17 +39,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const double duration = in.ConsumeFloatingPoint<double>();
   const uint32_t samples = in.ConsumeIntegral<uint32_t>();
   try {
-    const rb::FootholdRequest r =
+    const ContactTransition r =
         rb::parseFootholdRequest(*model, contact, frame, mode, q, qd, p, duration, 0.4, standing);
-    ReachConfig config = rb::reachConfigForDuration(ReachConfig{}, r.duration);
+    ReachConfig config = rb::reachConfigForDuration(ReachConfig{}, r.horizon);
     if (samples > 0 && samples <= static_cast<uint32_t>(ReachLimits::kMaxInitialSamples))
       config.budgets.full.initial_samples = static_cast<int>(samples);
     config.validate();
     config.requireResourcesWithinLimits(model->nq());
     KinematicFeasibilityResult ik;
-    ik.q_f = r.q;
-    ik.qd_f = r.qd;
-    (void)rb::toReachProblem(r, ik);
+    ik.q_f = r.q0;
+    ik.qd_f = r.qd0;
+    (void)footstepProblem(r, ik.q_f, ik.qd_f);
     (void)rb::fromPointMsg(p);
   } catch (const ReachError&) {
   }

@@ -18,10 +18,12 @@
 #include <string>
 #include <vector>
 
+#include "message_bytes.h"
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/CheckReachabilityAction.h"
 #include "reach_trajopt/PlanTransition.h"
 #include "reach_trajopt/PlanTransitionAction.h"
+#include "reach_trajopt/ros/action_goals.h"
 
 namespace {
 
@@ -39,14 +41,7 @@ reach_trajopt::CheckReachabilityGoal makeGoal(uint32_t samples) {
   return g;
 }
 
-template <typename M>
-std::vector<uint8_t> bytes(const M& m) {
-  const uint32_t n = ros::serialization::serializationLength(m);
-  std::vector<uint8_t> b(n);
-  ros::serialization::OStream s(b.data(), n);
-  ros::serialization::serialize(s, m);
-  return b;
-}
+using reach_trajopt::test::bytes;
 
 reach_trajopt::ReachabilityResult withoutWallTimes(reach_trajopt::ReachabilityResult r) {
   r.header.seq = 0;
@@ -127,10 +122,9 @@ TEST(Actions, FeedbackEverySliceAndTheResultOfTheService) {
   // The same request through the one-shot service: the same answer.
   ros::ServiceClient service =
       ros::NodeHandle().serviceClient<reach_trajopt::CheckReachability>("check_reachability");
-  reach_trajopt::CheckReachability srv;
-  srv.request.header = goal.header;
-  srv.request.contact_mode = goal.contact_mode;
-  srv.request.foothold = goal.foothold;
+  reach_trajopt::CheckReachability srv;  // the request the action serves for the goal
+  srv.request =
+      reach_trajopt::ros_bridge::footholdRequestOf<reach_trajopt::CheckReachability::Request>(goal);
   srv.request.forward_samples = goal.forward_samples;
   ASSERT_TRUE(service.call(srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
@@ -254,10 +248,9 @@ TEST(Actions, PlanTransitionReportsTheCheckThenTheOcpAndCancels) {
 
   ros::ServiceClient service =
       ros::NodeHandle().serviceClient<reach_trajopt::PlanTransition>("plan_transition");
-  reach_trajopt::PlanTransition srv;
-  srv.request.header = goal.header;
-  srv.request.contact_mode = goal.contact_mode;
-  srv.request.foothold = goal.foothold;
+  reach_trajopt::PlanTransition srv;  // the request the action serves for the goal
+  srv.request =
+      reach_trajopt::ros_bridge::footholdRequestOf<reach_trajopt::PlanTransition::Request>(goal);
   srv.request.check_reachability = goal.check_reachability;
   srv.request.allow_relaxation = goal.allow_relaxation;
   ASSERT_TRUE(service.call(srv));

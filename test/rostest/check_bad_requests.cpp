@@ -127,6 +127,56 @@ bool callService(const std::string& service, Srv& srv) {
          ros::service::call(service, srv);
 }
 
+/// The malformed requests of one service: each an edit of a valid request and the field its
+/// rejection must name.
+template <typename Srv>
+using FieldEdits = std::vector<std::pair<std::string, std::function<void(typename Srv::Request&)>>>;
+
+/// Each edit of `valid` is rejected by `service` with a message that starts "<field>:"
+/// (`check` may look at more of each rejection), and the node keeps serving: the answer to
+/// `valid` itself is returned.
+template <typename Srv>
+typename Srv::Response expectEachRejected(
+    const std::string& service, const typename Srv::Request& valid, const FieldEdits<Srv>& kinds,
+    const std::function<void(const typename Srv::Response&, const std::string&)>& check = {}) {
+  for (const auto& [field, edit] : kinds) {
+    Srv srv;
+    srv.request = valid;
+    edit(srv.request);
+    EXPECT_TRUE(callService(service, srv)) << "stopped serving at " << field;
+    EXPECT_FALSE(srv.response.success) << field;
+    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
+        << field << ": " << srv.response.message;
+    if (check) check(srv.response, field);
+  }
+  Srv srv;
+  srv.request = valid;
+  EXPECT_TRUE(callService(service, srv));
+  return srv.response;
+}
+
+/// The robot of the test's robot_description parameter.
+std::shared_ptr<const reach_trajopt::RobotModel> robotDescriptionModel() {
+  std::string urdf;
+  if (!ros::NodeHandle().getParam("robot_description", urdf))
+    throw std::runtime_error("no robot_description parameter");
+  return reach_trajopt::RobotModel::fromUrdfString(urdf, {}, "robot_description");
+}
+
+/// Standing on the left sole, the right one to land where it stands.
+reach_trajopt::ContactTransition standingStep(const reach_trajopt::RobotModel& model) {
+  using namespace reach_trajopt;
+  ContactTransition t;
+  t.stance = Side::kLeft;
+  t.q0 = standingConfiguration(model, 0.6, "l_sole", RobotConfig{});
+  t.qd0 = Eigen::VectorXd::Zero(model.nq());
+  Workspace ws(model);
+  model.update(ws, t.q0, t.qd0);
+  t.stance_contact = FlatContact::fromPose(model.framePose(ws, model.frameId("l_sole")));
+  t.target = {model.framePose(ws, model.frameId("r_sole")).translation(), t.stance_contact.yaw};
+  return t;
+}
+
 template <typename Srv>
 void hammer(const char* service, Tally& t, std::function<void(typename Srv::Request&)> extra) {
   // One persistent connection per pass: a malformed request must not break it either.
@@ -295,72 +345,47 @@ TEST(BadRequests, SwingDurationMessagesNameTheProblem) {
 // request is rejected naming its field; the node then answers a valid one.
 TEST(BadRequests, PlanFootstepRejectsNamingTheFieldAndServesOn) {
   using namespace reach_trajopt;
-  ros::NodeHandle nh;
-  std::string urdf;
-  ASSERT_TRUE(nh.getParam("robot_description", urdf));
-  const auto model = RobotModel::fromUrdfString(urdf, {}, "robot_description");
-  // Standing on the left sole, the right one to land beside it (kinematic check only: fast).
-  FootstepPlanRequest request;
-  request.stance = Side::kLeft;
-  request.q = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
-  request.qd = Eigen::VectorXd::Zero(model->nq());
-  Workspace ws(*model);
-  model->update(ws, request.q, request.qd);
-  request.stance_pose = model->framePose(ws, model->frameId("l_sole"));
-  request.target = model->framePose(ws, model->frameId("r_sole")).translation();
+  const auto model = robotDescriptionModel();
+  FootstepPlanRequest request(standingStep(*model));  // kinematic check only: fast
   request.check_reachability = false;
   request.solve_ocp = false;
   const reach_trajopt::PlanFootstep::Request valid =
       ros_bridge::toPlanFootstepRequestMsg(request, ReachConfig(), ros::Time(0));
-  const std::vector<
-      std::pair<std::string, std::function<void(reach_trajopt::PlanFootstep::Request&)>>>
-      kinds = {
-          {"header.frame_id", [](auto& r) { r.header.frame_id = "map"; }},
-          {"stance", [](auto& r) { r.stance = "SS-L"; }},
-          {"stance_pose", [](auto& r) { r.stance_pose.assign(3, 0.0); }},
-          {"stance_pose", [](auto& r) { r.stance_pose[4] = 5.0; }},
-          {"target", [](auto& r) { r.target.x = kNaN; }},
-          {"target_yaw", [](auto& r) { r.target_yaw = {kInf}; }},
-          {"q", [](auto& r) { r.q.assign(200000, 0.0); }},
-          {"qd", [](auto& r) { r.qd[0] = kNaN; }},
-          {"touchdown_com", [](auto& r) { r.touchdown_com = {1.0}; }},
-          {"horizon", [](auto& r) { r.horizon = 1e9; }},
-          {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
-          {"seed", [](auto& r) { r.seed = -5; }},
-          {"ocp_policy", [](auto& r) { r.ocp_policy = "sometimes"; }},
-          {"on_infeasible", [](auto& r) { r.on_infeasible = "panic"; }},
-      };
-  for (const auto& [field, edit] : kinds) {
-    reach_trajopt::PlanFootstep srv;
-    srv.request = valid;
-    edit(srv.request);
-    ASSERT_TRUE(callService("plan_footstep", srv)) << "stopped serving at " << field;
-    EXPECT_FALSE(srv.response.success) << field;
-    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
-        << field << ": " << srv.response.message;
-    EXPECT_EQ(srv.response.trajectory.status, "error") << field;
-  }
-  reach_trajopt::PlanFootstep srv;
-  srv.request = valid;
-  ASSERT_TRUE(callService("plan_footstep", srv));
-  EXPECT_TRUE(srv.response.success) << srv.response.message;
-  EXPECT_EQ(srv.response.verdict, srv.response.kinematically_feasible ? "kinematically_feasible"
-                                                                      : "kinematically_infeasible");
+  const FieldEdits<reach_trajopt::PlanFootstep> kinds = {
+      {"header.frame_id", [](auto& r) { r.header.frame_id = "map"; }},
+      {"stance", [](auto& r) { r.stance = "SS-L"; }},
+      {"stance_pose", [](auto& r) { r.stance_pose.assign(3, 0.0); }},
+      {"stance_pose", [](auto& r) { r.stance_pose[4] = 5.0; }},
+      {"target", [](auto& r) { r.target.x = kNaN; }},
+      {"target_yaw", [](auto& r) { r.target_yaw = {kInf}; }},
+      {"q", [](auto& r) { r.q.assign(200000, 0.0); }},
+      {"qd", [](auto& r) { r.qd[0] = kNaN; }},
+      {"touchdown_com", [](auto& r) { r.touchdown_com = {1.0}; }},
+      {"horizon", [](auto& r) { r.horizon = 1e9; }},
+      {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
+      {"seed", [](auto& r) { r.seed = -5; }},
+      {"ocp_policy", [](auto& r) { r.ocp_policy = "sometimes"; }},
+      {"on_infeasible", [](auto& r) { r.on_infeasible = "panic"; }},
+  };
+  const auto answer = expectEachRejected<reach_trajopt::PlanFootstep>(
+      "plan_footstep", valid, kinds, [](const auto& response, const std::string& field) {
+        EXPECT_EQ(response.trajectory.status, "error") << field;
+      });
+  EXPECT_TRUE(answer.success) << answer.message;
+  EXPECT_EQ(answer.verdict,
+            answer.kinematically_feasible ? "kinematically_feasible" : "kinematically_infeasible");
 }
 
 TEST(BadRequests, CheckFootholdsRejectsNamingTheFieldAndServesOn) {
   using namespace reach_trajopt;
-  ros::NodeHandle nh;
-  std::string urdf;
-  ASSERT_TRUE(nh.getParam("robot_description", urdf));
-  const auto model = RobotModel::fromUrdfString(urdf, {}, "robot_description");
+  const auto model = robotDescriptionModel();
   // Standing on the left sole; three candidates for the right one around where it stands.
   FootholdCandidates batch;
   batch.stance = Side::kLeft;
   batch.q_init = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
   Workspace ws(*model);
   model->update(ws, batch.q_init, Eigen::VectorXd::Zero(model->nq()));
-  batch.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
+  batch.stance_contact.position = model->framePose(ws, model->frameId("l_sole")).translation();
   for (double dx : {-0.02, 0.0, 0.02}) {
     FlatContact c;
     c.position = model->framePose(ws, model->frameId("r_sole")).translation();
@@ -369,99 +394,65 @@ TEST(BadRequests, CheckFootholdsRejectsNamingTheFieldAndServesOn) {
   }
   const reach_trajopt::CheckFootholds::Request valid =
       ros_bridge::toCheckFootholdsRequestMsg(batch, 77);
-  const std::vector<
-      std::pair<std::string, std::function<void(reach_trajopt::CheckFootholds::Request&)>>>
-      kinds = {
-          {"stance", [](auto& r) { r.stance = "SS-L"; }},
-          {"stance_position", [](auto& r) { r.stance_position.z = kNaN; }},
-          {"stance_yaw", [](auto& r) { r.stance_yaw = kInf; }},
-          {"candidate_yaw", [](auto& r) { r.candidate_yaw.pop_back(); }},
-          {"candidates[1]", [](auto& r) { r.candidates[1].x = kNaN; }},
-          {"q_init", [](auto& r) { r.q_init.assign(200000, 0.0); }},
-          {"pelvis_position", [](auto& r) { r.pelvis_position = {1.0}; }},
-          // A million candidates (24 s and 1.15 GB before the cap, issue 43).
-          {"candidates",
-           [](auto& r) {
-             r.candidates.resize(1000000);
-             r.candidate_yaw.resize(1000000);
-           }},
-      };
-  for (const auto& [field, edit] : kinds) {
-    reach_trajopt::CheckFootholds srv;
-    srv.request = valid;
-    edit(srv.request);
-    ASSERT_TRUE(callService("check_footholds", srv)) << "stopped serving at " << field;
-    EXPECT_FALSE(srv.response.success) << field;
-    EXPECT_EQ(srv.response.request_id, 77u) << field;
-    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
-        << field << ": " << srv.response.message;
-  }
-  reach_trajopt::CheckFootholds srv;
-  srv.request = valid;
-  ASSERT_TRUE(callService("check_footholds", srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
-  EXPECT_EQ(srv.response.request_id, 77u);
-  EXPECT_EQ(ros_bridge::fromCheckFootholdsResponseMsg(srv.response, 3, model->nq()).size(), 3u);
+  const FieldEdits<reach_trajopt::CheckFootholds> kinds = {
+      {"stance", [](auto& r) { r.stance = "SS-L"; }},
+      {"stance_position", [](auto& r) { r.stance_position.z = kNaN; }},
+      {"stance_yaw", [](auto& r) { r.stance_yaw = kInf; }},
+      {"candidate_yaw", [](auto& r) { r.candidate_yaw.pop_back(); }},
+      {"candidates[1]", [](auto& r) { r.candidates[1].x = kNaN; }},
+      {"q_init", [](auto& r) { r.q_init.assign(200000, 0.0); }},
+      {"pelvis_position", [](auto& r) { r.pelvis_position = {1.0}; }},
+      // A million candidates (24 s and 1.15 GB before the cap, issue 43).
+      {"candidates",
+       [](auto& r) {
+         r.candidates.resize(1000000);
+         r.candidate_yaw.resize(1000000);
+       }},
+  };
+  const auto answer = expectEachRejected<reach_trajopt::CheckFootholds>(
+      "check_footholds", valid, kinds, [](const auto& response, const std::string& field) {
+        EXPECT_EQ(response.request_id, 77u) << field;
+      });
+  ASSERT_TRUE(answer.success) << answer.message;
+  EXPECT_EQ(answer.request_id, 77u);
+  EXPECT_EQ(ros_bridge::fromCheckFootholdsResponseMsg(answer, 3, model->nq()).size(), 3u);
 }
 
 // check_footstep (reachability_node's check of one walk footstep): each malformed request is
 // rejected naming its field; the node then answers a valid one.
 TEST(BadRequests, CheckFootstepRejectsNamingTheFieldAndServesOn) {
   using namespace reach_trajopt;
-  ros::NodeHandle nh;
-  std::string urdf;
-  ASSERT_TRUE(nh.getParam("robot_description", urdf));
-  const auto model = RobotModel::fromUrdfString(urdf, {}, "robot_description");
-  // Standing on the left sole, the right one to land where it stands (kinematic check only).
-  FootstepRequest request;
-  request.stance = Side::kLeft;
-  request.q0 = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
-  request.qd0 = Eigen::VectorXd::Zero(model->nq());
-  Workspace ws(*model);
-  model->update(ws, request.q0, request.qd0);
-  request.stance_foothold.position = model->framePose(ws, model->frameId("l_sole")).translation();
-  request.target.position = model->framePose(ws, model->frameId("r_sole")).translation();
+  const auto model = robotDescriptionModel();
+  const ContactTransition request = standingStep(*model);  // kinematic check only
   const reach_trajopt::CheckFootstep::Request valid = ros_bridge::toCheckFootstepRequestMsg(
       request, ReachConfig(), std::nullopt, false, false, ros::Time(0));
-  const std::vector<
-      std::pair<std::string, std::function<void(reach_trajopt::CheckFootstep::Request&)>>>
-      kinds = {
-          {"header.frame_id", [](auto& r) { r.header.frame_id = "map"; }},
-          {"stance", [](auto& r) { r.stance = "SS-L"; }},
-          {"stance_foothold", [](auto& r) { r.stance_foothold.assign(3, 0.0); }},
-          {"target", [](auto& r) { r.target[0] = kNaN; }},
-          {"q0", [](auto& r) { r.q0.assign(200000, 0.0); }},
-          {"qd0", [](auto& r) { r.qd0[0] = kNaN; }},
-          {"qdf", [](auto& r) { r.qdf = {1.0}; }},
-          {"touchdown_com_velocity",
-           [](auto& r) {
-             r.touchdown_com_velocity = {kInf, 0.0};
-           }},
-          {"touchdown_pelvis_position", [](auto& r) { r.touchdown_pelvis_position = {1.0}; }},
-          {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
-          {"seed", [](auto& r) { r.seed = -5; }},
-          {"budget", [](auto& r) { r.budget.resize(2); }},
-          {"forward_until",
-           [](auto& r) {
-             r.budget.resize(1);
-             r.forward_until = {0.01};  // without forward_set_only
-           }},
-      };
-  for (const auto& [field, edit] : kinds) {
-    reach_trajopt::CheckFootstep srv;
-    srv.request = valid;
-    edit(srv.request);
-    ASSERT_TRUE(callService("check_footstep", srv)) << "stopped serving at " << field;
-    EXPECT_FALSE(srv.response.success) << field;
-    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
-        << field << ": " << srv.response.message;
-  }
-  reach_trajopt::CheckFootstep srv;
-  srv.request = valid;
-  ASSERT_TRUE(callService("check_footstep", srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
-  EXPECT_EQ(srv.response.q_f.size(), static_cast<size_t>(model->nq()));
-  ros_bridge::fromCheckFootstepResponseMsg(srv.response, model->nq());  // well formed
+  const FieldEdits<reach_trajopt::CheckFootstep> kinds = {
+      {"header.frame_id", [](auto& r) { r.header.frame_id = "map"; }},
+      {"stance", [](auto& r) { r.stance = "SS-L"; }},
+      {"stance_contact", [](auto& r) { r.stance_contact.assign(3, 0.0); }},
+      {"target", [](auto& r) { r.target[0] = kNaN; }},
+      {"q0", [](auto& r) { r.q0.assign(200000, 0.0); }},
+      {"qd0", [](auto& r) { r.qd0[0] = kNaN; }},
+      {"qdf", [](auto& r) { r.qdf = {1.0}; }},
+      {"touchdown_com_velocity",
+       [](auto& r) {
+         r.touchdown_com_velocity = {kInf, 0.0};
+       }},
+      {"touchdown_pelvis_position", [](auto& r) { r.touchdown_pelvis_position = {1.0}; }},
+      {"reach_horizon", [](auto& r) { r.reach_horizon = kNaN; }},
+      {"seed", [](auto& r) { r.seed = -5; }},
+      {"budget", [](auto& r) { r.budget.resize(2); }},
+      {"forward_until",
+       [](auto& r) {
+         r.budget.resize(1);
+         r.forward_until = {0.01};  // without forward_set_only
+       }},
+  };
+  const auto answer =
+      expectEachRejected<reach_trajopt::CheckFootstep>("check_footstep", valid, kinds);
+  ASSERT_TRUE(answer.success) << answer.message;
+  EXPECT_EQ(answer.q_f.size(), static_cast<size_t>(model->nq()));
+  ros_bridge::fromCheckFootstepResponseMsg(answer, model->nq());  // well formed
 }
 
 // propose_footstep (tvr_planner_node's stateless TVR proposal): each malformed request is
@@ -478,33 +469,21 @@ TEST(BadRequests, ProposeFootstepRejectsNamingTheFieldAndServesOn) {
   request.com_height = 0.9;
   const reach_trajopt::ProposeFootstep::Request valid =
       ros_bridge::toProposeFootstepRequestMsg(request, ros::Time(0));
-  const std::vector<
-      std::pair<std::string, std::function<void(reach_trajopt::ProposeFootstep::Request&)>>>
-      kinds = {
-          {"com", [](auto& r) { r.com = {1.0}; }},
-          {"stance", [](auto& r) { r.stance[0] = kNaN; }},
-          {"swing", [](auto& r) { r.swing = "up"; }},
-          {"time", [](auto& r) { r.time = kInf; }},
-          {"remaining", [](auto& r) { r.remaining = -1.0; }},
-          {"x_start", [](auto& r) { r.x_start = kNaN; }},
-          {"forward_speed", [](auto& r) { r.forward_speed = kNaN; }},
-          {"y_mid", [](auto& r) { r.y_mid = kInf; }},
-          {"com_height", [](auto& r) { r.com_height = 0.0; }},
-      };
-  for (const auto& [field, edit] : kinds) {
-    reach_trajopt::ProposeFootstep srv;
-    srv.request = valid;
-    edit(srv.request);
-    ASSERT_TRUE(callService("propose_footstep", srv)) << "stopped serving at " << field;
-    EXPECT_FALSE(srv.response.success) << field;
-    EXPECT_EQ(srv.response.message.rfind(field + ":", 0), 0u)
-        << field << ": " << srv.response.message;
-  }
-  reach_trajopt::ProposeFootstep srv;
-  srv.request = valid;
-  ASSERT_TRUE(callService("propose_footstep", srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
-  const TvrProposal p = ros_bridge::fromProposeFootstepResponseMsg(srv.response, request);
+  const FieldEdits<reach_trajopt::ProposeFootstep> kinds = {
+      {"com", [](auto& r) { r.com = {1.0}; }},
+      {"stance", [](auto& r) { r.stance[0] = kNaN; }},
+      {"swing", [](auto& r) { r.swing = "up"; }},
+      {"time", [](auto& r) { r.time = kInf; }},
+      {"remaining", [](auto& r) { r.remaining = -1.0; }},
+      {"x_start", [](auto& r) { r.x_start = kNaN; }},
+      {"forward_speed", [](auto& r) { r.forward_speed = kNaN; }},
+      {"y_mid", [](auto& r) { r.y_mid = kInf; }},
+      {"com_height", [](auto& r) { r.com_height = 0.0; }},
+  };
+  const auto answer =
+      expectEachRejected<reach_trajopt::ProposeFootstep>("propose_footstep", valid, kinds);
+  ASSERT_TRUE(answer.success) << answer.message;
+  const TvrProposal p = ros_bridge::fromProposeFootstepResponseMsg(answer, request);
   EXPECT_TRUE(p.step.alpha.allFinite());
 }
 

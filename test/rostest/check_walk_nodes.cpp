@@ -42,6 +42,7 @@
 #include <thread>
 #include <vector>
 
+#include "message_bytes.h"
 #include "reach_trajopt/CenterOfMassState.h"
 #include "reach_trajopt/ReachabilityResult.h"
 #include "reach_trajopt/StepReport.h"
@@ -111,14 +112,7 @@ pid_t nodePid(const std::string& node) {
   return read ? static_cast<pid_t>(std::atol(buffer)) : 0;
 }
 
-template <typename M>
-std::vector<uint8_t> bytes(const M& m) {
-  const uint32_t n = ros::serialization::serializationLength(m);
-  std::vector<uint8_t> b(n);
-  ros::serialization::OStream s(b.data(), n);
-  ros::serialization::serialize(s, m);
-  return b;
-}
+using reach_trajopt::test::bytes;
 
 // The record without what depends on the machine (wall times) or the transport (seq).
 reach_trajopt::StepReport comparable(reach_trajopt::StepReport m) {

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <functional>
+#include <random>
 #include <string>
 
 #include "reach_trajopt/common/error.h"
@@ -19,6 +20,16 @@ namespace test {
 inline bool sameBits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return a.rows() == b.rows() && a.cols() == b.cols() &&
          std::equal(a.data(), a.data() + a.size(), b.data());
+}
+
+/// n numbers with every bit of the mantissa in use (a float32 or a printed decimal would lose
+/// some), the same for the same seed.
+inline Eigen::VectorXd awkward(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd v(n);
+  for (int i = 0; i < n; ++i) v[i] = u(rng) / 3.0;
+  return v;
 }
 
 /// `f` throws a RequestError whose message names `field`.

@@ -19,23 +19,12 @@
 #include "reach_trajopt/qp/dual_active_set_qp.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/sim/bullet_world.h"
+#include "thrown_message.h"
 
 namespace reach_trajopt {
 namespace {
 
-template <typename Expected, typename F>
-std::string thrownMessage(F&& f) {
-  try {
-    f();
-  } catch (const Expected& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "nothing thrown";
-  return "";
-}
+using test::thrownMessage;
 
 TEST(Errors, MissingUrdfIsAModelErrorNamingTheFile) {
   const std::string msg =

@@ -23,18 +23,9 @@ namespace {
 
 const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
 
-struct Pipeline {
-  std::shared_ptr<const RobotModel> model;
-  ContactConfig contact;
-  FootstepPlannerConfig config;
-  std::unique_ptr<FootstepTransitionPlanner> planner;
-  Pipeline() {
-    const YamlSection file = YamlSection::loadFile(kRepo + "/config/biped.yaml");
-    contact = ContactConfig::fromYaml(file.section("contact"));
-    config = FootstepPlannerConfig::fromYaml(file);
-    model = RobotModel::fromUrdfFile(kRepo + "/urdf/biped.urdf");
-    planner = std::make_unique<FootstepTransitionPlanner>(model, contact, config);
-  }
+struct Pipeline : ShippedBiped {
+  Pipeline() : ShippedBiped(kRepo) {}
+  std::unique_ptr<FootstepTransitionPlanner> planner = makePlanner();
 };
 
 const Pipeline& pipeline() {
@@ -44,14 +35,7 @@ const Pipeline& pipeline() {
 
 std::vector<FootstepPlanRequest> requestsOf(const std::string& fixture) {
   const Pipeline& p = pipeline();
-  std::ifstream in(kRepo + "/test/fixtures/" + fixture);
-  std::vector<FootstepPlanRequest> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    const nlohmann::json j = JsonReader::parse(line, "fixture");
-    out.push_back(readFootstepPlanRequest(JsonReader(j, "fixture"), p.model->nq(), p.config.reach));
-  }
-  return out;
+  return readPlanRequests(kRepo + "/test/fixtures/" + fixture, p.model->nq(), p.config.reach);
 }
 
 std::vector<FootstepPlanRequest> walkRequests() { return requestsOf("pushed_walk_requests.jsonl"); }
@@ -77,7 +61,7 @@ struct WitnessRecheck {
 WitnessRecheck recheck(const FootstepTransition& step) {
   const RobotModel& m = *pipeline().model;
   const WitnessPath& w = step.check.reach.witness;
-  const FrameId sole = m.frameId(pipeline().contact.soleFrame(step.stance));
+  const FrameId sole = m.frameId(pipeline().contact.soleFrame(step.transition.stance));
   Workspace ws(m);
   Eigen::MatrixXd M(m.nq(), m.nq()), J(6, m.nq());
   Eigen::VectorXd b(m.nq());
@@ -85,8 +69,9 @@ WitnessRecheck recheck(const FootstepTransition& step) {
   const double dt = step.request.reach ? step.request.reach->dt : pipeline().config.reach.dt;
   for (int k = 0; k < w.q.cols(); ++k) {
     m.update(ws, w.q.col(k), w.qd.col(k));
-    r.sole = std::max(r.sole,
-                      (m.framePose(ws, sole).translation() - step.stance_contact.position).norm());
+    r.sole = std::max(
+        r.sole,
+        (m.framePose(ws, sole).translation() - step.transition.stance_contact.position).norm());
     if (k + 1 == w.q.cols()) break;
     m.massMatrix(ws, M);
     m.bias(ws, b);
@@ -109,7 +94,7 @@ WitnessRecheck recheckTrajectory(const FootstepTransition& step) {
   const TransitionResult& t = step.trajectory;
   const FrameId left = m.frameId(p.contact.left_sole_frame);
   const FrameId right = m.frameId(p.contact.right_sole_frame);
-  const FrameId stance = step.stance == Side::kLeft ? left : right;
+  const FrameId stance = step.transition.stance == Side::kLeft ? left : right;
   Workspace ws(m);
   Eigen::MatrixXd M(m.nq(), m.nq()), J_left(6, m.nq()), J_right(6, m.nq());
   Eigen::VectorXd b(m.nq());
@@ -117,7 +102,8 @@ WitnessRecheck recheckTrajectory(const FootstepTransition& step) {
   for (int k = 0; k < t.q.cols(); ++k) {
     m.update(ws, t.q.col(k), t.qd.col(k));
     r.sole = std::max(
-        r.sole, (m.framePose(ws, stance).translation() - step.stance_contact.position).norm());
+        r.sole,
+        (m.framePose(ws, stance).translation() - step.transition.stance_contact.position).norm());
     m.massMatrix(ws, M);
     m.bias(ws, b);
     m.frameJacobian(ws, left, J_left);
@@ -175,7 +161,7 @@ TEST(FootstepVerdict, WalkStepCertifiedByTheBridge) {
   const WitnessPath& w = step.check.reach.witness;
   ASSERT_TRUE(w.certified);
   EXPECT_EQ(w.junction, -1);
-  EXPECT_NEAR(w.time.back(), step.horizon, 1e-12);
+  EXPECT_NEAR(w.time.back(), step.transition.horizon, 1e-12);
   const ReachConfig& reach = *step.request.reach;
   const WitnessRecheck r = recheck(step);
   std::cout << "witness: eq. (1) " << r.dynamics << " N, held sole " << r.sole
@@ -205,7 +191,7 @@ TEST(FootstepVerdict, FootholdsOutOfReachAreNeverReachable) {
   EXPECT_FALSE(narrow.reachable);
   // Step 5's foothold 0.6 m farther forward.
   FootstepPlanRequest far = requests[2];
-  far.target.x() += 0.6;
+  far.target.position.x() += 0.6;
   const FootstepTransition f = planStrict(far);
   EXPECT_FALSE(f.reachable) << f.reason;
   EXPECT_NE(f.verdict, StepVerdict::kReachable);

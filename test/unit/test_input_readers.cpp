@@ -18,6 +18,7 @@
 #include "reach_trajopt/qp/qp_problem_json.h"
 #include "reach_trajopt/reach/reach_config.h"
 #include "reach_trajopt/reach/reach_request_json.h"
+#include "thrown_message.h"
 
 using namespace reach_trajopt;
 
@@ -26,13 +27,7 @@ namespace {
 /// The message of the ReachError `f` throws ("" and a test failure when it throws none).
 template <typename F>
 std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const ReachError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no ReachError thrown";
-  return "";
+  return test::thrownMessage<ReachError>(f);
 }
 
 #define EXPECT_ERROR_NAMES(expr, word)                                                    \

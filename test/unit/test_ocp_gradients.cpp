@@ -14,6 +14,7 @@
 #include "reach_trajopt/ocp/stance_reduced_dynamics.h"
 #include "reach_trajopt/ocp/transition_nlp.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -28,35 +29,11 @@ std::shared_ptr<const RobotModel> biped() {
 /// SS-L, right sole stepping to (0.25, -0.1); x_0 from the IK stance with the right leg folded.
 TransitionRequest request() {
   const auto m = biped();
-  const KinematicFeasibility kf(m);
-  FlatContact left, right;
-  left.position << 0.0, 0.1, 0.0;
-  right.position << 0.25, -0.1, 0.0;
-  Eigen::VectorXd guess = Eigen::VectorXd::Zero(m->nq());
-  guess[1] = 0.09;
-  guess[2] = 1.05;
-  for (const std::string side : {"l_", "r_"}) {
-    guess[m->jointIndex(side + "hip_pitch")] = -0.3;
-    guess[m->jointIndex(side + "knee")] = 0.6;
-    guess[m->jointIndex(side + "ankle_pitch")] = -0.3;
-  }
-  const auto ik = kf.check(Side::kLeft, left, right, guess);
-  EXPECT_TRUE(ik.feasible) << ik.reason;
-  TransitionRequest r;
-  r.stance = Side::kLeft;
-  r.stance_pose = left.pose();
-  r.swing_target = right.pose();
-  r.horizon = 0.2;
-  r.qf = ik.q_f;
-  r.qdf = ik.qd_f;
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  TransitionRequest r = ocpStepCase(m, 0.25, 0.25, 0.2);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
-  Eigen::VectorXd qa = ik.q_f.tail(m->nu());
-  qa[m->jointIndex("r_knee") - 6] += 0.5;
-  qa[m->jointIndex("r_ankle_pitch") - 6] -= 0.25;
-  r.q0.resize(m->nq());
-  d.configuration(s, qa, r.q0);
+  const Eigen::VectorXd qa = r.q0.tail(m->nu());
   // A moving start: joint velocities, base velocity from the stance contact (J_s qd = 0).
   Eigen::VectorXd input = Eigen::VectorXd::Zero(d.inputCount());
   input.head(m->nu()) = qa;
@@ -96,8 +73,8 @@ double relativeError(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
 TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
   const auto m = biped();
   const TransitionRequest r = request();
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
   const int nu = m->nu(), nq = m->nq();
   Eigen::VectorXd input = Eigen::VectorXd::Zero(d.inputCount());
@@ -112,7 +89,7 @@ TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
   EXPECT_LT((s.qd - r.qd0).cwiseAbs().maxCoeff(), 1e-12);
   Workspace ws(*m);
   m->update(ws, s.q, s.qd);
-  const ContactConstraint stance(*m, "l_sole", r.stance_pose);
+  const ContactConstraint stance(*m, "l_sole", r.heldPose());
   ContactConstraintTerms t(nq);
   stance.evaluate(*m, ws, t);
   EXPECT_LT(t.phi.cwiseAbs().maxCoeff(), 1e-12);
@@ -135,8 +112,8 @@ TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
 TEST(StanceReducedDynamics, SignalJacobianMatchesCentralDifferences) {
   const auto m = biped();
   const TransitionRequest r = request();
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
+  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                          r.targetPose(), 0.0);
   StanceReducedDynamics::Scratch s(d);
   const int nu = m->nu();
   Eigen::VectorXd input = Eigen::VectorXd::Zero(d.inputCount());

@@ -32,6 +32,7 @@
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ocp/transition_request_json.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -55,52 +56,10 @@ std::shared_ptr<const RobotModel> biped() {
   return model;
 }
 
-FlatContact contactAt(double x, double y) {
-  FlatContact c;
-  c.position << x, y, 0.0;
-  return c;
-}
-
-/// IK start: upright, knees slightly bent, pelvis above the stance (left) foot side.
-Eigen::VectorXd ikGuess(const RobotModel& m) {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
-  q[1] = 0.09;
-  q[2] = 1.05;
-  for (const std::string side : {"l_", "r_"}) {
-    q[m.jointIndex(side + "hip_pitch")] = -0.3;
-    q[m.jointIndex(side + "knee")] = 0.6;
-    q[m.jointIndex(side + "ankle_pitch")] = -0.3;
-  }
-  return q;
-}
-
 /// SS-L: left sole at (0, 0.1), right sole to (target_x, -0.1). x_0: the IK stance for a
 /// 0.25 m step with the right leg folded (swing sole about 0.1 m up, 0.2 m behind), at rest.
 TransitionRequest stepRequest(double target_x, double horizon = 0.3) {
-  const auto m = biped();
-  const KinematicFeasibility kf(m);
-  const FlatContact left = contactAt(0.0, 0.1);
-  const auto start = kf.check(Side::kLeft, left, contactAt(0.25, -0.1), ikGuess(*m));
-  EXPECT_TRUE(start.feasible) << start.reason;
-  const FlatContact right = contactAt(target_x, -0.1);
-  const auto final = kf.check(Side::kLeft, left, right, ikGuess(*m));
-  TransitionRequest r;
-  r.stance = Side::kLeft;
-  r.stance_pose = left.pose();
-  r.swing_target = right.pose();
-  r.horizon = horizon;
-  r.qf = final.q_f;
-  r.qdf = final.qd_f;
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.stance_pose, m->frameId("r_sole"),
-                          r.swing_target, 0.0);
-  StanceReducedDynamics::Scratch s(d);
-  Eigen::VectorXd qa = start.q_f.tail(m->nu());
-  qa[m->jointIndex("r_knee") - 6] += 0.5;
-  qa[m->jointIndex("r_ankle_pitch") - 6] -= 0.25;
-  r.q0.resize(m->nq());
-  d.configuration(s, qa, r.q0);
-  r.qd0 = Eigen::VectorXd::Zero(m->nq());
-  return r;
+  return ocpStepCase(biped(), target_x, 0.25, horizon);
 }
 
 /// Independent re-check of every 1 ms sample with the full model (see file comment).
@@ -115,7 +74,7 @@ void expectFeasibleTrajectory(const TransitionRequest& req, const TransitionResu
   const double W = m.totalMass() * m.gravity().norm();
   const Eigen::VectorXd u_max = m.effortLimits();
   const FrameId fl = m.frameId("l_sole"), fr = m.frameId("r_sole");
-  Eigen::Isometry3d landing = req.swing_target;
+  Eigen::Isometry3d landing = req.targetPose();
   landing.translation().head<2>() += res.eps;
   Workspace ws(m);
   Eigen::MatrixXd M(nq, nq);
@@ -137,11 +96,11 @@ void expectFeasibleTrajectory(const TransitionRequest& req, const TransitionResu
     // Stance sole (left) fixed: position, rotation, velocity, acceleration.
     const Eigen::Isometry3d P = m.framePose(ws, fl);
     const double angle =
-        Eigen::AngleAxisd(Eigen::Matrix3d(P.linear() * req.stance_pose.linear().transpose()))
+        Eigen::AngleAxisd(Eigen::Matrix3d(P.linear() * req.heldPose().linear().transpose()))
             .angle();
     const Vector6d v = m.frameVelocity(ws, fl);
     const Vector6d a = Jl * qdd + m.frameJdotQd(ws, fl);
-    contact = std::max({contact, (P.translation() - req.stance_pose.translation()).norm(), angle,
+    contact = std::max({contact, (P.translation() - req.heldPose().translation()).norm(), angle,
                         v.cwiseAbs().maxCoeff(), a.cwiseAbs().maxCoeff()});
     // Cone (7) in the sole frame.
     const Eigen::Matrix3d Rt = P.linear().transpose();
@@ -230,7 +189,7 @@ TEST(TransitionOcp, ReachableStepConvergesAndPassesIndependentCheck) {
   const int n = static_cast<int>(res.time.size());
   EXPECT_LT((res.q.col(n - 1) - req.qf).cwiseAbs().maxCoeff(), kTol);
   EXPECT_LT((res.qd.col(n - 1) - req.qdf).cwiseAbs().maxCoeff(), kTol);
-  EXPECT_LT((res.landing_position - req.swing_target.translation()).norm(), kTol);
+  EXPECT_LT((res.landing_position - req.targetPose().translation()).norm(), kTol);
   // Inside every hull.
   for (const ReachableSlice& s : req.slices) {
     const Eigen::Vector2d y = swingAt(res, s.time);
@@ -264,13 +223,13 @@ TEST(TransitionOcp, StepBeyondReachableSetIsRelaxedToItsEdge) {
   expectFeasibleTrajectory(req, res);
   EXPECT_NEAR(res.eps.norm(), beyond, 0.2 * beyond);
   EXPECT_LE(res.landing_position.x(), edge + kTol);
-  EXPECT_NEAR((res.landing_position.head<2>() - req.swing_target.translation().head<2>()).norm(),
+  EXPECT_NEAR((res.landing_position.head<2>() - req.targetPose().translation().head<2>()).norm(),
               res.eps.norm(), kTol);
   // The landing is a kinematically feasible stance (Sec. III-B).
   const KinematicFeasibility kf(biped());
-  const auto ik =
-      kf.check(Side::kLeft, contactAt(0.0, 0.1),
-               contactAt(res.landing_position.x(), res.landing_position.y()), ikGuess(*biped()));
+  const auto ik = kf.check(Side::kLeft, contactAt(0.0, 0.1),
+                           contactAt(res.landing_position.x(), res.landing_position.y()),
+                           bipedIkGuess(*biped()));
   EXPECT_TRUE(ik.feasible) << ik.reason;
   std::cout << "[ relaxed   ] eps = " << res.eps.transpose() << ", " << res.solve_time << " s\n";
 }
@@ -282,9 +241,9 @@ TEST(TransitionOcp, StepBeyondLegReachLandsOnFeasibleFoothold) {
   double lo = 0.25, hi = 1.5;
   for (int i = 0; i < 25; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (kf.check(Side::kLeft, contactAt(0.0, 0.1), contactAt(mid, -0.1), ikGuess(*m)).feasible ? lo
-                                                                                            : hi) =
-        mid;
+    (kf.check(Side::kLeft, contactAt(0.0, 0.1), contactAt(mid, -0.1), bipedIkGuess(*m)).feasible
+         ? lo
+         : hi) = mid;
   }
   const double beyond = 0.3;
   TransitionRequest req = stepRequest(lo + beyond);
@@ -297,7 +256,7 @@ TEST(TransitionOcp, StepBeyondLegReachLandsOnFeasibleFoothold) {
   expectFeasibleTrajectory(req, res);
   const auto ik =
       kf.check(Side::kLeft, contactAt(0.0, 0.1),
-               contactAt(res.landing_position.x(), res.landing_position.y()), ikGuess(*m));
+               contactAt(res.landing_position.x(), res.landing_position.y()), bipedIkGuess(*m));
   EXPECT_TRUE(ik.feasible) << ik.reason;
   EXPECT_GE(res.eps.norm(), beyond - kTol);
   std::cout << "[ beyond IK ] edge " << lo << " m, landing x " << res.landing_position.x()
@@ -423,7 +382,7 @@ TEST(TransitionOcp, BadInputThrows) {
   r.seed.q = Eigen::MatrixXd::Zero(m->nq(), 2);
   expectThrow(r, "seed");
   r = good;
-  r.swing_target.translation().x() = 0.6;  // x_f no longer on the target
+  r.target.position.x() = 0.6;  // x_f no longer on the target
   r.relaxation = RelaxationMode::kStrict;
   expectThrow(r, "x_f does not hold both contacts");
   // Invalid configurations.
@@ -452,8 +411,8 @@ TEST(TransitionRequestJson, WriteThenReadGivesTheRequest) {
   const TransitionRequest& b = back.request;
   ASSERT_TRUE(back.has_qf);
   EXPECT_EQ(b.stance, r.stance);
-  EXPECT_TRUE(b.stance_pose.isApprox(r.stance_pose, 1e-12));
-  EXPECT_TRUE(b.swing_target.isApprox(r.swing_target, 1e-12));
+  EXPECT_TRUE(b.heldPose().isApprox(r.heldPose(), 1e-12));
+  EXPECT_TRUE(b.targetPose().isApprox(r.targetPose(), 1e-12));
   EXPECT_EQ(b.horizon, r.horizon);
   EXPECT_EQ(b.q0, r.q0);
   EXPECT_EQ(b.qd0, r.qd0);

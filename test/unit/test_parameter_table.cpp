@@ -19,6 +19,7 @@
 #include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/testing/parameter_tables.h"
 #include "reach_trajopt/walk/walking_experiment.h"
+#include "thrown_message.h"
 
 using namespace reach_trajopt;
 
@@ -33,15 +34,10 @@ std::string readFile(const std::string& path) {
   return os.str();
 }
 
-/// The message of the ConfigError that `f` throws ("no ConfigError" when none).
+/// The message of the ConfigError that `f` throws.
 template <typename F>
 std::string configError(F f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no ConfigError";
+  return test::thrownMessage<ConfigError>(f);
 }
 
 /// A config struct as a component would write it (see config_fields.h).
@@ -50,13 +46,11 @@ struct ToyConfig {
   std::uint64_t seed = 1;
   Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);
   double angle = 0.0;  ///< [rad], written in degrees in the YAML
-  void validate() const {
-    if (!(length > 0.0)) throw ConfigError("ToyConfig: length must be > 0");
-  }
+  void validate() const { fields().checkRanges(*this); }
   static const ConfigFields<ToyConfig>& fields() {
     static const ConfigFields<ToyConfig> f =
         ConfigFields<ToyConfig>("ToyConfig", "toy", "test/unit/test_parameter_table.cpp", "A toy.")
-            .add("length", &ToyConfig::length, "m", "> 0")
+            .add("length", &ToyConfig::length, "m", Range::positive(), "a length")
             .add("seed", &ToyConfig::seed, "", "random stream")
             .add("gravity", &ToyConfig::gravity, "m/s^2", "world frame")
             .custom(
@@ -104,10 +98,12 @@ TEST(ParameterTable, TheMechanismOnAToyConfig) {
             std::string::npos);
   EXPECT_NE(configError([&] {
               ToyConfig::fields().read(section("toy: {length: -1}"));
-            }).find("toy.yaml: toy: ToyConfig: length must be > 0"),
+            }).find("toy.yaml: toy: ToyConfig: length must be positive and finite, got -1"),
             std::string::npos);
   const std::string md = parameterTableMarkdown({ToyConfig::fields().table()});
-  EXPECT_NE(md.find("| `angle_deg` | number | 0 | deg | an angle in degrees |"), std::string::npos)
+  EXPECT_NE(md.find("| `length` | number | 0.5 | m | > 0 | a length |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `angle_deg` | number | 0 | deg |  | an angle in degrees |"),
+            std::string::npos)
       << md;
   EXPECT_NE(md.find("- `size`: removed: use toy.length"), std::string::npos) << md;
 }

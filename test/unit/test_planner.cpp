@@ -13,6 +13,7 @@
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/planner/lipm.h"
 #include "reach_trajopt/planner/tvr_planner.h"
+#include "thrown_message.h"
 
 using namespace reach_trajopt;
 
@@ -276,13 +277,9 @@ TEST(TvrPlanner, ShippedYamlHasPaperValues) {
 
 TEST(TvrPlanner, RemovedKeysAreClearErrors) {
   // step_duration had no effect on the gait; the walk mode sets the heuristic bounds.
-  const auto message = [](const std::string& yaml) -> std::string {
-    try {
-      TvrConfig::fromYaml(YamlSection::loadString(yaml, "old.yaml").section("planner"));
-    } catch (const ConfigError& e) {
-      return e.what();
-    }
-    return "no ConfigError";
+  const auto message = [](const std::string& yaml) {
+    return test::thrownMessage<ConfigError>(
+        [&] { TvrConfig::fromYaml(YamlSection::loadString(yaml, "old.yaml").section("planner")); });
   };
   const std::string step = message("planner: {step_duration: 0.28}");
   EXPECT_NE(step.find("old.yaml: planner.step_duration: removed"), std::string::npos) << step;

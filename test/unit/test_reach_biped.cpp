@@ -16,6 +16,7 @@
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/reach/footstep_reachability.h"
+#include "reach_trajopt/testing/reference_cases.h"
 #include "reach_trajopt/testing/swing_state.h"
 
 using namespace reach_trajopt;
@@ -46,22 +47,13 @@ ReachConfig testConfig() {
 
 /// IK starting point with bent knees (the IK's own guess converges to stretched legs here).
 Eigen::VectorXd bentKnees(const RobotModel& m, double x, double y) {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
-  q[0] = x;
-  q[1] = y;
-  q[2] = 1.1;
-  for (const std::string s : {"l_", "r_"}) {
-    q[m.jointIndex(s + "hip_pitch")] = -0.4;
-    q[m.jointIndex(s + "knee")] = 0.8;
-    q[m.jointIndex(s + "ankle_pitch")] = -0.4;
-  }
-  return q;
+  return bipedPosture(m, Eigen::Vector3d(x, y, 1.1), 0.4);
 }
 
 struct Scenario {
   std::shared_ptr<ReachabilityAnalyzer> analyzer;
   std::shared_ptr<KinematicFeasibility> kinematics;
-  FootstepRequest request;
+  ContactTransition request;
 };
 
 /// Left stance at (0, 0.1); the TVR target of the right sole from a CoM moving forward; x_0
@@ -85,14 +77,14 @@ Scenario normalStep(const ReachConfig& config) {
   in.stance = Eigen::Vector2d(0.0, 0.1);
   in.swing = Side::kRight;
   const TvrStep step = planner.plan(in);
-  FootstepRequest& r = s.request;
+  ContactTransition& r = s.request;
   r.stance = Side::kLeft;
-  r.stance_foothold.position << 0.0, 0.1, 0.0;
+  r.stance_contact.position << 0.0, 0.1, 0.0;
   r.target.position << step.alpha.x(), step.alpha.y(), 0.0;
   const Eigen::Vector3d p0 = r.target.position + Eigen::Vector3d(-0.03, 0.0, 0.02);
   const Eigen::Vector3d v0 = 2.0 * (r.target.position - p0) / config.horizon;
   const RobotState x0 =
-      swingState(model, KinematicFeasibilityConfig(), contact, Side::kLeft, r.stance_foothold, p0,
+      swingState(model, KinematicFeasibilityConfig(), contact, Side::kLeft, r.stance_contact, p0,
                  0.0, v0, bentKnees(*model, 0.5 * p0.x(), 0.5 * (0.1 + p0.y())));
   r.q0 = x0.q;
   r.qd0 = x0.qd;
@@ -150,11 +142,11 @@ void checkStep(const RobotModel& m, FrameId sole, const Eigen::VectorXd& q_e,
 }
 
 /// Every sample of both sets: its own state, and the step that produced it.
-void recheckAll(const ReachabilityAnalyzer& an, const ReachResult& r, const FootstepRequest& req,
+void recheckAll(const ReachabilityAnalyzer& an, const ReachResult& r, const ContactTransition& req,
                 Recheck& fwd, Recheck& bwd) {
   const RobotModel& m = an.model();
   const FrameId sole = m.frameId("l_sole");
-  const Eigen::Isometry3d foothold = req.stance_foothold.pose();
+  const Eigen::Isometry3d foothold = req.stance_contact.pose();
   for (bool forward : {true, false}) {
     const auto& slices = forward ? r.forward : r.backward;
     Recheck& out = forward ? fwd : bwd;
@@ -201,7 +193,7 @@ TEST(ReachBiped, NormalTvrFootstepEverySampleAndTheWitnessCheckOut) {
   const Scenario s = normalStep(testConfig());
   std::cout << "TVR target " << s.request.target.position.transpose() << "\n";
   const FootstepReachability fr(s.analyzer, s.kinematics);
-  const FootstepResult res = fr.check(s.request);
+  const FootstepCheckResult res = fr.check(s.request);
   std::cout << res.reason << "\n";
   ASSERT_TRUE(res.kinematically_feasible) << res.reason;
   const ReachResult& r = res.reach;
@@ -232,7 +224,7 @@ TEST(ReachBiped, NormalTvrFootstepEverySampleAndTheWitnessCheckOut) {
   Recheck wc;
   const FrameId sole = m.frameId("l_sole");
   for (int k = 0; k < w.q.cols(); ++k) {
-    checkState(m, s.request.stance_foothold.pose(), sole, w.q.col(k), w.qd.col(k), wc);
+    checkState(m, s.request.stance_contact.pose(), sole, w.q.col(k), w.qd.col(k), wc);
     if (k + 1 < w.q.cols() && k != w.junction) {
       checkStep(m, sole, w.q.col(k), w.qd.col(k), (w.qd.col(k + 1) - w.qd.col(k)) / r.dt,
                 w.u.col(k), w.lambda.col(k), wc);
@@ -255,7 +247,7 @@ TEST(ReachBiped, NormalTvrFootstepEverySampleAndTheWitnessCheckOut) {
 TEST(ReachBiped, LateralFootstepOf1_5mIsUnreachable) {
   Scenario s = normalStep(testConfig());
   s.request.target.position << 0.0, 0.1 - 1.5, 0.0;
-  const FootstepResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
+  const FootstepCheckResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
   std::cout << res.reason << "\n";
   EXPECT_FALSE(res.reachable);
   EXPECT_FALSE(res.kinematically_feasible);
@@ -272,20 +264,20 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
     const double mid = 0.5 * (lo + hi);
     t.position.x() = mid;
     const bool ok =
-        s.kinematics->check(Side::kLeft, s.request.stance_foothold, t, bentKnees(m, 0.5 * mid, 0.0))
+        s.kinematics->check(Side::kLeft, s.request.stance_contact, t, bentKnees(m, 0.5 * mid, 0.0))
             .feasible;
     (ok ? lo : hi) = mid;
   }
   std::cout << "forward reach of the right sole: x = " << lo << " m\n";
   s.request.target.position.x() = hi + 0.02;  // 2 cm beyond
-  const FootstepResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
+  const FootstepCheckResult res = FootstepReachability(s.analyzer, s.kinematics).check(s.request);
   std::cout << res.reason << "\n";
   EXPECT_FALSE(res.reachable);
   // Within kinematic reach but 0.25 m beyond where the swing sole can get in the window: the
   // dynamic check says no.
   Scenario d = normalStep(testConfig());
   d.request.target.position.x() += 0.25;
-  const FootstepResult dyn = FootstepReachability(d.analyzer, d.kinematics).check(d.request);
+  const FootstepCheckResult dyn = FootstepReachability(d.analyzer, d.kinematics).check(d.request);
   std::cout << dyn.reason << "\n";
   ASSERT_TRUE(dyn.kinematically_feasible) << dyn.reason;
   EXPECT_FALSE(dyn.reachable);
@@ -296,7 +288,7 @@ TEST(ReachBiped, FootstepJustBeyondTheLegsReachIsUnreachable) {
   EXPECT_EQ(dyn.reach.budgets, 1);
   ReachConfig full_alone = testConfig();
   full_alone.quick_pass = false;
-  const FootstepResult full =
+  const FootstepCheckResult full =
       FootstepReachability(d.analyzer, d.kinematics).check(d.request, full_alone);
   EXPECT_EQ(full.reach.budgets, 1);
   EXPECT_FALSE(full.reach.gave_up);
@@ -314,9 +306,9 @@ TEST(ReachBiped, OneAndTwoThreadsGiveIdenticalSetsAndVerdict) {
   const Scenario s = normalStep(c);
   const FootstepReachability fr(s.analyzer, s.kinematics);
   c.threads = 1;
-  const FootstepResult a = fr.check(s.request, c);
+  const FootstepCheckResult a = fr.check(s.request, c);
   c.threads = 2;
-  const FootstepResult b = fr.check(s.request, c);
+  const FootstepCheckResult b = fr.check(s.request, c);
   ASSERT_EQ(a.reach.forward.size(), b.reach.forward.size());
   ASSERT_EQ(a.reach.backward.size(), b.reach.backward.size());
   for (int dir = 0; dir < 2; ++dir) {
@@ -350,9 +342,9 @@ TEST(ReachBiped, BackwardPrefilterKeepsExactlyTheChildrenOfTheExactTest) {
     const Scenario s = normalStep(c);
     const FootstepReachability fr(s.analyzer, s.kinematics);
     c.backward_prefilter = false;
-    const FootstepResult exact = fr.check(s.request, c);
+    const FootstepCheckResult exact = fr.check(s.request, c);
     c.backward_prefilter = true;
-    const FootstepResult fast = fr.check(s.request, c);
+    const FootstepCheckResult fast = fr.check(s.request, c);
     ASSERT_TRUE(exact.kinematically_feasible);
     EXPECT_EQ(exact.reach.counts.backward_prefiltered, 0);
     const ReachCounts& n = fast.reach.counts;
@@ -380,11 +372,11 @@ TEST(ReachBiped, StatesViolatingContactsAreErrors) {
   const RobotModel& m = s.analyzer->model();
   ReachProblem p;
   p.mode = ContactMode::singleSupport(Side::kLeft);
-  p.footholds[0] = s.request.stance_foothold.pose();
+  p.footholds[0] = s.request.stance_contact.pose();
   p.q0 = s.request.q0;
   p.qd0 = s.request.qd0;
   const auto kin =
-      s.kinematics->check(Side::kLeft, s.request.stance_foothold, s.request.target, s.request.q0);
+      s.kinematics->check(Side::kLeft, s.request.stance_contact, s.request.target, s.request.q0);
   ASSERT_TRUE(kin.feasible);
   p.qf = kin.q_f;
   p.qdf = Eigen::VectorXd::Zero(m.nq());

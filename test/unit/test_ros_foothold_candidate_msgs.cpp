@@ -12,28 +12,21 @@
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ros/foothold_candidate_msgs.h"
+#include "ros_message_checks.h"
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
+using reach_trajopt::test::awkward;
 
 namespace {
 
 constexpr int kNq = 18;
 
-// Numbers with every bit of the mantissa in use (a float32 or a printed decimal would lose some).
-Eigen::VectorXd awkward(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = u(rng) / 3.0;
-  return v;
-}
-
 FootholdCandidates makeBatch() {
   FootholdCandidates b;
   b.stance = Side::kRight;
-  b.stance_foothold.position = awkward(3, 1);
-  b.stance_foothold.yaw = 1.0 / 7.0;
+  b.stance_contact.position = awkward(3, 1);
+  b.stance_contact.yaw = 1.0 / 7.0;
   for (unsigned i = 0; i < 5; ++i) {
     FlatContact c;
     c.position = awkward(3, 10 + i);
@@ -51,8 +44,8 @@ TEST(RosFootholdCandidateMsgs, RequestRoundTripIsBitExact) {
   EXPECT_EQ(m.request_id, 42u);
   const FootholdCandidates back = rb::fromCheckFootholdsRequestMsg(m, kNq);
   EXPECT_EQ(back.stance, b.stance);
-  EXPECT_EQ(back.stance_foothold.position, b.stance_foothold.position);
-  EXPECT_EQ(back.stance_foothold.yaw, b.stance_foothold.yaw);
+  EXPECT_EQ(back.stance_contact.position, b.stance_contact.position);
+  EXPECT_EQ(back.stance_contact.yaw, b.stance_contact.yaw);
   ASSERT_EQ(back.candidates.size(), b.candidates.size());
   for (size_t i = 0; i < b.candidates.size(); ++i) {
     EXPECT_EQ(back.candidates[i].position, b.candidates[i].position);

@@ -22,6 +22,7 @@
 #include "reach_trajopt/ros/footstep_check_msgs.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/testing/reference_cases.h"
 #include "ros_message_checks.h"
 
 using namespace reach_trajopt;
@@ -33,66 +34,47 @@ namespace {
 
 const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
 
-struct Pipeline {
-  std::shared_ptr<const RobotModel> model;
-  ContactConfig contact;
-  FootstepPlannerConfig config;
-  Pipeline() {
-    const YamlSection file = YamlSection::loadFile(kRepo + "/config/biped.yaml");
-    contact = ContactConfig::fromYaml(file.section("contact"));
-    config = FootstepPlannerConfig::fromYaml(file);
-    model = RobotModel::fromUrdfFile(kRepo + "/urdf/biped.urdf");
-  }
-  std::unique_ptr<FootstepTransitionPlanner> planner() const {
-    return std::make_unique<FootstepTransitionPlanner>(model, contact, config);
-  }
-};
-
-const Pipeline& pipeline() {
-  static const Pipeline p;
+const ShippedBiped& pipeline() {
+  static const ShippedBiped p(kRepo);
   return p;
 }
 
 // The `index`-th footstep of the pushed walk fixture.
 FootstepPlanRequest walkRequest(size_t index) {
-  std::ifstream in(kRepo + "/test/fixtures/pushed_walk_requests.jsonl");
-  std::string line;
-  for (size_t i = 0; std::getline(in, line); ++i) {
-    if (i != index) continue;
-    const nlohmann::json j = JsonReader::parse(line, "fixture");
-    return readFootstepPlanRequest(JsonReader(j, "fixture"), pipeline().model->nq(),
-                                   pipeline().config.reach);
-  }
-  throw std::runtime_error("fixture: no request " + std::to_string(index));
+  const std::vector<FootstepPlanRequest> all =
+      readPlanRequests(kRepo + "/test/fixtures/pushed_walk_requests.jsonl", pipeline().model->nq(),
+                       pipeline().config.reach);
+  if (index >= all.size()) throw std::runtime_error("fixture: no request " + std::to_string(index));
+  return all[index];
 }
 
 // The footstep check the planner makes of the fixture's step `index` (x_0 made contact
 // consistent by the planner's step 1, the foothold flat in the stance heading).
-FootstepRequest footstepRequest(size_t index) {
+ContactTransition footstepRequest(size_t index) {
   FootstepPlanRequest plan = walkRequest(index);
   plan.check_reachability = false;
   plan.solve_ocp = false;
-  const FootstepTransition kinematic = pipeline().planner()->plan(plan);
-  FootstepRequest r;
-  r.stance = kinematic.stance;
-  r.stance_foothold = kinematic.stance_contact;
-  r.target = kinematic.target;
-  r.q0 = kinematic.q0;
-  r.qd0 = kinematic.qd0;
-  if (plan.touchdown_com) r.touchdown_com_velocity = plan.touchdown_com->pd;
+  const FootstepTransition kinematic = pipeline().makePlanner()->plan(plan);
+  ContactTransition r;  // as checked, without the touchdown's pelvis and qd_f
+  r.stance = kinematic.transition.stance;
+  r.stance_contact = kinematic.transition.stance_contact;
+  r.target = kinematic.transition.target;
+  r.q0 = kinematic.transition.q0;
+  r.qd0 = kinematic.transition.qd0;
+  if (plan.touchdown_com) r.touchdown.com_velocity = plan.touchdown_com->pd;
   return r;
 }
 
 }  // namespace
 
 TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
-  const Pipeline& p = pipeline();
-  const auto here = p.planner();
+  const ShippedBiped& p = pipeline();
+  const auto here = p.makePlanner();
   // What reachability_node does with each request, and transition_ocp_node with the answer.
-  const auto node = p.planner();
-  auto there = p.planner();
+  const auto node = p.makePlanner();
+  auto there = p.makePlanner();
   int calls = 0;
-  there->setFootstepCheck([&](const FootstepRequest& request, const ReachConfig& reach,
+  there->setFootstepCheck([&](const ContactTransition& request, const ReachConfig& reach,
                               const CheckPass& pass, bool reachability) {
     ++calls;
     const auto request_msg =
@@ -127,9 +109,9 @@ TEST(RosFootstepCheckMsgs, StepCheckedThroughTheMessagesIsTheInProcessStep) {
 }
 
 TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
-  const Pipeline& p = pipeline();
-  FootstepRequest r = footstepRequest(1);
-  r.touchdown_pelvis_position = Eigen::Vector3d(0.01, -0.02, 0.9);
+  const ShippedBiped& p = pipeline();
+  ContactTransition r = footstepRequest(1);
+  r.touchdown.pelvis_position = Eigen::Vector3d(0.01, -0.02, 0.9);
   ReachConfig reach = p.config.reach;
   reach.horizon = 0.17;
   reach.seed = 4000000000u;  // above INT_MAX: the walk's --seed range
@@ -146,10 +128,10 @@ TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
   EXPECT_TRUE(sameBits(c.request.qd0, r.qd0));
   EXPECT_TRUE(sameBits(c.request.target.position, r.target.position));
   EXPECT_EQ(c.request.target.yaw, r.target.yaw);
-  EXPECT_TRUE(sameBits(c.request.stance_foothold.position, r.stance_foothold.position));
-  EXPECT_TRUE(sameBits(c.request.touchdown_com_velocity, r.touchdown_com_velocity));
-  ASSERT_TRUE(c.request.touchdown_pelvis_position.has_value());
-  EXPECT_TRUE(sameBits(*c.request.touchdown_pelvis_position, *r.touchdown_pelvis_position));
+  EXPECT_TRUE(sameBits(c.request.stance_contact.position, r.stance_contact.position));
+  EXPECT_TRUE(sameBits(c.request.touchdown.com_velocity, r.touchdown.com_velocity));
+  ASSERT_TRUE(c.request.touchdown.pelvis_position.has_value());
+  EXPECT_TRUE(sameBits(*c.request.touchdown.pelvis_position, *r.touchdown.pelvis_position));
   EXPECT_TRUE(c.request.qdf.size() == 0);
   EXPECT_EQ(c.reach.horizon, 0.17);
   EXPECT_EQ(c.reach.seed, 4000000000u);
@@ -196,7 +178,7 @@ TEST(RosFootstepCheckMsgs, RequestCarriesThePassesHorizonSeedAndSampleBudget) {
 }
 
 TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
-  const Pipeline& p = pipeline();
+  const ShippedBiped& p = pipeline();
   const int nq = p.model->nq();
   const auto good = rb::toCheckFootstepRequestMsg(footstepRequest(1), p.config.reach,
                                                   CheckPass{p.config.reach.budgets.quick}, true,
@@ -211,7 +193,7 @@ TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
   };
   reject([](auto& m) { m.header.frame_id = "map"; }, "header.frame_id");
   reject([](auto& m) { m.stance = "both"; }, "stance");
-  reject([](auto& m) { m.stance_foothold.resize(3); }, "stance_foothold");
+  reject([](auto& m) { m.stance_contact.resize(3); }, "stance_contact");
   reject([&](auto& m) { m.target[1] = nan; }, "target");
   reject([](auto& m) { m.q0.pop_back(); }, "q0");
   reject([&](auto& m) { m.qd0[0] = std::numeric_limits<double>::infinity(); }, "qd0");
@@ -258,14 +240,14 @@ TEST(RosFootstepCheckMsgs, MalformedRequestsAreRejectedNamingTheField) {
 }
 
 TEST(RosFootstepCheckMsgs, MalformedAnswersAreErrorsNamingTheField) {
-  const Pipeline& p = pipeline();
+  const ShippedBiped& p = pipeline();
   const int nq = p.model->nq();
   // A well-formed answer of a real check (the quick budget keeps it short).
-  const auto node = p.planner();
+  const auto node = p.makePlanner();
   const FootstepCheckResult checked =
       checkFootstep(node->footstepReachability(), footstepRequest(1), p.config.reach,
                     CheckPass{p.config.reach.budgets.quick}, true);
-  ASSERT_TRUE(checked.result.kinematically_feasible) << checked.result.reason;
+  ASSERT_TRUE(checked.kinematically_feasible) << checked.reason;
   const auto good = rb::toCheckFootstepResponseMsg(checked, ReachabilityResult());
   ASSERT_NO_THROW(rb::fromCheckFootstepResponseMsg(good, nq));
   ASSERT_FALSE(good.window_time.empty());

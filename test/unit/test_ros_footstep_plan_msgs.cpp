@@ -17,6 +17,7 @@
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
+using reach_trajopt::test::awkward;
 using reach_trajopt::test::expectRejected;
 using reach_trajopt::test::sameBits;
 
@@ -24,26 +25,13 @@ namespace {
 
 const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf";
 
-// Numbers with every bit of the mantissa in use (a float32 or a printed decimal would lose some).
-Eigen::VectorXd awkward(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v[i] = u(rng) / 3.0;
-  return v;
-}
-
 FootstepPlanRequest makeRequest(int nq) {
   FootstepPlanRequest r;
   r.stance = Side::kRight;
-  r.stance_pose = Eigen::Isometry3d::Identity();
-  r.stance_pose.linear() =
-      Eigen::AngleAxisd(0.1 / 3.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  r.stance_pose.translation() = awkward(3, 1);
-  r.target = awkward(3, 2);
-  r.target_yaw = 0.2 / 3.0;
-  r.q = awkward(nq, 3);
-  r.qd = awkward(nq, 4);
+  r.stance_contact = {awkward(3, 1), 0.1 / 3.0};
+  r.target = {awkward(3, 2), 0.2 / 3.0};
+  r.q0 = awkward(nq, 3);
+  r.qd0 = awkward(nq, 4);
   r.touchdown_com = LipmState{awkward(2, 5), awkward(2, 6)};
   r.make_contact_consistent = true;
   r.check_reachability = true;
@@ -70,12 +58,13 @@ TEST(RosFootstepPlanMsgs, RequestRoundTripIsExact) {
   base.seed = 3;
   const FootstepPlanRequest back = rb::fromPlanFootstepRequestMsg(m, model->nq(), base);
   EXPECT_EQ(back.stance, Side::kRight);
-  EXPECT_TRUE(sameBits(back.stance_pose.matrix(), r.stance_pose.matrix()));
-  EXPECT_TRUE(sameBits(back.target, r.target));
-  ASSERT_TRUE(back.target_yaw.has_value());
-  EXPECT_EQ(*back.target_yaw, *r.target_yaw);
-  EXPECT_TRUE(sameBits(back.q, r.q));
-  EXPECT_TRUE(sameBits(back.qd, r.qd));
+  // The stance sole travels as a flat pose: its heading back within rounding.
+  EXPECT_TRUE(sameBits(back.stance_contact.position, r.stance_contact.position));
+  EXPECT_NEAR(back.stance_contact.yaw, r.stance_contact.yaw, 1e-15);
+  EXPECT_TRUE(sameBits(back.target.position, r.target.position));
+  EXPECT_EQ(back.target.yaw, r.target.yaw);
+  EXPECT_TRUE(sameBits(back.q0, r.q0));
+  EXPECT_TRUE(sameBits(back.qd0, r.qd0));
   ASSERT_TRUE(back.touchdown_com.has_value());
   EXPECT_TRUE(sameBits(back.touchdown_com->p, r.touchdown_com->p));
   EXPECT_TRUE(sameBits(back.touchdown_com->pd, r.touchdown_com->pd));
@@ -106,16 +95,16 @@ TEST(RosFootstepPlanMsgs, RequestRoundTripIsExact) {
   EXPECT_EQ(sent.reach->budgets.hullBudget().initial_samples, 2500);
   EXPECT_EQ(sent.reach->threads, base.threads);
 
-  // No yaw, no touchdown CoM, the node's seed and horizon: all stay unset.
+  // No yaw (the stance sole's heading), no touchdown CoM, the node's seed and horizon.
   FootstepPlanRequest plain = r;
-  plain.target_yaw.reset();
   plain.touchdown_com.reset();
   auto pm = rb::toPlanFootstepRequestMsg(plain, reach, ros::Time(0));
+  pm.target_yaw.clear();
   pm.seed = -1;
   pm.reach_horizon = 0.0;
   pm.budgets.clear();
   const FootstepPlanRequest pb = rb::fromPlanFootstepRequestMsg(pm, model->nq(), base);
-  EXPECT_FALSE(pb.target_yaw.has_value());
+  EXPECT_EQ(pb.target.yaw, pb.stance_contact.yaw);
   EXPECT_FALSE(pb.touchdown_com.has_value());
   EXPECT_EQ(pb.reach->seed, 3u);
   EXPECT_EQ(pb.reach->horizon, base.horizon);
@@ -163,7 +152,7 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   step.check_time_s = 1.25;
   step.ocp_time_s = 0.5;
   step.foothold = awkward(3, 8);
-  step.horizon = 0.2;
+  step.transition.horizon = 0.2;
   WitnessPath& w = step.check.reach.witness;
   w.valid = true;
   w.violation =
@@ -203,7 +192,7 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   EXPECT_EQ(back.check_time_s, 1.25);
   EXPECT_EQ(back.ocp_time_s, 0.5);
   EXPECT_TRUE(sameBits(back.foothold, step.foothold));
-  EXPECT_EQ(back.horizon, 0.2);
+  EXPECT_EQ(back.transition.horizon, 0.2);
   const WitnessPath& bw = back.check.reach.witness;
   ASSERT_TRUE(bw.valid);
   EXPECT_EQ(bw.violation.max(), w.violation.max());

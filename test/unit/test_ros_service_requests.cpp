@@ -29,9 +29,9 @@ struct Fixture {
     return p;
   }();
 
-  rb::FootholdRequest parse(const std::string& frame, const std::string& mode,
-                            const std::vector<double>& q, const std::vector<double>& qd,
-                            double duration = 0.0) const {
+  ContactTransition parse(const std::string& frame, const std::string& mode,
+                          const std::vector<double>& q, const std::vector<double>& qd,
+                          double duration = 0.0) const {
     return rb::parseFootholdRequest(*model, contact, frame, mode, q, qd, foothold, duration, 0.08,
                                     standing);
   }
@@ -67,9 +67,9 @@ TEST(RosServiceRequests, RejectsMalformedRequestsWithTheReason) {
   expectReason([&] { f.parse("world", "SS-L", {}, {}, nan); }, "swing_duration");
   expectReason([&] { f.parse("world", "SS-L", std::vector<double>(200000, 0.0), qd); },
                "q: expected size");
-  const rb::FootholdRequest tiny = f.parse("world", "SS-L", {}, {}, 1e-300);
+  const ContactTransition tiny = f.parse("world", "SS-L", {}, {}, 1e-300);
   // Named as swing_duration, not as the scaled window (issue 43).
-  expectReason([&] { rb::reachConfigForDuration(ReachConfig{}, tiny.duration).validate(); },
+  expectReason([&] { rb::reachConfigForDuration(ReachConfig{}, tiny.horizon).validate(); },
                "swing_duration 1e-300 s is shorter than one time step of the check");
   expectReason([&] { rb::reachConfigForDuration(ReachConfig{}, 1e-9); },
                "swing_duration 1e-09 s is shorter than one time step");
@@ -84,20 +84,20 @@ TEST(RosServiceRequests, RejectsMalformedRequestsWithTheReason) {
 
 TEST(RosServiceRequests, ValidRequestTakesTheStanceSoleFromTheModel) {
   Fixture f;
-  const rb::FootholdRequest r = f.parse("", "SS-R", {}, {});  // "" means "world"
+  const ContactTransition r = f.parse("", "SS-R", {}, {});  // "" means "world"
   EXPECT_EQ(r.stance, Side::kRight);
-  EXPECT_EQ(r.q, f.standing);
-  EXPECT_TRUE(r.qd.isZero());
-  EXPECT_DOUBLE_EQ(r.duration, 0.08);
+  EXPECT_EQ(r.q0, f.standing);
+  EXPECT_TRUE(r.qd0.isZero());
+  EXPECT_DOUBLE_EQ(r.horizon, 0.08);
   Workspace ws(*f.model);
   f.model->update(ws, f.standing, Eigen::VectorXd::Zero(f.model->nq()));
   const Eigen::Vector3d sole = f.model->framePose(ws, f.model->frameId("r_sole")).translation();
   EXPECT_LT((r.stance_contact.position - sole).norm(), 1e-12);
   EXPECT_NEAR(r.stance_contact.yaw, 0.0, 1e-9);
   EXPECT_EQ(r.target.position, Eigen::Vector3d(0.1, -0.2, 0.0));
-  const rb::FootholdRequest r2 = f.parse("world", "SS-L", {}, {}, 0.3);
+  const ContactTransition r2 = f.parse("world", "SS-L", {}, {}, 0.3);
   EXPECT_EQ(r2.stance, Side::kLeft);
-  EXPECT_DOUBLE_EQ(r2.duration, 0.3);
+  EXPECT_DOUBLE_EQ(r2.horizon, 0.3);
 }
 
 TEST(RosServiceRequests, TrajectoryMessageIsKnotMajor) {
@@ -143,16 +143,16 @@ TEST(RosServiceRequests, ReachConfigKeepsTheWindowFractionsOfTheHorizon) {
 
 TEST(RosServiceRequests, ReachProblemHoldsTheStanceSoleAndTargetsTheFoothold) {
   Fixture f;
-  const rb::FootholdRequest r = f.parse("world", "SS-R", {}, {});
+  const ContactTransition r = f.parse("world", "SS-R", {}, {});
   KinematicFeasibilityResult ik;
   ik.feasible = true;
   ik.q_f = f.standing;
   ik.q_f[0] += 0.01;
   ik.qd_f = Eigen::VectorXd::Zero(f.model->nq());
-  const ReachProblem p = rb::toReachProblem(r, ik);
+  const ReachProblem p = footstepProblem(r, ik.q_f, ik.qd_f);
   EXPECT_EQ(p.mode, ContactMode::singleSupport(Side::kRight));
-  EXPECT_EQ(p.q0, r.q);
-  EXPECT_EQ(p.qd0, r.qd);
+  EXPECT_EQ(p.q0, r.q0);
+  EXPECT_EQ(p.qd0, r.qd0);
   EXPECT_EQ(p.qf, ik.q_f);
   EXPECT_EQ(p.qdf, ik.qd_f);
   EXPECT_FALSE(p.footholds[0].has_value());
@@ -232,7 +232,7 @@ TEST(RosServiceRequests, ReachabilityMessageFromAResultAndAFoothold) {
   EXPECT_TRUE(given_up.gave_up);
   // The request overload is the same message with the request's target.
   Fixture f;
-  rb::FootholdRequest q = f.parse("world", "SS-L", {}, {});
+  ContactTransition q = f.parse("world", "SS-L", {}, {});
   q.target.position = foothold;
   const auto m2 = rb::toReachabilityResultMsg(r, q, "r_sole", 1e-5, ros::Time(4.0), false);
   EXPECT_EQ(m2.foothold, m.foothold);

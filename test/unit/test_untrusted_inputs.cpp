@@ -17,6 +17,7 @@
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/qp/qp_problem_json.h"
 #include "reach_trajopt/reach/reach_config.h"
+#include "thrown_message.h"
 
 using namespace reach_trajopt;
 
@@ -37,13 +38,7 @@ std::string aliasBomb(int levels) {
 /// The message of the ConfigError `f` throws ("" and a test failure when none).
 template <typename F>
 std::string configError(F f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no ConfigError";
-  return "";
+  return test::thrownMessage<ConfigError>(f);
 }
 
 double secondsOf(const std::function<void()>& f) {

@@ -33,6 +33,15 @@ struct CliOption {
   std::string alias;          ///< another accepted spelling ("--mode" for --policy); "": none
 };
 
+/// The robot tools' two shared options: --config FILE, the robot and its parameters (`help`:
+/// which sections the tool reads), and --urdf FILE, a URDF instead of the config's robot.urdf.
+inline CliOption configOption(std::string help, std::string default_value = "config/biped.yaml") {
+  return CliOption("--config", "FILE", std::move(help), std::move(default_value));
+}
+inline CliOption urdfOption() {
+  return CliOption("--urdf", "FILE", "URDF to use instead of the config's robot.urdf");
+}
+
 /// The parsed command line: options by their table name, and the positional arguments.
 class CliArgs {
  public:

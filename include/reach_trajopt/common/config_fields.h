@@ -11,7 +11,7 @@
 ///   template <typename Config> class ConfigFields;
 ///   struct MyConfig {
 ///     double mu = 0.7;  ///< ...
-///     void validate() const;
+///     void validate() const;  // fields().checkRanges(*this), then what ties fields together
 ///     static const ConfigFields<MyConfig>& fields();  ///< its YAML keys (section `my:`)
 ///     static MyConfig fromYaml(const YamlSection& section) { ... fields().read(section) }
 ///   };
@@ -20,7 +20,7 @@
 ///   const ConfigFields<MyConfig>& MyConfig::fields() {
 ///     static const ConfigFields<MyConfig> f =
 ///         ConfigFields<MyConfig>("MyConfig", "my", "include/reach_trajopt/x/my.h", "what it is")
-///             .add("mu", &MyConfig::mu, "", "friction coefficient, > 0")
+///             .add("mu", &MyConfig::mu, "", Range::positive(), "friction coefficient")
 ///             .add("gravity", &MyConfig::gravity, "m/s^2", "world frame")   // Eigen vectors
 ///             .choice("side", &MyConfig::side, {{"left", Side::kLeft}, {"right", Side::kRight}},
 ///                     "first swing")                                       // enums by name
@@ -35,8 +35,11 @@
 /// negative is an error), fixed-size Eigen vectors (the YAML sequence must have their size), enums
 /// through choice(), anything else through custom(). read(section, base) reads over `base` (missing
 /// keys keep its values) and ends with validate(), its error prefixed by the section's
-/// location (validatedIn). Range checks stay in validate(): the `description` says them in
-/// words for the table. A key is spelled only in its add() call; fromYaml() is fields().read().
+/// location (validatedIn). A field's allowed range is data too: add(key, member, unit,
+/// Range::positive(), description) puts it in the table's range column, and validate() checks
+/// every such range with `fields().checkRanges(*this)` ("MyConfig: mu must be positive and
+/// finite, got 0"); validate() itself keeps only what ties fields together. A key is spelled only
+/// in its add() call; fromYaml() is fields().read().
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -60,7 +63,28 @@ struct ParameterRow {
   std::string type;         ///< "number", "integer", "bool", "string", "3 numbers", ...
   std::string value;        ///< the value in the struct (the default: equal to the shipped one)
   std::string unit;         ///< SI unit; "" when dimensionless
-  std::string description;  ///< what it does, allowed range, what it costs
+  std::string range;        ///< allowed values ("> 0", "in [0, 1]"); "" when not one range
+  std::string description;  ///< what it does, what it costs
+};
+
+/// The allowed values of a number field (double, int, or each entry of a list of numbers):
+/// finite and within [lo, hi], an open end excluded. ConfigFields::checkRanges checks it.
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false, hi_open = false;
+
+  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
+  static Range nonNegative() { return atLeast(0.0); }
+  static Range atLeast(double lo) { return {lo, std::numeric_limits<double>::infinity()}; }
+  static Range between(double lo, double hi) { return {lo, hi}; }             ///< [lo, hi]
+  static Range below(double lo, double hi) { return {lo, hi, false, true}; }  ///< [lo, hi)
+  /// Finite and within the range.
+  bool contains(double v) const;
+  /// For the table: "> 0", ">= 0", ">= 2", "in [0, 1]", "in [0, 1)".
+  std::string text() const;
+  /// For errors: "positive and finite", ">= 0 and finite" (integers: ">= 2"), "in [0, 1]".
+  std::string words(bool integer) const;
 };
 
 /// The table of one config struct, without its type: what docs/parameters.md and the tests see.
@@ -81,6 +105,10 @@ struct ParameterTable {
 /// same double ("0.001", "1e-06", "-0.16"), bools true/false, sequences "[a, b]".
 std::string parameterText(double v);
 std::string parameterText(const std::vector<double>& v);
+
+/// ConfigError("<owner>: <key> must be <words>, got <v>").
+[[noreturn]] void throwOutOfRange(const std::string& owner, const std::string& key,
+                                  const std::string& words, double v);
 
 /// `text` as a double-quoted YAML scalar (backslash, quote and control characters escaped).
 std::string quotedYaml(const std::string& text);
@@ -190,17 +218,40 @@ class ConfigFields {
   }
 
   /// A field read from `key` into `member`; `unit` SI ("" dimensionless), `description` what it
-  /// does and its allowed range (checked by validate()).
+  /// does (checks beyond one range stay in validate(), said here in words).
   template <typename T>
   ConfigFields& add(std::string key, T Config::*member, std::string unit, std::string description) {
     using V = config_detail::Value<T>;
     Field f;
-    f.row = {std::move(key), V::type(), "", std::move(unit), std::move(description)};
+    f.row = {std::move(key), V::type(), "", std::move(unit), "", std::move(description)};
     f.read = [member](const YamlSection& s, const std::string& k, Config& c) {
       V::read(s, k, c.*member);
     };
     f.text = [member](const Config& c) { return V::text(c.*member); };
     fields_.push_back(std::move(f));
+    return *this;
+  }
+
+  /// The same for a number (double, int, a list of numbers: each entry) allowed in `range`:
+  /// the table shows it, checkRanges() checks it.
+  template <typename T>
+  ConfigFields& add(std::string key, T Config::*member, std::string unit, Range range,
+                    std::string description) {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, int> ||
+                      std::is_same_v<T, std::vector<double>>,
+                  "a range applies to a double, an int or a list of numbers");
+    add(key, member, std::move(unit), std::move(description));
+    Field& f = fields_.back();
+    f.row.range = range.text();
+    f.check = [owner = table_.struct_name, key, member, range](const Config& c) {
+      const T& v = c.*member;
+      if constexpr (std::is_same_v<T, std::vector<double>>) {
+        for (double x : v)
+          if (!range.contains(x)) throwOutOfRange(owner, key + " (each)", range.words(false), x);
+      } else if (!range.contains(static_cast<double>(v))) {
+        throwOutOfRange(owner, key, range.words(std::is_same_v<T, int>), static_cast<double>(v));
+      }
+    };
     return *this;
   }
 
@@ -212,7 +263,7 @@ class ConfigFields {
     std::string type = "one of";
     for (const auto& n : *shared) type += " " + n.first;
     Field f;
-    f.row = {std::move(key), type, "", "", std::move(description)};
+    f.row = {std::move(key), type, "", "", "", std::move(description)};
     f.read = [member, shared](const YamlSection& s, const std::string& k, Config& c) {
       std::string name;
       if (!s.read(k, name)) return;
@@ -246,7 +297,7 @@ class ConfigFields {
                        std::function<std::string(const Config&)> text, std::string unit,
                        std::string description) {
     Field f;
-    f.row = {std::move(key), std::move(type), "", std::move(unit), std::move(description)};
+    f.row = {std::move(key), std::move(type), "", std::move(unit), "", std::move(description)};
     f.read = [read = std::move(read)](const YamlSection& s, const std::string& k, Config& c) {
       if (s.has(k)) read(s, k, c);
     };
@@ -289,6 +340,13 @@ class ConfigFields {
   }
 
   const std::string& section() const { return table_.section; }
+
+  /// Checks every field added with a Range: ConfigError("<struct>: <key> must be <range>, got
+  /// <value>") for the first one outside it. validate() calls it.
+  void checkRanges(const Config& config) const {
+    for (const Field& f : fields_)
+      if (f.check) f.check(config);
+  }
 
   /// The accepted keys, in table order.
   std::vector<std::string> keys() const {
@@ -348,6 +406,7 @@ class ConfigFields {
     ParameterRow row;
     std::function<void(const YamlSection&, const std::string&, Config&)> read;
     std::function<std::string(const Config&)> text;
+    std::function<void(const Config&)> check;  ///< its Range's, when it has one
   };
   ParameterTable table_;
   std::vector<Field> fields_;

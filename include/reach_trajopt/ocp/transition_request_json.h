@@ -22,7 +22,6 @@ constexpr std::size_t kMaxSeedSamples = 100000;   ///< seed path samples
 /// A read plan_transition request.
 struct TransitionRequestJson {
   TransitionRequest request;  ///< qf/qdf empty when has_qf is false
-  FlatContact stance, target;
   bool has_qf = false;
 };
 

@@ -22,6 +22,7 @@
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/contact/contact_transition.h"
 #include "reach_trajopt/model/robot_model.h"
 
 namespace reach_trajopt {
@@ -53,13 +54,6 @@ struct KinematicFeasibilityConfig {
   static const ConfigFields<KinematicFeasibilityConfig>& fields();
   /// Reads fields() from a YAML section, then validates.
   static KinematicFeasibilityConfig fromYaml(const YamlSection& section);
-};
-
-/// A flat contact: sole centre position [m] and heading (yaw about world z) [rad].
-struct FlatContact {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  double yaw = 0.0;
-  Eigen::Isometry3d pose() const;  ///< world pose of the sole frame (z up)
 };
 
 /// Outcome of one check.

@@ -43,7 +43,7 @@ struct NearestFootholdConfig {
 /// One ring's candidate footholds, each checked with the same stance and IK start.
 struct FootholdCandidates {
   Side stance = Side::kLeft;            ///< the held sole
-  FlatContact stance_foothold;          ///< where it is held [m, rad]
+  FlatContact stance_contact;           ///< where it is held [m, rad]
   std::vector<FlatContact> candidates;  ///< the swing sole's candidate footholds [m, rad]
   Eigen::VectorXd q_init;               ///< IK start (size n_q)
   std::optional<Eigen::Vector3d> pelvis_position;  ///< see KinematicFeasibility::check [m]
@@ -79,7 +79,7 @@ class NearestFeasibleFoothold {
  public:
   NearestFeasibleFoothold(std::shared_ptr<const KinematicFeasibility> kinematics,
                           const NearestFootholdConfig& config);
-  /// \param stance, stance_foothold  the held sole
+  /// \param stance, stance_contact  the held sole
   /// \param target     the infeasible foothold (its yaw is kept)
   /// \param q_init     IK start (size n_q)
   /// \param pelvis_position  passed to KinematicFeasibility::check
@@ -87,7 +87,7 @@ class NearestFeasibleFoothold {
   /// \return the first feasible ring point, or none.
   /// \throws ReachError when a candidate's check fails before a feasible one is found (the
   ///     message of that check), or when `check` answers fewer candidates than it must.
-  std::optional<NearestFoothold> find(Side stance, const FlatContact& stance_foothold,
+  std::optional<NearestFoothold> find(Side stance, const FlatContact& stance_contact,
                                       const FlatContact& target, const Eigen::VectorXd& q_init,
                                       const std::optional<Eigen::Vector3d>& pelvis_position,
                                       const CandidateCheck& check = {}) const;

@@ -11,43 +11,38 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
-#include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/contact/contact_transition.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
+#include "reach_trajopt/reach/reachable_slice.h"
 
 namespace reach_trajopt {
 
-/// A planned footstep from a single-support state.
-struct FootstepRequest {
-  Side stance = Side::kLeft;    ///< the held sole (mode SS-stance); the other one steps
-  FlatContact stance_foothold;  ///< where the stance sole is held [m, rad]
-  FlatContact target;           ///< the planned next foothold of the swing sole
-  Eigen::VectorXd q0, qd0;      ///< x_0 (size n_q)
-  /// Touchdown velocity qd_f (size n_q). Empty: the posture q_f moving with the CoM at
-  /// `touchdown_com_velocity` and both soles still (doubleSupportVelocity).
-  Eigen::VectorXd qdf;
-  Eigen::Vector2d touchdown_com_velocity = Eigen::Vector2d::Zero();  ///< [m/s], horizontal
-  /// Where the pelvis origin will be at touchdown [m, world]: held by the kinematic check's IK
-  /// (KinematicFeasibility::check); none: pelvis x, y free at the nominal height.
-  std::optional<Eigen::Vector3d> touchdown_pelvis_position;
-};
-
-/// Outcome: the kinematic stage and, when it passed, the reachability result.
-struct FootstepResult {
+/// The one result of the footstep check (FootstepReachability, checkFootstep of
+/// step/footstep_check.h, reachability_node's check_footstep): the kinematic stage and, when it
+/// passed, the reachability result and the OCP's hulls of its forward set. From another process
+/// `reach` holds the verdict, the window's times, distances and overlaps and the witness path
+/// (time, q, gaps, violations), not the sets.
+struct FootstepCheckResult {
   bool reachable = false;
   bool kinematically_feasible = false;
   std::string reason;                     ///< why (either stage)
   KinematicFeasibilityResult kinematics;  ///< q_f and the IK residuals
   Eigen::VectorXd qdf;                    ///< the touchdown velocity used (size n_q)
   ReachResult reach;                      ///< empty unless kinematically feasible
+  /// The OCP's slices of the forward set (eq. 23, step/reachable_set_constraint.h), grown by the
+  /// pass's constraint_margin: filled by checkFootstep for a kinematically feasible foothold
+  /// whose reachability was checked; empty otherwise (and from FootstepReachability itself).
+  std::vector<ReachableSlice> set_constraint;
 };
 
-/// The reachability problem of a footstep whose foothold passed the kinematic stage, x_f =
-/// (q_f, qd_f) (size n_q each): mode SS-stance from the request's x_0, the stance foothold held,
-/// the target the swing sole's next contact. (The request's qdf and touchdown fields are not
-/// read: qd_f is given.)
-ReachProblem footstepProblem(const FootstepRequest& request, const Eigen::VectorXd& q_f,
+/// The reachability problem (13)-(21) of a contact transition whose foothold passed the
+/// kinematic stage, x_f = (q_f, qd_f) (size n_q each): mode m_k = SS-stance from the
+/// transition's x_0, the held contact where the transition says, the target the moving sole's
+/// next contact. (The transition's qf, qdf and touchdown are not read: x_f is given.)
+ReachProblem footstepProblem(const ContactTransition& transition, const Eigen::VectorXd& q_f,
                              const Eigen::VectorXd& qd_f);
 
 /// @brief Kinematic feasibility (III-B) followed by the reachability check (13)-(21).
@@ -57,24 +52,25 @@ class FootstepReachability {
                        std::shared_ptr<const KinematicFeasibility> kinematics);
   /// \throws ReachError on bad input (see ReachabilityAnalyzer::check and
   ///     KinematicFeasibility::check); an infeasible foothold is a result, not an error.
-  FootstepResult check(const FootstepRequest& request) const;
+  FootstepCheckResult check(const ContactTransition& request) const;
   /// \param progress  the reachability check's (reach_progress.h; may be empty)
-  FootstepResult check(const FootstepRequest& request, const ReachConfig& config,
-                       const ReachProgressCallback& progress = {}) const;
+  FootstepCheckResult check(const ContactTransition& request, const ReachConfig& config,
+                            const ReachProgressCallback& progress = {}) const;
   /// Same with one pass of the check (ReachabilityAnalyzer::checkPass) instead of the check's
   /// pass schedule: one pass of the step planner.
-  FootstepResult checkPass(const FootstepRequest& request, const ReachConfig& config,
-                           const CheckPass& pass, const ReachProgressCallback& progress = {}) const;
+  FootstepCheckResult checkPass(const ContactTransition& request, const ReachConfig& config,
+                                const CheckPass& pass,
+                                const ReachProgressCallback& progress = {}) const;
 
   /// The kinematic stage alone: kinematics, kinematically_feasible, qdf (the touchdown
   /// velocity x_f would have) and reason; reach stays empty, reachable false.
-  FootstepResult kinematicStage(const FootstepRequest& request) const;
+  FootstepCheckResult kinematicStage(const ContactTransition& request) const;
 
   const ReachabilityAnalyzer& analyzer() const { return *analyzer_; }
 
  private:
   /// qd_f: the request's, else the posture qf moving with the touchdown CoM velocity.
-  Eigen::VectorXd touchdownVelocity(const FootstepRequest& request,
+  Eigen::VectorXd touchdownVelocity(const ContactTransition& request,
                                     const Eigen::VectorXd& qf) const;
   std::shared_ptr<const ReachabilityAnalyzer> analyzer_;
   std::shared_ptr<const KinematicFeasibility> kinematics_;

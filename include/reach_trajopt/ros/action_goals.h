@@ -2,7 +2,8 @@
 /// \file action_goals.h
 /// What the two long-call action servers (reachability_node's check_reachability_action,
 /// transition_ocp_node's plan_transition_action) share: the check's progress as feedback and
-/// the end of a goal (preempted when cancelled, else succeeded or aborted by the answer).
+/// the request a goal asks (the service's), the end of a goal (preempted when cancelled, else
+/// succeeded or aborted by the answer).
 
 #include <cstdint>
 #include <string>
@@ -11,6 +12,20 @@
 
 namespace reach_trajopt {
 namespace ros_bridge {
+
+/// The service request of an action goal: the fields both actions share with their service
+/// (header, contact_mode, q, qd, foothold, swing_duration); the caller copies the rest.
+template <class Request, class Goal>
+Request footholdRequestOf(const Goal& goal) {
+  Request req;
+  req.header = goal.header;
+  req.contact_mode = goal.contact_mode;
+  req.q = goal.q;
+  req.qd = goal.qd;
+  req.foothold = goal.foothold;
+  req.swing_duration = goal.swing_duration;
+  return req;
+}
 
 /// Copies one progress report of the check (per time slice) into a feedback message with the
 /// fields direction, slices_done, slices_total, samples and qps.

@@ -4,7 +4,7 @@
 /// reachability_node's check_footstep service (reach_trajopt/CheckFootstep,
 /// step/footstep_check.h): the request to the message and back (validated, each rejection naming
 /// its field), the check to the response and back. The response carries what the planner and
-/// the walk read of a FootstepResult (the IK, qd_f, the verdict, the window's distances, the
+/// the walk read of a FootstepCheckResult (the IK, qd_f, the verdict, the window's distances, the
 /// witness) and the OCP's slices of the forward set instead of the sets; every number as
 /// float64, so the plan is the in-process plan bit for bit. Frame "world", SI units.
 
@@ -21,7 +21,7 @@ namespace ros_bridge {
 
 /// What a check_footstep request asks.
 struct FootstepCheckCall {
-  FootstepRequest request;
+  ContactTransition request;
   ReachConfig reach;  ///< the node's with the request's horizon and seed
   /// The pass to run (the request's budget and sets); none: the node's own pass schedule.
   std::optional<CheckPass> pass;
@@ -34,8 +34,8 @@ struct FootstepCheckCall {
 /// pass is checked as in process; the rest must be the node's; no pass: the node's own pass
 /// schedule), stamped t0.
 reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(
-    const FootstepRequest& request, const ReachConfig& reach, const std::optional<CheckPass>& pass,
-    bool reachability, bool samples, const ros::Time& t0);
+    const ContactTransition& request, const ReachConfig& reach,
+    const std::optional<CheckPass>& pass, bool reachability, bool samples, const ros::Time& t0);
 
 /// The call of a request message for a model with `nq` coordinates; its reachability settings
 /// are `base` with the message's reach_horizon and seed (each when given), its pass the

@@ -43,7 +43,7 @@ Eigen::Vector3d checkedFoothold(const StepRecord& record, double ground_z);
 /// check_footstep answers it: for a kinematically infeasible foothold infeasibleFootholdMsg,
 /// else toReachabilityResultMsg of check.reach (its verdict the check's), stamped t0.
 /// \param swing_frame  the swing sole's frame (the output's)
-reach_trajopt::ReachabilityResult checkedFootstepMsg(const FootstepResult& check,
+reach_trajopt::ReachabilityResult checkedFootstepMsg(const FootstepCheckResult& check,
                                                      const std::string& swing_frame,
                                                      const Eigen::Vector3d& foothold, double delta,
                                                      const ros::Time& t0, bool samples,

@@ -40,7 +40,7 @@ class RemoteFootstepCheck {
   void beginStep(const ros::Time& t0);
   /// The planner's FootstepCheck (setFootstepCheck).
   /// \throws RequestError with the node's reason when it rejects the request
-  FootstepCheckResult check(const FootstepRequest& request, const ReachConfig& config,
+  FootstepCheckResult check(const ContactTransition& request, const ReachConfig& config,
                             const CheckPass& pass, bool reachability);
   /// The ReachabilityResult of the step's check, before the OCP's verdict
   /// (checkedFootstepMsg), built where it ran.
@@ -49,7 +49,7 @@ class RemoteFootstepCheck {
   uint64_t remoteChecks() const { return remote_checks_; }
 
  private:
-  FootstepCheckResult checkHere(const FootstepRequest& request, const ReachConfig& config,
+  FootstepCheckResult checkHere(const ContactTransition& request, const ReachConfig& config,
                                 const CheckPass& pass, bool reachability);
   FallbackServiceCall<reach_trajopt::CheckFootstep> call_;
   std::shared_ptr<const FootstepTransitionPlanner> local_;

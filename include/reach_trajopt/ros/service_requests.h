@@ -17,25 +17,17 @@
 #include "reach_trajopt/TransitionTrajectory.h"
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/contact/contact_transition.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/transition_request.h"
 #include "reach_trajopt/ocp/transition_result.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/reach/footstep_reachability.h"
 #include "reach_trajopt/reach/reachability_analyzer.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
-
-/// A validated request: the robot in single support on `stance` at x_0 = (q, qd), the swing
-/// sole to land flat at `target` after `duration` seconds.
-struct FootholdRequest {
-  Side stance = Side::kLeft;
-  Eigen::VectorXd q, qd;       ///< x_0, size n_q each [m, rad; m/s, rad/s]
-  FlatContact stance_contact;  ///< the stance sole at x_0 (position [m], yaw [rad])
-  FlatContact target;          ///< the requested foothold, heading of the stance sole
-  double duration = 0.0;       ///< [s] > 0
-};
 
 /// Limits of what a request may ask.
 struct FootholdRequestLimits {
@@ -45,7 +37,10 @@ struct FootholdRequestLimits {
   double max_duration = kMaxTransitionHorizon;
 };
 
-/// Validates a request of either service and fills a FootholdRequest.
+/// Validates a request of either service: the contact transition it asks for, the robot in
+/// single support on `stance` at x_0 = (q0, qd0), the held sole where it is at x_0 (flat), the
+/// swing sole to land flat at `target` (the stance sole's heading) after `horizon` seconds
+/// (qf, qdf empty: the kinematic check builds x_f).
 /// \param frame_id          header.frame_id of the request: "" or "world"
 /// \param contact_mode      "SS-L" | "SS-R" (the current mode during the swing)
 /// \param q, qd             x_0 (size n_q each), or both empty: `standing_q` with qd = 0
@@ -54,12 +49,12 @@ struct FootholdRequestLimits {
 ///         double support, wrong sizes, non-finite numbers, a non-positive duration or one over
 ///         limits.max_duration, a foothold
 ///         above (or below) the ground.
-FootholdRequest parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
-                                     const std::string& frame_id, const std::string& contact_mode,
-                                     const std::vector<double>& q, const std::vector<double>& qd,
-                                     const geometry_msgs::Point& foothold, double duration,
-                                     double default_duration, const Eigen::VectorXd& standing_q,
-                                     const FootholdRequestLimits& limits = {});
+ContactTransition parseFootholdRequest(const RobotModel& model, const ContactConfig& contact,
+                                       const std::string& frame_id, const std::string& contact_mode,
+                                       const std::vector<double>& q, const std::vector<double>& qd,
+                                       const geometry_msgs::Point& foothold, double duration,
+                                       double default_duration, const Eigen::VectorXd& standing_q,
+                                       const FootholdRequestLimits& limits = {});
 
 /// The frame of the sole that swings while `stance` is held (the check's output frame).
 const std::string& swingFrame(const ContactConfig& contact, Side stance);
@@ -69,11 +64,6 @@ const std::string& swingFrame(const ContactConfig& contact, Side stance);
 /// Not validated (the caller may change more fields first).
 /// \throws RequestError naming swing_duration when `duration` is shorter than base.dt.
 ReachConfig reachConfigForDuration(const ReachConfig& base, double duration);
-
-/// The reachability problem (13)-(21) of a validated request whose foothold passed the
-/// kinematic feasibility check `ik` (x_f = (ik.q_f, ik.qd_f)): mode SS(stance), the stance
-/// sole held where it is at x_0, the swing sole to land flat on the target.
-ReachProblem toReachProblem(const FootholdRequest& request, const KinematicFeasibilityResult& ik);
 
 /// A ReachabilityResult message from a check (verdict "reachable" | "unreachable").
 /// Per window slice: d_H, counts, boundaries; output samples when `samples` (at most
@@ -86,7 +76,7 @@ reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& res
                                                           bool samples, int max_points = 500);
 /// Same, the foothold taken from the request's target.
 reach_trajopt::ReachabilityResult toReachabilityResultMsg(const ReachResult& result,
-                                                          const FootholdRequest& request,
+                                                          const ContactTransition& request,
                                                           const std::string& swing_frame,
                                                           double delta, const ros::Time& t0,
                                                           bool samples, int max_points = 500);

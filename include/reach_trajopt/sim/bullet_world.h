@@ -122,6 +122,8 @@ class BulletWorld {
   void applyState(const Eigen::Ref<const Eigen::VectorXd>& q,
                   const Eigen::Ref<const Eigen::VectorXd>& qd);
   void readState();
+  /// No contact on any sole or link; the soles' poses from the current state.
+  void clearContacts();
   void measureContacts();
   void findLegs();
   void recordLegContact(const btPersistentManifold& manifold, int body0, int body1);

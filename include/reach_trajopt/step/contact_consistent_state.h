@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "reach_trajopt/contact/contact_transition.h"  // yawOf
 #include "reach_trajopt/model/robot_model.h"
 
 namespace reach_trajopt {
@@ -24,8 +25,5 @@ struct ContactConsistentState {
 /// \param q, qd        the measured state (size n_q, finite; checked by the model)
 ContactConsistentState contactConsistentState(const RobotModel& model, FrameId stance_sole,
                                               const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
-
-/// Heading of a pose: the yaw of its x axis in the world's x-y plane [rad].
-double yawOf(const Eigen::Isometry3d& pose);
 
 }  // namespace reach_trajopt

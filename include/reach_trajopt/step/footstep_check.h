@@ -17,21 +17,11 @@
 
 namespace reach_trajopt {
 
-/// The check of one footstep as the planner uses it.
-struct FootstepCheckResult {
-  /// The check. From another process `result.reach` holds the verdict, the window's times,
-  /// distances and overlaps and the witness path (time, q, gaps, violations), not the sets.
-  FootstepResult result;
-  /// reachableSetConstraint(result.reach, config.output_axes, <the pass's constraint_margin>)
-  /// of a kinematically feasible foothold whose reachability was checked; empty otherwise.
-  std::vector<ReachableSlice> set_constraint;
-};
-
 /// Where the planner checks its footsteps: (request, reachability settings, the pass to run,
 /// run the reachability check or the kinematic stage only). It throws ReachError for a
 /// request it rejects, as the in-process check does.
-using FootstepCheck = std::function<FootstepCheckResult(const FootstepRequest&, const ReachConfig&,
-                                                        const CheckPass&, bool)>;
+using FootstepCheck = std::function<FootstepCheckResult(
+    const ContactTransition&, const ReachConfig&, const CheckPass&, bool)>;
 
 /// @brief The in-process check: `footsteps.checkPass(request, config, *pass, progress)` (no
 /// pass: `footsteps.check(request, config, progress)`, the check's own pass schedule), or its
@@ -39,7 +29,7 @@ using FootstepCheck = std::function<FootstepCheckResult(const FootstepRequest&, 
 /// set grown by the pass's constraint_margin (no pass: config.budgets.full's).
 /// \throws ReachError as FootstepReachability::check does.
 FootstepCheckResult checkFootstep(const FootstepReachability& footsteps,
-                                  const FootstepRequest& request, const ReachConfig& config,
+                                  const ContactTransition& request, const ReachConfig& config,
                                   const std::optional<CheckPass>& pass, bool reachability,
                                   const ReachProgressCallback& progress = {});
 

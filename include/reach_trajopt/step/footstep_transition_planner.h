@@ -29,9 +29,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reach_trajopt/contact/contact_config.h"
+#include "reach_trajopt/contact/contact_transition.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
@@ -75,15 +77,18 @@ enum class OcpPolicy {
   kAuto,       ///< strict first, relaxed if it fails
 };
 
-/// One footstep to plan.
-struct FootstepPlanRequest {
-  Side stance = Side::kLeft;  ///< the held sole; the other one swings
-  /// The stance sole as measured (its heading is the target's heading).
-  Eigen::Isometry3d stance_pose = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d target = Eigen::Vector3d::Zero();  ///< the planned foothold (sole centre) [m]
-  /// Heading of the foothold [rad]; none: the heading of `stance_pose`.
-  std::optional<double> target_yaw;
-  Eigen::VectorXd q, qd;  ///< x_0 (size n_q) [m, rad; m/s, rad/s]
+/// One footstep to plan: its contact transition (contact_transition.h) as measured and planned
+/// (the held sole `stance` where it stands, stance_contact; the planned foothold `target`, sole
+/// centre [m] and heading [rad]; x_0 = (q0, qd0) [m, rad; m/s, rad/s]; `horizon`, t_f - t_0 of
+/// the OCP [s], 0: the reachability horizon) and how to plan it. The transition's qf, qdf and
+/// touchdown are not read: the planner builds x_f (step 2) from `touchdown_com`, and step 1
+/// holds the stance sole where x_0 puts it.
+struct FootstepPlanRequest : ContactTransition {
+  FootstepPlanRequest() = default;
+  /// The plan of `transition` (the other fields at their defaults).
+  explicit FootstepPlanRequest(ContactTransition transition)
+      : ContactTransition(std::move(transition)) {}
+
   /// The CoM's horizontal state predicted at touchdown (LIPM about the stance sole): x_f then
   /// has the pelvis where the CoM will have carried it, at its current height, and moves with
   /// the CoM's velocity with both soles still. None: the Sec. III-B posture at rest.
@@ -97,8 +102,6 @@ struct FootstepPlanRequest {
   bool solve_ocp = true;
   /// Reachability settings for this request (e.g. another horizon); none: the planner's.
   std::optional<ReachConfig> reach;
-  /// t_f - t_0 of the OCP [s]; 0: the reachability horizon.
-  double horizon = 0.0;
   OcpPolicy ocp_policy = OcpPolicy::kByVerdict;
   InfeasibleFootholdPolicy on_infeasible = InfeasibleFootholdPolicy::kNearestFeasible;
 };
@@ -126,12 +129,12 @@ struct FootstepTransition {
   int check_passes = 1;
   TransitionResult trajectory;  ///< converged, relaxed or failed
   /// The full check (kinematics, reachable sets, witness) for recorders and the ROS layer.
-  FootstepResult check;
-  Side stance = Side::kLeft;
-  FlatContact stance_contact;  ///< the held stance sole (position [m], yaw [rad])
-  FlatContact target;          ///< the foothold checked (flat, stance heading)
-  Eigen::VectorXd q0, qd0;     ///< x_0 as used
-  double horizon = 0.0;        ///< t_f - t_0 used [s]
+  FootstepCheckResult check;
+  /// The contact transition as checked: x_0 as used (contact-consistent), the held stance sole
+  /// where x_0 has it (flat), the foothold checked, the horizon t_f - t_0 used [s], and what
+  /// the check built x_f from (qdf zero: at rest; else `touchdown`). Its qf is the check's
+  /// (check.kinematics.q_f).
+  ContactTransition transition;
   /// Where the swing sole will land [m]: the OCP's landing when usable, else the nearest
   /// kinematically feasible foothold to the target (the target when it is feasible).
   Eigen::Vector3d foothold = Eigen::Vector3d::Zero();
@@ -185,23 +188,13 @@ class FootstepTransitionPlanner {
   const ReachabilityAnalyzer& analyzer() const { return footsteps_.analyzer(); }
   /// The in-process footstep check of steps 2-3.
   const FootstepReachability& footstepReachability() const { return footsteps_; }
-  /// The footstep check's request of a planned step: its stance, held stance contact, target
-  /// and x_0 (the touchdown velocity and pelvis prediction are plan()'s to add).
-  static FootstepRequest checkRequest(const FootstepTransition& step);
 
  private:
-  /// The LIPM's prediction at touchdown: pelvis position to hold [m], CoM velocity [m/s].
-  struct Touchdown {
-    std::optional<Eigen::Vector3d> pelvis;
-    Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
-  };
-  /// What every pass starts from: the held stance sole pose and the touchdown prediction.
-  struct PassStart {
-    Eigen::Isometry3d held = Eigen::Isometry3d::Identity();
-    Touchdown touchdown;
-  };
-  /// Step 1 of a pass of `horizon` [s]: the request, x_0 and the target into `out`.
-  PassStart startPass(const FootstepPlanRequest& r, double horizon, FootstepTransition& out) const;
+  /// Step 1 of a pass of `horizon` [s]: the request and the transition to check into `out`
+  /// (x_0, the held sole, the target, the touchdown prediction); returns the held stance sole
+  /// pose as measured (the OCP's).
+  Eigen::Isometry3d startPass(const FootstepPlanRequest& r, double horizon,
+                              FootstepTransition& out) const;
   /// When a pass's OCP for a kinematically feasible foothold may fall back to the relaxed
   /// problem (its OcpPolicy's choice) after the strict one fails.
   enum class RelaxedFallback {
@@ -216,24 +209,26 @@ class FootstepTransitionPlanner {
                               const CheckPass& pass, const FootstepPlanProgress& progress,
                               RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested,
                               std::vector<ReachableSlice>* slices_used = nullptr) const;
-  /// Step 1: x_0 into `out`; returns the held stance sole pose.
-  Eigen::Isometry3d initialState(const FootstepPlanRequest& r, FootstepTransition& out) const;
-  Touchdown predictTouchdown(const FootstepPlanRequest& r, const FootstepTransition& out) const;
-  /// Steps 2-3 for the x_0 and target of `out`: the check and the OCP's slices of its forward
-  /// set (eq. 23; empty without a reachability check); its wall time into time_s [s].
+  /// Step 1: x_0, the held sole and the target into `t`; returns the held stance sole pose.
+  Eigen::Isometry3d initialState(const FootstepPlanRequest& r, ContactTransition& t) const;
+  /// The LIPM's prediction at touchdown from x_0 of `t`: the pelvis position to hold [m] and
+  /// the CoM velocity [m/s] (none, zero without r.touchdown_com).
+  TouchdownPrediction predictTouchdown(const FootstepPlanRequest& r,
+                                       const ContactTransition& t) const;
+  /// Steps 2-3 for out.transition: the check and the OCP's slices of its forward set (eq. 23;
+  /// empty without a reachability check); its wall time into time_s [s].
   FootstepCheckResult runCheck(const FootstepPlanRequest& r, const ReachConfig& reach,
-                               const CheckPass& pass, const Touchdown& td,
-                               const ReachProgressCallback& progress, const FootstepTransition& out,
-                               double& time_s) const;
+                               const CheckPass& pass, const ReachProgressCallback& progress,
+                               const FootstepTransition& out, double& time_s) const;
   /// Steps 2-3 into out.check and the verdict fields; returns the OCP's slices of the
   /// check's forward set (eq. 23; empty without a reachability check).
   std::vector<ReachableSlice> checkFoothold(const FootstepPlanRequest& r, const ReachConfig& reach,
-                                            const CheckPass& pass, const Touchdown& td,
+                                            const CheckPass& pass,
                                             const ReachProgressCallback& progress,
                                             FootstepTransition& out) const;
   /// The check's fields of `out` (check, verdict, reason, d_H) from `check`; `checked`: the
   /// reachability check ran.
-  static void recordCheck(FootstepResult check, bool checked, FootstepTransition& out);
+  static void recordCheck(FootstepCheckResult check, bool checked, FootstepTransition& out);
   /// The OCP of a pass ended as asked: not asked for, or strict and converged.
   static bool hasStrictTrajectory(const FootstepPlanRequest& r, const FootstepTransition& step);
   /// The passes planned and their summed times so far (plan()).
@@ -263,9 +258,10 @@ class FootstepTransitionPlanner {
                                        std::vector<ReachableSlice> quick_slices,
                                        double extra_margin,
                                        const FootstepPlanProgress& progress) const;
-  /// Steps 4-5 into out.trajectory and out.foothold, held in `set_constraint`.
+  /// Steps 4-5 of out.transition into out.trajectory and out.foothold, the stance sole held at
+  /// `held`, the swing sole in `set_constraint`.
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
-                       const Touchdown& td, std::vector<ReachableSlice> set_constraint,
+                       std::vector<ReachableSlice> set_constraint,
                        const OcpProgressCallback& progress, FootstepTransition& out,
                        RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested) const;
   /// The verdict of a checked, kinematically feasible step from its witness and its OCP.

@@ -13,7 +13,7 @@ namespace reach_trajopt {
 
 RobotState swingState(std::shared_ptr<const RobotModel> model,
                       const KinematicFeasibilityConfig& kf_config, const ContactConfig& contact,
-                      Side stance, const FlatContact& stance_foothold,
+                      Side stance, const FlatContact& stance_contact,
                       const Eigen::Vector3d& swing_position, double swing_yaw,
                       const Eigen::Vector3d& swing_velocity, const Eigen::VectorXd& q_init) {
   requireFinite("swingState: swing_position", swing_position);
@@ -21,12 +21,12 @@ RobotState swingState(std::shared_ptr<const RobotModel> model,
   // The IK puts the pelvis at pelvis_height above the mean sole height: lower it by half the
   // swing height so the pelvis stays where it is when both soles are on the ground.
   KinematicFeasibilityConfig cfg = kf_config;
-  cfg.pelvis_height -= 0.5 * (swing_position.z() - stance_foothold.position.z());
+  cfg.pelvis_height -= 0.5 * (swing_position.z() - stance_contact.position.z());
   const KinematicFeasibility kf(model, cfg, contact);
   FlatContact swing;
   swing.position = swing_position;
   swing.yaw = swing_yaw;
-  const KinematicFeasibilityResult r = kf.check(stance, stance_foothold, swing, q_init);
+  const KinematicFeasibilityResult r = kf.check(stance, stance_contact, swing, q_init);
   if (!r.feasible) throw ReachError("swingState: the swing pose is infeasible: " + r.reason);
   const RobotModel& m = *model;
   RobotState s;

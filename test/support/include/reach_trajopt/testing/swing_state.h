@@ -28,7 +28,7 @@ struct RobotState {
 ///     singular.
 RobotState swingState(std::shared_ptr<const RobotModel> model,
                       const KinematicFeasibilityConfig& kf_config, const ContactConfig& contact,
-                      Side stance, const FlatContact& stance_foothold,
+                      Side stance, const FlatContact& stance_contact,
                       const Eigen::Vector3d& swing_position, double swing_yaw,
                       const Eigen::Vector3d& swing_velocity,
                       const Eigen::VectorXd& q_init = Eigen::VectorXd());
