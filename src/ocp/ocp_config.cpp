@@ -53,6 +53,8 @@ void TransitionOcpConfig::validate() const {
   requirePositive("xtol_rel", xtol_rel);
   requirePositive("fd_step", fd_step);
   requireNonNegative("fit_regularization", fit_regularization);
+  if (threads < 0)
+    throw ConfigError("TransitionOcpConfig: threads must be >= 0 (0: OpenMP's default)");
 }
 
 const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {
@@ -95,6 +97,8 @@ const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {
                "central instead of forward differences (2x the gradient cost, ~1e-10 error)")
           .add("fit_regularization", &C::fit_regularization, "",
                "seed fit: weight of the second differences, >= 0")
+          .add("threads", &C::threads, "",
+               "OpenMP threads evaluating the NLP samples, 0: OpenMP's default (same bits)")
           .removed("terminal_pelvis_height",
                    "removed: the relaxed landing height is kinematic_feasibility.pelvis_height");
   return f;

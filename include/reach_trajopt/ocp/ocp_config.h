@@ -62,6 +62,9 @@ struct TransitionOcpConfig {
   double fd_step = 1.0e-6;             ///< finite-difference step in q [rad, m]
   bool central_differences = false;    ///< see file comment
   double fit_regularization = 1.0e-6;  ///< seed fit: weight of the second differences
+  /// OpenMP threads evaluating the NLP's samples (0: OpenMP's default); the result has the same
+  /// bits for any count (each sample on one thread, the rows assembled in sample order).
+  int threads = 0;
 
   /// Throws ConfigError naming the first bad value.
   void validate() const;
