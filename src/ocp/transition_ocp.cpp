@@ -50,6 +50,14 @@ const char* nloptResultName(nlopt::result r) {
   }
 }
 
+/// The largest violation of the NLP's rows at a point: |equality| and positive inequality.
+double nlpViolation(const NlpValues& v) {
+  double worst = 0.0;
+  if (v.equality.size() > 0) worst = v.equality.cwiseAbs().maxCoeff();
+  if (v.inequality.size() > 0) worst = std::max(worst, v.inequality.maxCoeff());
+  return worst;
+}
+
 /// Evaluates the NLP once per point for the objective and both constraint callbacks.
 struct NloptBridge {
   TransitionNlp* nlp = nullptr;
@@ -69,6 +77,11 @@ struct NloptBridge {
   double longest_step_s = 0;  ///< the longest wall time between two gradient evaluations [s]
   Clock::time_point last_gradient{};
   bool timed_out = false;
+  /// Anytime: the lowest-cost iterate whose NLP rows all hold within `feasible_tolerance`
+  /// (every gradient evaluation is at an iterate SLSQP accepted). Empty when none was.
+  double feasible_tolerance = 0.0;
+  Eigen::VectorXd best_feasible;
+  double best_feasible_cost = HUGE_VAL;
 
   /// True when the next iteration (as long as the longest so far) would end past the
   /// deadline less the reserve: stops the run there. SLSQP's own work between two evaluations
@@ -110,6 +123,10 @@ struct NloptBridge {
     if (gradients) {
       last_gradient = Clock::now();
       ++gradient_evaluations;
+      if (nlpViolation(values) <= feasible_tolerance && values.cost < best_feasible_cost) {
+        best_feasible_cost = values.cost;
+        best_feasible = x;
+      }
       if (progress && *progress &&
           !(*progress)({nlp->relaxed(), evaluations_before + gradient_evaluations})) {
         cancelled = true;
@@ -164,6 +181,7 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
   bridge.evaluations_before = evaluations;
   bridge.deadline = deadline;
   bridge.reserve_s = reserve_s;
+  bridge.feasible_tolerance = 0.5 * config.tolerance;
   const double max_time = std::chrono::duration<double>(deadline - Clock::now()).count();
   auto toStd = [](const Eigen::VectorXd& v) {
     return std::vector<double>(v.data(), v.data() + v.size());
@@ -204,8 +222,26 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
   const Eigen::VectorXd xn = Eigen::Map<const Eigen::VectorXd>(xv.data(), n);
   if (xn.allFinite()) x = xn;
   evaluations += bridge.gradient_evaluations;
-  if (bridge.timed_out) return "MAXTIME_REACHED";
-  return nloptResultName(code);
+  std::string name = bridge.timed_out ? "MAXTIME_REACHED" : nloptResultName(code);
+  // Anytime: a run cut short (deadline or evaluation budget) ends where it was, which need not
+  // be feasible; the best feasible iterate it passed is the better answer. The 1 ms re-check
+  // still decides whether it is accepted.
+  const bool cut_short =
+      name == "MAXTIME_REACHED" || name == "MAXEVAL_REACHED" || name == "FORCED_STOP";
+  if (cut_short && bridge.best_feasible.size() == x.size() && error.empty()) {
+    NlpValues at_x;
+    nlp.evaluate(x, false, at_x);
+    if (nlpViolation(at_x) > bridge.feasible_tolerance) {
+      x = bridge.best_feasible;
+      name += " (best feasible iterate)";
+    }
+  }
+  return name;
+}
+
+/// runSlsqp's code says the deadline stopped the run.
+bool timedOut(const std::string& nlopt_status) {
+  return nlopt_status.rfind("MAXTIME_REACHED", 0) == 0;
 }
 
 std::string worstFamily(const ConstraintViolations& v) {
@@ -403,14 +439,14 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
       res.status = relaxed ? OcpStatus::kRelaxed : OcpStatus::kConverged;
       res.reason.clear();
       // Stopped by the time limit at a feasible iterate: feasible (re-checked), not optimal.
-      if (res.nlopt_status == "MAXTIME_REACHED")
+      if (timedOut(res.nlopt_status))
         res.reason = "time limit reached at a feasible iterate (not optimal)";
       break;
     }
     res.status = OcpStatus::kFailed;
     res.reason = worstFamily(res.violation) + " (tolerance " + std::to_string(config_.tolerance) +
                  ", NLopt " + res.nlopt_status + ", " + std::to_string(res.solves) + " solves)";
-    if (res.nlopt_status == "MAXTIME_REACHED") {
+    if (timedOut(res.nlopt_status)) {
       res.reason = "time limit reached: " + res.reason;
       break;
     }
@@ -433,9 +469,16 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
 
 TransitionResult TransitionOcp::solve(const TransitionRequest& request,
                                       const OcpProgressCallback& progress) const {
+  return solve(request, progress, Clock::time_point::max());
+}
+
+TransitionResult TransitionOcp::solve(const TransitionRequest& request,
+                                      const OcpProgressCallback& progress,
+                                      Clock::time_point step_deadline) const {
   const Clock::time_point start = Clock::now();
-  const Clock::time_point deadline = start + std::chrono::duration_cast<Clock::duration>(
-                                                 std::chrono::duration<double>(config_.time_limit));
+  const Clock::time_point deadline =
+      std::min(step_deadline, start + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(config_.time_limit)));
   validate(request);
   TransitionResult res;
   switch (request.relaxation) {
@@ -450,7 +493,7 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request,
         res = solveMode(request, false, deadline, progress);
         if (res.status != OcpStatus::kFailed) break;
         // Out of time: the strict problem's answer (failed, naming the time limit) stands.
-        if (Clock::now() >= deadline || res.nlopt_status == "MAXTIME_REACHED") break;
+        if (Clock::now() >= deadline || timedOut(res.nlopt_status)) break;
         const TransitionResult strict = res;
         res = solveMode(request, true, deadline, progress);
         res.iterations += strict.iterations;
