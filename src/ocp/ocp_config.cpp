@@ -53,6 +53,7 @@ void TransitionOcpConfig::validate() const {
   requirePositive("xtol_rel", xtol_rel);
   requirePositive("fd_step", fd_step);
   requireNonNegative("fit_regularization", fit_regularization);
+  requireNonNegative("row_screening", row_screening);
   if (threads < 0)
     throw ConfigError("TransitionOcpConfig: threads must be >= 0 (0: OpenMP's default)");
 }
@@ -97,6 +98,9 @@ const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {
                "central instead of forward differences (2x the gradient cost, ~1e-10 error)")
           .add("fit_regularization", &C::fit_regularization, "",
                "seed fit: weight of the second differences, >= 0")
+          .add("row_screening", &C::row_screening, "m g, u_max, m",
+               "SLSQP sees the inequality rows within this of active, the rest checked "
+               "after; 0: all rows")
           .add("threads", &C::threads, "",
                "OpenMP threads evaluating the NLP samples, 0: OpenMP's default (same bits)")
           .removed("terminal_pelvis_height",

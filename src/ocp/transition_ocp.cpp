@@ -50,6 +50,11 @@ const char* nloptResultName(nlopt::result r) {
   }
 }
 
+/// runSlsqp's code says the deadline stopped the run.
+bool timedOut(const std::string& nlopt_status) {
+  return nlopt_status.rfind("MAXTIME_REACHED", 0) == 0;
+}
+
 /// The largest violation of the NLP's rows at a point: |equality| and positive inequality.
 double nlpViolation(const NlpValues& v) {
   double worst = 0.0;
@@ -82,6 +87,8 @@ struct NloptBridge {
   double feasible_tolerance = 0.0;
   Eigen::VectorXd best_feasible;
   double best_feasible_cost = HUGE_VAL;
+  /// The inequality rows SLSQP sees (row screening), all when null.
+  const std::vector<int>* rows = nullptr;
 
   /// True when the next iteration (as long as the longest so far) would end past the
   /// deadline less the reserve: stops the run there. SLSQP's own work between two evaluations
@@ -161,20 +168,32 @@ struct NloptBridge {
       std::fill(result, result + m, HUGE_VAL);
       return;
     }
-    Eigen::Map<Eigen::VectorXd>(result, m) = b->values.inequality;
-    if (grad) Eigen::Map<RowMajorMatrixXd>(grad, m, n) = b->values.inequality_jacobian;
+    if (!b->rows) {
+      Eigen::Map<Eigen::VectorXd>(result, m) = b->values.inequality;
+      if (grad) Eigen::Map<RowMajorMatrixXd>(grad, m, n) = b->values.inequality_jacobian;
+      return;
+    }
+    for (unsigned k = 0; k < m; ++k) {
+      const int r = (*b->rows)[k];
+      result[k] = b->values.inequality[r];
+      if (grad)
+        Eigen::Map<Eigen::RowVectorXd>(grad + static_cast<std::size_t>(k) * n, n) =
+            b->values.inequality_jacobian.row(r);
+    }
   }
 };
 
 /// Runs SLSQP from x (updated in place) until `deadline` less `reserve_s`. Returns NLopt's
 /// code name (MAXTIME_REACHED when the deadline stopped it); `error` gets callback failures.
 /// \throws ReachCancelled when `progress` returns false.
-std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
-                     Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
-                     int& evaluations, std::string& error, const OcpProgressCallback& progress) {
+std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
+                         Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
+                         int& evaluations, std::string& error, const OcpProgressCallback& progress,
+                         const std::vector<int>* rows) {
   const unsigned n = static_cast<unsigned>(nlp.variableCount());
   nlopt::opt opt(nlopt::LD_SLSQP, n);
   NloptBridge bridge;
+  bridge.rows = rows;
   bridge.nlp = &nlp;
   bridge.opt = &opt;
   bridge.progress = &progress;
@@ -191,8 +210,9 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
   opt.set_min_objective(&NloptBridge::objective, &bridge);
   opt.add_equality_mconstraint(&NloptBridge::equality, &bridge,
                                std::vector<double>(nlp.equalityCount(), 1e-10));
-  opt.add_inequality_mconstraint(&NloptBridge::inequality, &bridge,
-                                 std::vector<double>(nlp.inequalityCount(), 1e-10));
+  opt.add_inequality_mconstraint(
+      &NloptBridge::inequality, &bridge,
+      std::vector<double>(rows ? rows->size() : nlp.inequalityCount(), 1e-10));
   opt.set_ftol_rel(nlp.relaxed() ? config.relaxed_ftol_rel : config.ftol_rel);
   opt.set_xtol_rel(config.xtol_rel);
   opt.set_maxeval(config.max_evaluations);
@@ -239,9 +259,45 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
   return name;
 }
 
-/// runSlsqp's code says the deadline stopped the run.
-bool timedOut(const std::string& nlopt_status) {
-  return nlopt_status.rfind("MAXTIME_REACHED", 0) == 0;
+/// SLSQP on the inequality rows within `screen` of active (value > -screen) at x, then, while
+/// a row left out is violated at its answer, again from there with the rows near active at that
+/// point added. SLSQP's subproblem (a dense least-squares problem whose cost grows with the row
+/// count) and its merit function do not depend on rows that stay inactive, so the run is the
+/// full problem's as long as the rows left out stay away; the final check makes the answer hold
+/// every row (TransitionOcpConfig::row_screening). screen <= 0: all rows at once.
+std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
+                     Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
+                     int& evaluations, std::string& error, const OcpProgressCallback& progress) {
+  const double screen = config.row_screening;
+  if (screen <= 0.0)
+    return runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, error, progress, nullptr);
+  const int m = nlp.inequalityCount();
+  std::vector<char> kept(m, 0);
+  NlpValues v;
+  nlp.evaluate(x, false, v);
+  for (int r = 0; r < m; ++r) kept[r] = v.inequality[r] > -screen;
+  std::string code;
+  for (int round = 0;; ++round) {
+    std::vector<int> rows;
+    for (int r = 0; r < m; ++r)
+      if (kept[r]) rows.push_back(r);
+    const bool all = static_cast<int>(rows.size()) == m;
+    code = runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, error, progress,
+                        all ? nullptr : &rows);
+    if (!error.empty() || timedOut(code) || all) break;
+    nlp.evaluate(x, false, v);
+    bool violated = false;
+    for (int r = 0; r < m; ++r) {
+      if (kept[r]) continue;
+      if (v.inequality[r] > 0.5 * config.tolerance) violated = true;
+      if (v.inequality[r] > -screen) kept[r] = 1;
+    }
+    // The rows left out hold: done, unless the answer breaks a row SLSQP saw (it stopped at an
+    // infeasible point), where the full problem has the last word, from there.
+    if (!violated && nlpViolation(v) <= 0.5 * config.tolerance) break;
+    if (!violated || round >= 2) std::fill(kept.begin(), kept.end(), 1);
+  }
+  return code;
 }
 
 std::string worstFamily(const ConstraintViolations& v) {

@@ -62,6 +62,14 @@ struct TransitionOcpConfig {
   double fd_step = 1.0e-6;             ///< finite-difference step in q [rad, m]
   bool central_differences = false;    ///< see file comment
   double fit_regularization = 1.0e-6;  ///< seed fit: weight of the second differences
+  /// SLSQP sees only the inequality rows within this of active (row value > -row_screening at
+  /// its start: cone rows in units of m g, torque rows of u_max, hull and clearance rows in m);
+  /// the rows left out are checked at its answer, and SLSQP runs again from there with the rows
+  /// near active added while one is violated (after two such rounds, or when it stops on a row it
+  /// saw, with every row). Its subproblem's cost grows with the row count (most rows are far
+  /// from active), and rows that stay inactive change neither its steps nor its merit function:
+  /// same answers at a fraction of the cost. 0: every row from the start.
+  double row_screening = 0.1;
   /// OpenMP threads evaluating the NLP's samples (0: OpenMP's default); the result has the same
   /// bits for any count (each sample on one thread, the rows assembled in sample order).
   int threads = 0;
