@@ -10,8 +10,14 @@
 ///  - cone_margin, torque_margin: how far inside the cones and torque bounds the NLP samples
 ///    must stay, so that the samples in between (re-checked at 1 ms) stay inside too; larger
 ///    margins mean fewer refinement re-solves but a slightly smaller feasible set.
-///  - central_differences: d/dq by central instead of forward differences (2x the gradient cost,
-///    about 1e-10 instead of 1e-7 relative error).
+///  - central_differences: d/dq by central instead of forward differences (2x the kinematic
+///    part of the gradient cost, about 1e-10 instead of 1e-7 relative error).
+///  - row_screening: SLSQP's own work per iteration (a dense least-squares subproblem) grows with
+///    the inequality rows; it sees only those near active, the others are checked at its answer
+///    (issue 41: on the demo walk's OCPs 0.58x the time, the same answers). 0 turns it off.
+///  - threads: the NLP's samples on OpenMP threads (same bits for any count); with OpenMP's
+///    active wait policy on a loaded machine a second thread can cost more than it saves
+///    (scripts/env.sh sets OMP_WAIT_POLICY=passive).
 
 #include <string>
 

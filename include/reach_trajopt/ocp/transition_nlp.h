@@ -33,9 +33,11 @@
 /// Variables: 12 (N - 1) + 6 (strict) or 12 (N + 1) + 8 (relaxed); N = 4 segments gives 42 / 68.
 ///
 /// Gradients: per sample, the signals' Jacobian with respect to (q_a, qd_a, qdd_a, lambda_2)
-/// (stance_reduced_dynamics.h: analytic / exact / finite differences) chained with the spline
-/// basis (each sample depends on 4 control points per joint). Checked against central finite
-/// differences of this class's functions in test/unit/test_ocp_gradients.cpp.
+/// (stance_reduced_dynamics.h: analytic in qdd_a and lambda_2, the dynamics through the analytic
+/// RNEA derivatives, the kinematic chain by differences) chained with the spline basis (each
+/// sample depends on 4 control points per joint). Checked against central finite differences of
+/// this class's functions in test/unit/test_ocp_gradients.cpp. The samples are evaluated on
+/// TransitionOcpConfig::threads OpenMP threads, with the same bits for any count.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
