@@ -1,6 +1,7 @@
 /// model_info: inspect any robot as reach_trajopt sees it (no ROS master needed).
 ///
 ///   model_info <urdf> [--fixed-base] [--json] [--state FILE] [--frames a,b,...]
+///              [--rnea-derivatives]
 ///
 /// Without --state: a summary (mass, CoM at the neutral configuration, dofs, joint order and
 /// limits, frames); as text, or with --json as one JSON object for scripts:
@@ -12,7 +13,10 @@
 /// [...], "qd": [...]} or {"states": [{...}, ...]}, our coordinates: floating base [x y z yaw pitch
 /// roll] then the joints): JSON with M, b, the CoM and its Jacobian, and for each frame of --frames
 /// its pose, Jacobian and Jdot*qd (6 x n_q at the frame origin, world orientation, rows [linear;
-/// angular]). Exit status: 0 ok, 2 bad input (the message on stderr names the problem).
+/// angular]). With --rnea-derivatives also "rnea_derivatives": {"qdd" (the state's "qdd", zeros
+/// when it has none), "tau" (M qdd + b), "dtau_dq", "dtau_dqd" (n_q x n_q, column k = d tau /
+/// d q_k, model/rnea_derivatives.h)}. Exit status: 0 ok, 2 bad input (the message on stderr names
+/// the problem).
 
 #include <cmath>
 #include <cstdio>
@@ -27,6 +31,7 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/json_reader.h"
 #include "reach_trajopt/common/state_json.h"
+#include "reach_trajopt/model/rnea_derivatives.h"
 #include "reach_trajopt/model/robot_config.h"
 #include "reach_trajopt/model/robot_model.h"
 
@@ -46,6 +51,7 @@ const reach_trajopt::CliTool kTool(
      {"--json", "", "print the summary as one JSON object", ""},
      {"--state", "FILE", "states {\"q\", \"qd\"} or {\"states\": [...]} to evaluate", ""},
      {"--frames", "a,b,...", "frames whose pose and Jacobians --state prints", ""},
+     {"--rnea-derivatives", "", "--state also prints d tau / d q and d tau / d qd at its qdd", ""},
      {"--config", "FILE", "config file whose robot section gives the URDF and locked joints", ""}});
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -195,6 +201,24 @@ Json evaluate(const RobotModel& model, reach_trajopt::Workspace& ws,
   return out;
 }
 
+/// --rnea-derivatives: inverse dynamics and its derivatives at the state (qdd: zeros if absent).
+Json rneaDerivativesJson(const reach_trajopt::RneaDerivatives& rd,
+                         reach_trajopt::RneaDerivatives::Data& data,
+                         const reach_trajopt::JointSpaceState& state) {
+  const int n = rd.model().nq();
+  const Eigen::VectorXd qdd = state.qdd.size() ? state.qdd : Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd tau(n);
+  Eigen::MatrixXd dq(n, n), dqd(n, n);
+  rd.compute(data, state.q, state.qd, qdd, tau, dq, dqd);
+  requireFiniteOutputs(state, tau.allFinite() && dq.allFinite() && dqd.allFinite());
+  Json out;
+  out["qdd"] = vectorToJson(qdd);
+  out["tau"] = vectorToJson(tau);
+  out["dtau_dq"] = matrixToJson(dq);
+  out["dtau_dqd"] = matrixToJson(dqd);
+  return out;
+}
+
 /// The model of the command line: the URDF argument or the config's robot.urdf, with the
 /// config's locked joints and --fixed-base.
 std::shared_ptr<const RobotModel> loadModel(const reach_trajopt::CliArgs& args) {
@@ -212,7 +236,9 @@ std::shared_ptr<const RobotModel> loadModel(const reach_trajopt::CliArgs& args) 
 }
 
 /// --state: the model's sizes, joints and limits, and evaluate() of each state, as JSON.
-Json statesJson(const RobotModel& model, const reach_trajopt::CliArgs& args) {
+Json statesJson(const std::shared_ptr<const RobotModel>& model_ptr,
+                const reach_trajopt::CliArgs& args) {
+  const RobotModel& model = *model_ptr;
   const std::string state_file = args.value("--state");
   const Json input = reach_trajopt::JsonReader::parseFile(state_file);
   const auto states =
@@ -229,10 +255,15 @@ Json statesJson(const RobotModel& model, const reach_trajopt::CliArgs& args) {
   out["q_min"] = vectorToJson(model.positionLowerLimits());
   out["q_max"] = vectorToJson(model.positionUpperLimits());
   reach_trajopt::Workspace ws(model);
+  const bool derivatives = args.given("--rnea-derivatives");
+  const reach_trajopt::RneaDerivatives rd(model_ptr);
+  reach_trajopt::RneaDerivatives::Data rd_data(model);
   Json results = Json::array();
   for (std::size_t i = 0; i < states.size(); ++i) {
     try {
       results.push_back(evaluate(model, ws, states[i], frames));
+      if (derivatives)
+        results.back()["rnea_derivatives"] = rneaDerivativesJson(rd, rd_data, states[i]);
     } catch (const reach_trajopt::RequestError& e) {
       throw reach_trajopt::RequestError(state_file + ": state " + std::to_string(i) + ": " +
                                         e.what());
@@ -273,7 +304,7 @@ int main(int argc, char** argv) {
         printSummary(*model);
       return 0;
     }
-    std::cout << statesJson(*model, args).dump() << "\n";
+    std::cout << statesJson(model, args).dump() << "\n";
     return 0;
   });
 }

@@ -8,8 +8,10 @@ namespace {
 
 JointSpaceState readState(const JsonReader& r, int nq) {
   r.requireObject("{\"q\": [n_q numbers], \"qd\": [n_q numbers]}");
-  r.requireOnlyKeys({"q", "qd"});
-  return {r.vector("q", nq), r.vector("qd", nq)};
+  r.requireOnlyKeys({"q", "qd", "qdd"});
+  JointSpaceState s{r.vector("q", nq), r.vector("qd", nq), Eigen::VectorXd()};
+  if (r.has("qdd")) s.qdd = r.vector("qdd", nq);
+  return s;
 }
 
 }  // namespace

@@ -62,6 +62,11 @@ const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {
                "central instead of forward differences (2x the gradient cost, ~1e-10 error)")
           .add("fit_regularization", &C::fit_regularization, "", Range::nonNegative(),
                "seed fit: weight of the second differences")
+          .add("row_screening", &C::row_screening, "m g, u_max, m", Range::nonNegative(),
+               "SLSQP sees the inequality rows within this of active, the rest checked "
+               "after; 0: all rows")
+          .add("threads", &C::threads, "", Range::nonNegative(),
+               "OpenMP threads evaluating the NLP samples, 0: OpenMP's default (same bits)")
           .removed("terminal_pelvis_height",
                    "removed: the relaxed landing height is kinematic_feasibility.pelvis_height");
   return f;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/model/model_tree.h"
 
 namespace reach_trajopt {
 
@@ -20,9 +21,19 @@ StanceReducedDynamics::StanceReducedDynamics(std::shared_ptr<const RobotModel> m
       swing_frame_(swing_frame),
       stance_pose_(stance_pose),
       swing_(swing_frame, swing_target),
-      yaw_reference_(yaw_reference) {
+      yaw_reference_(yaw_reference),
+      rnea_(model_) {
   if (!model_ || !model_->floatingBase()) {
     throw ModelError("StanceReducedDynamics: needs a floating-base model");
+  }
+  const ModelTree& tree = model_->tree();
+  if (stance_frame < 0 || stance_frame >= static_cast<int>(tree.frames.size()))
+    throw ModelError("StanceReducedDynamics: invalid stance frame id");
+  on_stance_path_.assign(nu_, false);
+  const int stance_body = tree.frames[stance_frame].body;
+  if (stance_body >= 0) {
+    for (int b : tree.bodies[stance_body].support)
+      if (b >= 6) on_stance_path_[b - 6] = true;
   }
   // Validates the stance pose the same way as the swing target.
   const ContactConstraint check(stance_frame, stance_pose);
@@ -49,7 +60,23 @@ StanceReducedDynamics::Scratch::Scratch(const StanceReducedDynamics& d)
       swing(d.nq()),
       G(6, d.nu()),
       MT(d.nq(), d.nu()),
-      M(d.nq(), d.nq()) {}
+      M(d.nq(), d.nq()),
+      rd(d.model()),
+      tau_rd(d.nq()),
+      r0(d.nq()),
+      dtau_dq(d.nq(), d.nq()),
+      dtau_dqd(d.nq(), d.nq()),
+      k0(d.nq(), d.nu()),
+      kp(d.nq(), d.nu()),
+      km(d.nq(), d.nu()),
+      dq(d.nq()),
+      dqd(d.nq()),
+      dqdd(d.nq()),
+      dtau(d.nq()),
+      dr(d.nq()) {}
+
+StanceReducedDynamics::Scratch::Kinematic::Kinematic(int nq, int nu)
+    : q(nq), qd(nq), qdd(nq), G(6, nu), J2(6, nq) {}
 
 void StanceReducedDynamics::kinematics(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qa,
                                        const Eigen::Ref<const Eigen::VectorXd>& qda) const {
@@ -174,48 +201,168 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
   jac.block<6, 6>(lambdaOffset(), c_l2).noalias() =
       -s.Jb_inv.transpose() * s.J2.leftCols<6>().transpose();
 
-  // qd_a: quadratic at fixed q, so central differences are exact (the step only sets roundoff).
+  // The unperturbed state and the analytic RNEA derivatives there (model_->update() of the
+  // sample is current: evaluate() ended with velocityTerms at (q, qd)).
+  const Eigen::Ref<const Eigen::VectorXd> qa = input.head(nu_);
+  const Eigen::Ref<const Eigen::VectorXd> qda = input.segment(nu_, nu_);
   const Eigen::Ref<const Eigen::VectorXd> qdda = input.segment(2 * nu_, nu_);
-  const Eigen::VectorXd& qd0 = s.qd_nominal;
-  s.qd_nominal = s.qd;
+  saveKinematic(s, qdda, s.k0);
+  s.r0 = s.tau_ext;  // tau - J_2^T lambda_2
+  rnea_.compute(s.rd, s.q, s.qd, s.qdd, s.tau_rd, s.dtau_dq, s.dtau_dqd);
+  const Scratch::Kinematic& k0 = s.k0;
+
+  // One column from the changes of the full state (dq, dqd, dqdd) and of the kinematic terms
+  // (d = (k_plus - k_minus) / span): u and lambda_s by the chain rule, the rest directly.
+  auto column = [&](int c, const Scratch::Kinematic& kp, const Scratch::Kinematic& km, double span,
+                    bool kinematic_terms_move) {
+    const double inv = 1.0 / span;
+    s.dq = (kp.q - km.q) * inv;
+    s.dqd = (kp.qd - km.qd) * inv;
+    s.dqdd = (kp.qdd - km.qdd) * inv;
+    s.dtau.noalias() = s.dtau_dq * s.dq;
+    s.dtau.noalias() += s.dtau_dqd * s.dqd;
+    s.dtau.noalias() += s.M * s.dqdd;
+    s.dr = s.dtau;
+    auto out = jac.col(c);
+    out.segment(uOffset(), nu_) = s.dr.tail(nu_);
+    out.segment(uOffset(), nu_).noalias() += k0.G.transpose() * s.dr.head<6>();
+    out.segment<6>(lambdaOffset()).noalias() = k0.Jb_inv.transpose() * s.dr.head<6>();
+    if (kinematic_terms_move) {
+      // d(J_2^T lambda_2), d(G^T) r_b, d(J_sb^-T) r_b.
+      s.dr.noalias() = ((kp.J2 - km.J2) * inv).transpose() * lambda2;
+      out.segment(uOffset(), nu_) -= s.dr.tail(nu_);
+      out.segment(uOffset(), nu_).noalias() -= k0.G.transpose() * s.dr.head<6>();
+      out.segment<6>(lambdaOffset()).noalias() -= k0.Jb_inv.transpose() * s.dr.head<6>();
+      out.segment(uOffset(), nu_).noalias() += ((kp.G - km.G) * inv).transpose() * s.r0.head<6>();
+      out.segment<6>(lambdaOffset()).noalias() +=
+          ((kp.Jb_inv - km.Jb_inv) * inv).transpose() * s.r0.head<6>();
+    }
+    out.segment<3>(swingPositionOffset()) = (kp.swing_position - km.swing_position) * inv;
+    out.segment<6>(phi2Offset()) = (kp.phi2 - km.phi2) * inv;
+    out.segment<6>(phidot2Offset()) = (kp.phidot2 - km.phidot2) * inv;
+    out.segment<6>(phiddot2Offset()) = (kp.phiddot2 - km.phiddot2) * inv;
+    out.segment(qOffset(), nq_) = s.dq;
+    out.segment(qdOffset(), nq_) = s.dqd;
+  };
+
+  // qd_a: quadratic at fixed q, so central differences are exact (the step only sets roundoff).
+  // Only the velocity pass runs: q, G, J_sb^-1, J_2 stay those of k0.
   constexpr double kVelocityStep = 1.0;  // [rad/s]
   for (int i = 0; i < nu_; ++i) {
     for (int side = 0; side < 2; ++side) {
+      Scratch::Kinematic& k = side == 0 ? s.kp : s.km;
       const double h = side == 0 ? kVelocityStep : -kVelocityStep;
-      s.qd = qd0;
-      s.qd.head<6>() += h * s.G.col(i);
+      s.qd = k0.qd;
+      s.qd.head<6>() += h * k0.G.col(i);
       s.qd[6 + i] += h;
-      velocityTerms(s);
-      dynamics(s, qdda, lambda2, s.signals_pert);
-      if (side == 0) {
-        jac.col(nu_ + i) = s.signals_pert;
-      } else {
-        jac.col(nu_ + i) -= s.signals_pert;
-        jac.col(nu_ + i) /= 2.0 * kVelocityStep;
-      }
+      model_->updateVelocity(s.ws, s.qd);
+      s.drift_s = model_->frameJdotQd(s.ws, stance_frame_);
+      swing_.evaluate(*model_, s.ws, s.swing);
+      k.q = k0.q;
+      k.qd = s.qd;
+      k.G = k0.G;
+      k.Jb_inv = k0.Jb_inv;
+      k.J2 = k0.J2;
+      k.qdd.tail(nu_) = qdda;
+      k.qdd.head<6>().noalias() = k0.G * qdda;
+      k.qdd.head<6>().noalias() -= k0.Jb_inv * s.drift_s;
+      k.swing_position = k0.swing_position;
+      k.phi2 = s.swing.phi;
+      k.phidot2 = s.swing.phidot;
+      k.phiddot2 = s.swing.drift;
+      k.phiddot2.noalias() += s.swing.J_phi * k.qdd;
     }
+    column(nu_ + i, s.kp, s.km, 2.0 * kVelocityStep, false);
   }
 
-  // q_a: finite differences of the whole chain (base reconstruction included).
-  s.input_pert = input;
+  // q_a: differences of the kinematic chain (base reconstruction included).
+  s.input_pert.head(nu_) = qa;
   for (int i = 0; i < nu_; ++i) {
-    const double h = fd_step * std::max(1.0, std::abs(input[i]));
-    s.input_pert[i] = input[i] + h;
-    kinematics(s, s.input_pert.head(nu_), s.input_pert.segment(nu_, nu_));
-    dynamics(s, qdda, lambda2, s.signals_pert);
-    jac.col(i) = s.signals_pert;
+    const double h = fd_step * std::max(1.0, std::abs(qa[i]));
+    const bool swing_only = !on_stance_path_[i];
+    s.input_pert[i] = qa[i] + h;
+    perturbedKinematic(s, s.input_pert.head(nu_), qda, qdda, swing_only, s.kp);
     if (central) {
-      s.input_pert[i] = input[i] - h;
-      kinematics(s, s.input_pert.head(nu_), s.input_pert.segment(nu_, nu_));
-      dynamics(s, qdda, lambda2, s.signals_pert);
-      jac.col(i) -= s.signals_pert;
-      jac.col(i) /= 2.0 * h;
-    } else {
-      jac.col(i) -= signals;
-      jac.col(i) /= h;
+      s.input_pert[i] = qa[i] - h;
+      perturbedKinematic(s, s.input_pert.head(nu_), qda, qdda, swing_only, s.km);
     }
-    s.input_pert[i] = input[i];
+    s.input_pert[i] = qa[i];
+    if (swing_only) {  // dq = e_i exactly; the base state, G, J_sb^-1 do not move
+      s.kp.q = k0.q;
+      s.kp.q[6 + i] += 1.0;
+      s.km.q = k0.q;
+    }
+    const double span = swing_only ? 1.0 : (central ? 2.0 * h : h);
+    if (swing_only) {
+      // The swing terms over their own step, rescaled to the unit span of dq.
+      const Scratch::Kinematic& kb = central ? s.km : k0;
+      const double scale = 1.0 / (central ? 2.0 * h : h);
+      s.kp.swing_position = (s.kp.swing_position - kb.swing_position) * scale;
+      s.kp.phi2 = (s.kp.phi2 - kb.phi2) * scale;
+      s.kp.phidot2 = (s.kp.phidot2 - kb.phidot2) * scale;
+      s.kp.phiddot2 = (s.kp.phiddot2 - kb.phiddot2) * scale;
+      s.kp.J2 = (s.kp.J2 - kb.J2) * scale;
+      s.km.swing_position.setZero();
+      s.km.phi2.setZero();
+      s.km.phidot2.setZero();
+      s.km.phiddot2.setZero();
+      s.km.J2.setZero();
+      s.kp.qd = k0.qd;
+      s.km.qd = k0.qd;
+      s.kp.qdd = k0.qdd;
+      s.km.qdd = k0.qdd;
+      s.kp.G = k0.G;
+      s.km.G = k0.G;
+      s.kp.Jb_inv = k0.Jb_inv;
+      s.km.Jb_inv = k0.Jb_inv;
+      column(i, s.kp, s.km, span, true);
+    } else {
+      column(i, s.kp, central ? s.km : k0, span, true);
+    }
   }
+}
+
+void StanceReducedDynamics::saveKinematic(const Scratch& s,
+                                          const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                                          Scratch::Kinematic& k) const {
+  k.q = s.q;
+  k.qd = s.qd;
+  k.qdd.tail(nu_) = qdda;
+  k.qdd.head<6>().noalias() = s.G * qdda;
+  k.qdd.head<6>().noalias() -= s.Jb_inv * s.drift_s;
+  k.G = s.G;
+  k.Jb_inv = s.Jb_inv;
+  k.J2 = s.J2;
+  k.swing_position = s.swing_position;
+  k.phi2 = s.swing.phi;
+  k.phidot2 = s.swing.phidot;
+  k.phiddot2 = s.swing.drift;
+  k.phiddot2.noalias() += s.swing.J_phi * k.qdd;
+}
+
+void StanceReducedDynamics::perturbedKinematic(Scratch& s,
+                                               const Eigen::Ref<const Eigen::VectorXd>& qa,
+                                               const Eigen::Ref<const Eigen::VectorXd>& qda,
+                                               const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                                               bool swing_only, Scratch::Kinematic& k) const {
+  if (!swing_only) {
+    kinematics(s, qa, qda);
+    saveKinematic(s, qdda, k);
+    return;
+  }
+  // The stance sole's support path is unchanged: base pose, base velocity, G, J_sb^-1 and the
+  // stance drift are those of k0 (the same bits kinematics() would compute).
+  const Scratch::Kinematic& k0 = s.k0;
+  s.q = k0.q;
+  s.q.tail(nu_) = qa;
+  model_->update(s.ws, s.q, k0.qd);
+  swing_.evaluate(*model_, s.ws, s.swing);
+  model_->frameJacobian(s.ws, swing_frame_, k.J2);
+  k.swing_position = model_->framePose(s.ws, swing_frame_).translation();
+  k.phi2 = s.swing.phi;
+  k.phidot2 = s.swing.phidot;
+  k.phiddot2 = s.swing.drift;
+  k.phiddot2.noalias() += s.swing.J_phi * k0.qdd;
 }
 
 }  // namespace reach_trajopt

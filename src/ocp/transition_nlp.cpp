@@ -1,7 +1,10 @@
 #include "reach_trajopt/ocp/transition_nlp.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include "reach_trajopt/common/error.h"
@@ -51,7 +54,6 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   input_.resize(dyn_->inputCount());
   signals_.resize(dyn_->signalCount());
   u_scaled_.resize(nu_);
-  jin_.resize(dyn_->signalCount(), dyn_->inputCount());
   jloc_.resize(dyn_->signalCount(), 4 * nu_ + 6);
 }
 
@@ -312,12 +314,35 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
   }
   EvalState e(x, gradients, out, 4 * nu_ + 6, dyn_->signalCount());
   const int n_s = static_cast<int>(samples_.size());
+  // The dynamics of every sample (the cost of an evaluation) on up to `threads` threads, each
+  // with its own scratch and writing only its samples' buffers; then the rows in sample order
+  // on this thread, so the result has the same bits for any thread count.
+  const int threads = std::max(1, std::min(n_s, resolvedThreads()));
+  while (static_cast<int>(workers_.size()) < threads) workers_.emplace_back(*dyn_, 4 * nu_ + 6);
+  if (static_cast<int>(sample_eval_.size()) < n_s) sample_eval_.resize(n_s);
+  std::vector<std::exception_ptr> errors(n_s);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (int i = 0; i < n_s; ++i) {
+    try {
+      sampleSignals(samples_[i], x, gradients, workers_[threads > 1 ? omp_get_thread_num() : 0],
+                    sample_eval_[i]);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& err : errors)
+    if (err) std::rethrow_exception(err);
   for (int i = 0; i < n_s; ++i) {
     const Sample& smp = samples_[i];
-    sampleSignals(smp, e);
+    SampleEval& se = sample_eval_[i];
+    e.brow = se.brow;
+    signals_.swap(se.signals);
+    jloc_.swap(se.jloc);
     addSampleCost(smp, e);
     addPathInequalities(smp, i, e);
     if (smp.final) addTerminalRows(e);
+    signals_.swap(se.signals);
+    jloc_.swap(se.jloc);
   }
   if (relaxed_) {
     const Eigen::Vector2d ev = x.segment<2>(eps_index_);
@@ -327,22 +352,37 @@ void TransitionNlp::evaluate(const Eigen::VectorXd& x, bool gradients, NlpValues
   if (e.row != m_in) throw ReachError("TransitionNlp: internal error, inequality count mismatch");
 }
 
-void TransitionNlp::sampleSignals(const Sample& smp, EvalState& e) {
+int TransitionNlp::resolvedThreads() const {
+  return config_.threads > 0 ? config_.threads : omp_get_max_threads();
+}
+
+TransitionNlp::Worker::Worker(const StanceReducedDynamics& d, int local_columns)
+    : scratch(std::make_unique<StanceReducedDynamics::Scratch>(d)),
+      input(d.inputCount()),
+      jin(d.signalCount(), d.inputCount()) {
+  (void)local_columns;
+}
+
+void TransitionNlp::sampleSignals(const Sample& smp, const Eigen::VectorXd& x, bool gradients,
+                                  Worker& w, SampleEval& se) const {
   const StanceReducedDynamics& d = *dyn_;
-  e.brow = basis_.evaluate(smp.t);
-  splineInput(e.x, e.brow, input_);
-  input_.tail<6>() = smp.final ? lambdaNew(e.x) : Vector6d::Zero();
-  if (e.gradients) {
-    d.evaluate(*scratch_, input_, signals_, jin_, config_.fd_step, config_.central_differences);
-    const CubicBSplineBasis::Row& brow = e.brow;
+  se.brow = basis_.evaluate(smp.t);
+  se.signals.resize(d.signalCount());
+  splineInput(x, se.brow, w.input);
+  w.input.tail<6>() = smp.final ? lambdaNew(x) : Vector6d::Zero();
+  if (gradients) {
+    d.evaluate(*w.scratch, w.input, se.signals, w.jin, config_.fd_step,
+               config_.central_differences);
+    const CubicBSplineBasis::Row& brow = se.brow;
+    se.jloc.resize(d.signalCount(), 4 * nu_ + 6);
     for (int j = 0; j < 4; ++j) {
-      jloc_.middleCols(j * nu_, nu_) = brow.value[j] * jin_.leftCols(nu_);
-      jloc_.middleCols(j * nu_, nu_) += brow.d1[j] * jin_.middleCols(nu_, nu_);
-      jloc_.middleCols(j * nu_, nu_) += brow.d2[j] * jin_.middleCols(2 * nu_, nu_);
+      se.jloc.middleCols(j * nu_, nu_) = brow.value[j] * w.jin.leftCols(nu_);
+      se.jloc.middleCols(j * nu_, nu_) += brow.d1[j] * w.jin.middleCols(nu_, nu_);
+      se.jloc.middleCols(j * nu_, nu_) += brow.d2[j] * w.jin.middleCols(2 * nu_, nu_);
     }
-    jloc_.rightCols<6>() = weight_ * jin_.rightCols<6>();  // variables are lambda_2 / (m g)
+    se.jloc.rightCols<6>() = weight_ * w.jin.rightCols<6>();  // variables are lambda_2 / (m g)
   } else {
-    d.evaluate(*scratch_, input_, signals_);
+    d.evaluate(*w.scratch, w.input, se.signals);
   }
 }
 

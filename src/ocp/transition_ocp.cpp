@@ -50,6 +50,19 @@ const char* nloptResultName(nlopt::result r) {
   }
 }
 
+/// runSlsqp's code says the deadline stopped the run.
+bool timedOut(const std::string& nlopt_status) {
+  return nlopt_status.rfind("MAXTIME_REACHED", 0) == 0;
+}
+
+/// The largest violation of the NLP's rows at a point: |equality| and positive inequality.
+double nlpViolation(const NlpValues& v) {
+  double worst = 0.0;
+  if (v.equality.size() > 0) worst = v.equality.cwiseAbs().maxCoeff();
+  if (v.inequality.size() > 0) worst = std::max(worst, v.inequality.maxCoeff());
+  return worst;
+}
+
 /// Evaluates the NLP once per point for the objective and both constraint callbacks.
 struct NloptBridge {
   TransitionNlp* nlp = nullptr;
@@ -69,6 +82,13 @@ struct NloptBridge {
   double longest_step_s = 0;  ///< the longest wall time between two gradient evaluations [s]
   Clock::time_point last_gradient{};
   bool timed_out = false;
+  /// Anytime: the lowest-cost iterate whose NLP rows all hold within `feasible_tolerance`
+  /// (every gradient evaluation is at an iterate SLSQP accepted). Empty when none was.
+  double feasible_tolerance = 0.0;
+  Eigen::VectorXd best_feasible;
+  double best_feasible_cost = HUGE_VAL;
+  /// The inequality rows SLSQP sees (row screening), all when null.
+  const std::vector<int>* rows = nullptr;
 
   /// True when the next iteration (as long as the longest so far) would end past the
   /// deadline less the reserve: stops the run there. SLSQP's own work between two evaluations
@@ -110,6 +130,10 @@ struct NloptBridge {
     if (gradients) {
       last_gradient = Clock::now();
       ++gradient_evaluations;
+      if (nlpViolation(values) <= feasible_tolerance && values.cost < best_feasible_cost) {
+        best_feasible_cost = values.cost;
+        best_feasible = x;
+      }
       if (progress && *progress &&
           !(*progress)({nlp->relaxed(), evaluations_before + gradient_evaluations})) {
         cancelled = true;
@@ -144,26 +168,39 @@ struct NloptBridge {
       std::fill(result, result + m, HUGE_VAL);
       return;
     }
-    Eigen::Map<Eigen::VectorXd>(result, m) = b->values.inequality;
-    if (grad) Eigen::Map<RowMajorMatrixXd>(grad, m, n) = b->values.inequality_jacobian;
+    if (!b->rows) {
+      Eigen::Map<Eigen::VectorXd>(result, m) = b->values.inequality;
+      if (grad) Eigen::Map<RowMajorMatrixXd>(grad, m, n) = b->values.inequality_jacobian;
+      return;
+    }
+    for (unsigned k = 0; k < m; ++k) {
+      const int r = (*b->rows)[k];
+      result[k] = b->values.inequality[r];
+      if (grad)
+        Eigen::Map<Eigen::RowVectorXd>(grad + static_cast<std::size_t>(k) * n, n) =
+            b->values.inequality_jacobian.row(r);
+    }
   }
 };
 
 /// Runs SLSQP from x (updated in place) until `deadline` less `reserve_s`. Returns NLopt's
 /// code name (MAXTIME_REACHED when the deadline stopped it); `error` gets callback failures.
 /// \throws ReachCancelled when `progress` returns false.
-std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
-                     Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
-                     int& evaluations, std::string& error, const OcpProgressCallback& progress) {
+std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
+                         Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
+                         int& evaluations, std::string& error, const OcpProgressCallback& progress,
+                         const std::vector<int>* rows) {
   const unsigned n = static_cast<unsigned>(nlp.variableCount());
   nlopt::opt opt(nlopt::LD_SLSQP, n);
   NloptBridge bridge;
+  bridge.rows = rows;
   bridge.nlp = &nlp;
   bridge.opt = &opt;
   bridge.progress = &progress;
   bridge.evaluations_before = evaluations;
   bridge.deadline = deadline;
   bridge.reserve_s = reserve_s;
+  bridge.feasible_tolerance = 0.5 * config.tolerance;
   const double max_time = std::chrono::duration<double>(deadline - Clock::now()).count();
   auto toStd = [](const Eigen::VectorXd& v) {
     return std::vector<double>(v.data(), v.data() + v.size());
@@ -173,8 +210,9 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
   opt.set_min_objective(&NloptBridge::objective, &bridge);
   opt.add_equality_mconstraint(&NloptBridge::equality, &bridge,
                                std::vector<double>(nlp.equalityCount(), 1e-10));
-  opt.add_inequality_mconstraint(&NloptBridge::inequality, &bridge,
-                                 std::vector<double>(nlp.inequalityCount(), 1e-10));
+  opt.add_inequality_mconstraint(
+      &NloptBridge::inequality, &bridge,
+      std::vector<double>(rows ? rows->size() : nlp.inequalityCount(), 1e-10));
   opt.set_ftol_rel(nlp.relaxed() ? config.relaxed_ftol_rel : config.ftol_rel);
   opt.set_xtol_rel(config.xtol_rel);
   opt.set_maxeval(config.max_evaluations);
@@ -204,8 +242,62 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
   const Eigen::VectorXd xn = Eigen::Map<const Eigen::VectorXd>(xv.data(), n);
   if (xn.allFinite()) x = xn;
   evaluations += bridge.gradient_evaluations;
-  if (bridge.timed_out) return "MAXTIME_REACHED";
-  return nloptResultName(code);
+  std::string name = bridge.timed_out ? "MAXTIME_REACHED" : nloptResultName(code);
+  // Anytime: a run cut short (deadline or evaluation budget) ends where it was, which need not
+  // be feasible; the best feasible iterate it passed is the better answer. The 1 ms re-check
+  // still decides whether it is accepted.
+  const bool cut_short =
+      name == "MAXTIME_REACHED" || name == "MAXEVAL_REACHED" || name == "FORCED_STOP";
+  if (cut_short && bridge.best_feasible.size() == x.size() && error.empty()) {
+    NlpValues at_x;
+    nlp.evaluate(x, false, at_x);
+    if (nlpViolation(at_x) > bridge.feasible_tolerance) {
+      x = bridge.best_feasible;
+      name += " (best feasible iterate)";
+    }
+  }
+  return name;
+}
+
+/// SLSQP on the inequality rows within `screen` of active (value > -screen) at x, then, while
+/// a row left out is violated at its answer, again from there with the rows near active at that
+/// point added. SLSQP's subproblem (a dense least-squares problem whose cost grows with the row
+/// count) and its merit function do not depend on rows that stay inactive, so the run is the
+/// full problem's as long as the rows left out stay away; the final check makes the answer hold
+/// every row (TransitionOcpConfig::row_screening). screen <= 0: all rows at once.
+std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
+                     Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
+                     int& evaluations, std::string& error, const OcpProgressCallback& progress) {
+  const double screen = config.row_screening;
+  if (screen <= 0.0)
+    return runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, error, progress, nullptr);
+  const int m = nlp.inequalityCount();
+  std::vector<char> kept(m, 0);
+  NlpValues v;
+  nlp.evaluate(x, false, v);
+  for (int r = 0; r < m; ++r) kept[r] = v.inequality[r] > -screen;
+  std::string code;
+  for (int round = 0;; ++round) {
+    std::vector<int> rows;
+    for (int r = 0; r < m; ++r)
+      if (kept[r]) rows.push_back(r);
+    const bool all = static_cast<int>(rows.size()) == m;
+    code = runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, error, progress,
+                        all ? nullptr : &rows);
+    if (!error.empty() || timedOut(code) || all) break;
+    nlp.evaluate(x, false, v);
+    bool violated = false;
+    for (int r = 0; r < m; ++r) {
+      if (kept[r]) continue;
+      if (v.inequality[r] > 0.5 * config.tolerance) violated = true;
+      if (v.inequality[r] > -screen) kept[r] = 1;
+    }
+    // The rows left out hold: done, unless the answer breaks a row SLSQP saw (it stopped at an
+    // infeasible point), where the full problem has the last word, from there.
+    if (!violated && nlpViolation(v) <= 0.5 * config.tolerance) break;
+    if (!violated || round >= 2) std::fill(kept.begin(), kept.end(), 1);
+  }
+  return code;
 }
 
 std::string worstFamily(const ConstraintViolations& v) {
@@ -403,14 +495,14 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
       res.status = relaxed ? OcpStatus::kRelaxed : OcpStatus::kConverged;
       res.reason.clear();
       // Stopped by the time limit at a feasible iterate: feasible (re-checked), not optimal.
-      if (res.nlopt_status == "MAXTIME_REACHED")
+      if (timedOut(res.nlopt_status))
         res.reason = "time limit reached at a feasible iterate (not optimal)";
       break;
     }
     res.status = OcpStatus::kFailed;
     res.reason = worstFamily(res.violation) + " (tolerance " + std::to_string(config_.tolerance) +
                  ", NLopt " + res.nlopt_status + ", " + std::to_string(res.solves) + " solves)";
-    if (res.nlopt_status == "MAXTIME_REACHED") {
+    if (timedOut(res.nlopt_status)) {
       res.reason = "time limit reached: " + res.reason;
       break;
     }
@@ -433,9 +525,16 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
 
 TransitionResult TransitionOcp::solve(const TransitionRequest& request,
                                       const OcpProgressCallback& progress) const {
+  return solve(request, progress, Clock::time_point::max());
+}
+
+TransitionResult TransitionOcp::solve(const TransitionRequest& request,
+                                      const OcpProgressCallback& progress,
+                                      Clock::time_point step_deadline) const {
   const Clock::time_point start = Clock::now();
-  const Clock::time_point deadline = start + std::chrono::duration_cast<Clock::duration>(
-                                                 std::chrono::duration<double>(config_.time_limit));
+  const Clock::time_point deadline =
+      std::min(step_deadline, start + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(config_.time_limit)));
   validate(request);
   TransitionResult res;
   switch (request.relaxation) {
@@ -450,7 +549,7 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request,
         res = solveMode(request, false, deadline, progress);
         if (res.status != OcpStatus::kFailed) break;
         // Out of time: the strict problem's answer (failed, naming the time limit) stands.
-        if (Clock::now() >= deadline || res.nlopt_status == "MAXTIME_REACHED") break;
+        if (Clock::now() >= deadline || timedOut(res.nlopt_status)) break;
         const TransitionResult strict = res;
         res = solveMode(request, true, deadline, progress);
         res.iterations += strict.iterations;

@@ -191,3 +191,32 @@ TEST_P(TransitionNlpGradient, MatchesCentralDifferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(StrictAndRelaxed, TransitionNlpGradient, ::testing::Values(false, true));
+
+// The NLP's samples evaluated on 2 threads give the bits of 1 thread (TransitionOcpConfig::
+// threads): each sample's dynamics on one thread, the rows assembled in sample order.
+TEST(TransitionNlp, TwoThreadsGiveTheBitsOfOne) {
+  const auto m = biped();
+  const TransitionRequest r = request();
+  for (const bool relaxed : {false, true}) {
+    TransitionOcpConfig one, two;
+    one.threads = 1;
+    two.threads = 2;
+    TransitionNlp nlp1(m, one, ContactConfig(), r, relaxed);
+    TransitionNlp nlp2(m, two, ContactConfig(), r, relaxed);
+    Eigen::VectorXd x = nlp1.initialGuess();
+    for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += 0.02 * std::sin(1.3 * i);
+    for (const bool gradients : {false, true}) {
+      NlpValues a, b;
+      nlp1.evaluate(x, gradients, a);
+      nlp2.evaluate(x, gradients, b);
+      EXPECT_EQ(a.cost, b.cost);
+      EXPECT_TRUE(a.equality == b.equality);
+      EXPECT_TRUE(a.inequality == b.inequality);
+      if (gradients) {
+        EXPECT_TRUE(a.cost_gradient == b.cost_gradient);
+        EXPECT_TRUE(a.equality_jacobian == b.equality_jacobian);
+        EXPECT_TRUE(a.inequality_jacobian == b.inequality_jacobian);
+      }
+    }
+  }
+}

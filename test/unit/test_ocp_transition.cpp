@@ -199,15 +199,22 @@ TEST(TransitionOcp, ReachableStepConvergesAndPassesIndependentCheck) {
   std::cout << "[ reachable ] " << res.iterations << " gradient evaluations, " << res.solves
             << " solves, " << res.solve_time << " s, cost " << res.cost << "\n";
 
-  // Warm start from the solution as a seed path: converges again, no more work than cold.
+  // Warm start from the solution as a seed path: converges again, to no higher a cost, within
+  // one solve's budget. (Not "no more evaluations than cold": SLSQP's path here flips with
+  // changes of 1e-10 in the gradients, e.g. cold 72 / seeded 24 evaluations with the whole-chain
+  // finite differences, cold 30 to another local minimum / seeded 39 with the RNEA-derivative
+  // chain rule, cold 115 / seeded 24 with central differences.)
   TransitionRequest seeded = req;
   seeded.seed.time = res.time;
   seeded.seed.q = res.q;
   const TransitionResult warm = ocp.solve(seeded);
   ASSERT_EQ(warm.status, OcpStatus::kConverged) << warm.reason;
   expectFeasibleTrajectory(seeded, warm);
-  EXPECT_LE(warm.iterations, res.iterations);
-  std::cout << "[ seeded    ] " << warm.iterations << " gradient evaluations\n";
+  EXPECT_LE(warm.cost, res.cost * (1.0 + 1e-6));
+  EXPECT_EQ(warm.solves, 1);
+  EXPECT_LT(warm.iterations, caseConfig().max_evaluations);
+  std::cout << "[ seeded    ] " << warm.iterations << " gradient evaluations, cost " << warm.cost
+            << "\n";
 }
 
 TEST(TransitionOcp, StepBeyondReachableSetIsRelaxedToItsEdge) {
@@ -322,6 +329,40 @@ TEST(TransitionOcp, TimeLimitHoldsInsideTheEvaluations) {
     }
     EXPECT_EQ(res.time.size(), res.q.cols());  // an answer is still sampled
   }
+}
+
+// Anytime (issue 41): a deadline already past gives a failed answer at once, sampled, never a
+// trajectory reported converged.
+TEST(TransitionOcp, PastDeadlineGivesFailedStatus) {
+  const TransitionOcp ocp(biped(), caseConfig());
+  const TransitionResult res = ocp.solve(stepRequest(0.25), {}, std::chrono::steady_clock::now());
+  EXPECT_EQ(res.status, OcpStatus::kFailed);
+  EXPECT_NE(res.reason.find("time limit"), std::string::npos) << res.reason;
+  EXPECT_EQ(res.iterations, 0);
+  EXPECT_EQ(res.time.size(), res.q.cols());
+}
+
+// Anytime: SLSQP cut short (here by its evaluation budget, the same path as the deadline's, so
+// the test needs no clock) answers with the lowest-cost iterate that held every NLP row when its
+// last one does not; whatever it answers, "converged" means the 1 ms re-check passed.
+TEST(TransitionOcp, CutShortRunAnswersItsBestFeasibleIterateOrFails) {
+  const TransitionRequest req = stepRequest(0.25);
+  int best_feasible_answers = 0;
+  for (const int budget : {3, 10, 20, 40, 60, 80}) {
+    TransitionOcpConfig cfg = caseConfig();
+    cfg.max_evaluations = budget;
+    cfg.max_refinements = 0;
+    const TransitionResult res = TransitionOcp(biped(), cfg).solve(req);
+    if (res.nlopt_status.find("best feasible iterate") != std::string::npos)
+      ++best_feasible_answers;
+    if (res.status != OcpStatus::kFailed) {
+      EXPECT_LE(res.violation.max(), cfg.tolerance) << budget << ": " << res.reason;
+      expectFeasibleTrajectory(req, res);
+    }
+    EXPECT_EQ(res.time.size(), res.q.cols());
+  }
+  std::cout << "[ anytime ] best feasible iterate answered " << best_feasible_answers
+            << " of 6 cut-short runs\n";
 }
 
 TEST(TransitionOcp, InfeasibleTransitionFailsWithReason) {

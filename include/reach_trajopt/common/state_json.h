@@ -1,6 +1,7 @@
 #pragma once
 /// \file state_json.h
-/// The state file of `model_info --state`, read strictly: {"q": [n_q], "qd": [n_q]} or
+/// The state file of `model_info --state`, read strictly: {"q": [n_q], "qd": [n_q]} (and
+/// optionally "qdd": [n_q], for --rnea-derivatives) or
 /// {"states": [{"q": ..., "qd": ...}, ...]} (at most kMaxStates), known keys only, finite
 /// numbers, exact sizes; errors name the file and key path ("s.json: states[2].qd: expected 18
 /// numbers, got 17").
@@ -16,6 +17,7 @@ constexpr std::size_t kMaxStates = 100000;  ///< states per file (docs/limits.md
 
 struct JointSpaceState {
   Eigen::VectorXd q, qd;  ///< size n_q each [m, rad; m/s, rad/s]
+  Eigen::VectorXd qdd;    ///< size n_q [m/s^2, rad/s^2], or empty when the file has none
 };
 
 /// \throws ReachError naming the source and key path of the first problem.

@@ -10,8 +10,14 @@
 ///  - cone_margin, torque_margin: how far inside the cones and torque bounds the NLP samples
 ///    must stay, so that the samples in between (re-checked at 1 ms) stay inside too; larger
 ///    margins mean fewer refinement re-solves but a slightly smaller feasible set.
-///  - central_differences: d/dq by central instead of forward differences (2x the gradient cost,
-///    about 1e-10 instead of 1e-7 relative error).
+///  - central_differences: d/dq by central instead of forward differences (2x the kinematic
+///    part of the gradient cost, about 1e-10 instead of 1e-7 relative error).
+///  - row_screening: SLSQP's own work per iteration (a dense least-squares subproblem) grows with
+///    the inequality rows; it sees only those near active, the others are checked at its answer
+///    (issue 41: on the demo walk's OCPs 0.58x the time, the same answers). 0 turns it off.
+///  - threads: the NLP's samples on OpenMP threads (same bits for any count); with OpenMP's
+///    active wait policy on a loaded machine a second thread can cost more than it saves
+///    (scripts/env.sh sets OMP_WAIT_POLICY=passive).
 
 #include <string>
 
@@ -62,6 +68,17 @@ struct TransitionOcpConfig {
   double fd_step = 1.0e-6;             ///< finite-difference step in q [rad, m]
   bool central_differences = false;    ///< see file comment
   double fit_regularization = 1.0e-6;  ///< seed fit: weight of the second differences
+  /// SLSQP sees only the inequality rows within this of active (row value > -row_screening at
+  /// its start: cone rows in units of m g, torque rows of u_max, hull and clearance rows in m);
+  /// the rows left out are checked at its answer, and SLSQP runs again from there with the rows
+  /// near active added while one is violated (after two such rounds, or when it stops on a row it
+  /// saw, with every row). Its subproblem's cost grows with the row count (most rows are far
+  /// from active), and rows that stay inactive change neither its steps nor its merit function:
+  /// same answers at a fraction of the cost. 0: every row from the start.
+  double row_screening = 0.1;
+  /// OpenMP threads evaluating the NLP's samples (0: OpenMP's default); the result has the same
+  /// bits for any count (each sample on one thread, the rows assembled in sample order).
+  int threads = 0;
 
   /// Throws ConfigError naming the first bad value.
   void validate() const;

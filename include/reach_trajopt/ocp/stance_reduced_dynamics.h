@@ -19,17 +19,28 @@
 ///   u (n_u) [N m], lambda_s (6) [N, N m], swing sole position (3) [m], phi_2 (6) [m, rad],
 ///   phidot_2 (6), phiddot_2 (6), q (n_q), qd (n_q)
 /// with phi_2 the new contact's eq. (5) error to the swing target. Their Jacobian with respect
-/// to the inputs [q_a, qd_a, qdd_a, lambda_2] is: analytic in qdd_a and lambda_2 (the signals are
-/// affine in both), exact central differences in qd_a (the signals are quadratic in qd at fixed
-/// q, so central differences have no truncation error), and finite differences in q_a
-/// (forward or central, step from TransitionOcpConfig).
+/// to the inputs [q_a, qd_a, qdd_a, lambda_2]:
+///  - qdd_a and lambda_2: analytic (the signals are affine in both);
+///  - the dynamics (u, lambda_s) in q_a and qd_a: by the chain rule through the full state,
+///      d tau = dtau/dq dq + dtau/dqd dqd + M dqdd,
+///    with dtau/dq, dtau/dqd the analytic RNEA derivatives (model/rnea_derivatives.h), and
+///    u = T^T (tau - J_2^T lambda_2), lambda_s = J_sb^-T (tau - J_2^T lambda_2)_b differentiated
+///    as products;
+///  - the kinematic chain (the full state q, qd, qdd as functions of q_a, qd_a; G, J_sb^-1, J_2;
+///    the swing sole's position, phi_2, phidot_2, phiddot_2) by differences of kinematics only, no
+///    inverse dynamics: in qd_a exact central differences (quadratic in qd at fixed q; velocity
+///    pass only); in q_a forward or central differences (step from TransitionOcpConfig). A joint
+///    off the stance sole's support path (the swing leg) moves neither the reconstructed base nor
+///    G, J_sb, the stance drift: its column needs the swing terms only, and dq = e_i exactly.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
+#include <vector>
 
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/model/rnea_derivatives.h"
 #include "reach_trajopt/model/robot_model.h"
 
 namespace reach_trajopt {
@@ -75,6 +86,22 @@ class StanceReducedDynamics {
     Eigen::MatrixXd G, MT, M;
     Vector6d drift_s, lambda_s;
     Eigen::Vector3d swing_position;
+    // Jacobian scratch: RNEA derivatives and the kinematic state of the unperturbed input and of
+    // one perturbation.
+    RneaDerivatives::Data rd;
+    Eigen::VectorXd tau_rd, r0;
+    Eigen::MatrixXd dtau_dq, dtau_dqd;
+    struct Kinematic {
+      explicit Kinematic(int nq, int nu);
+      Eigen::VectorXd q, qd, qdd;
+      Eigen::MatrixXd G;
+      Eigen::Matrix<double, 6, 6> Jb_inv;
+      Matrix6Xd J2;
+      Eigen::Vector3d swing_position;
+      Vector6d phi2, phidot2, phiddot2;
+    };
+    Kinematic k0, kp, km;
+    Eigen::VectorXd dq, dqd, dqdd, dtau, dr;
   };
 
   /// Full configuration for q_a: base from the stance sole (see file comment).
@@ -107,6 +134,17 @@ class StanceReducedDynamics {
   /// qdd, tau, lambda_s, u and the signal vector.
   void dynamics(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qdda,
                 const Eigen::Ref<const Vector6d>& lambda2, Eigen::Ref<Eigen::VectorXd> out) const;
+  /// The kinematic state of the Scratch (after kinematics() or a swing-only update) into `k`,
+  /// qdd = T qdd_a + k and phiddot_2 included.
+  void saveKinematic(const Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                     Scratch::Kinematic& k) const;
+  /// Full kinematics at q_a (perturbed) into `k`: the base reconstructed, or, for a joint off the
+  /// stance support path (`swing_only`), the base state of s.k0 kept and only the swing terms
+  /// updated.
+  void perturbedKinematic(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qa,
+                          const Eigen::Ref<const Eigen::VectorXd>& qda,
+                          const Eigen::Ref<const Eigen::VectorXd>& qdda, bool swing_only,
+                          Scratch::Kinematic& k) const;
 
   std::shared_ptr<const RobotModel> model_;
   int nq_, nu_;
@@ -114,6 +152,9 @@ class StanceReducedDynamics {
   Eigen::Isometry3d stance_pose_;
   ContactConstraint swing_;
   double yaw_reference_;
+  RneaDerivatives rnea_;
+  std::vector<bool>
+      on_stance_path_;  ///< actuated joint i moves the stance sole relative to the base
 };
 
 }  // namespace reach_trajopt

@@ -33,9 +33,11 @@
 /// Variables: 12 (N - 1) + 6 (strict) or 12 (N + 1) + 8 (relaxed); N = 4 segments gives 42 / 68.
 ///
 /// Gradients: per sample, the signals' Jacobian with respect to (q_a, qd_a, qdd_a, lambda_2)
-/// (stance_reduced_dynamics.h: analytic / exact / finite differences) chained with the spline
-/// basis (each sample depends on 4 control points per joint). Checked against central finite
-/// differences of this class's functions in test/unit/test_ocp_gradients.cpp.
+/// (stance_reduced_dynamics.h: analytic in qdd_a and lambda_2, the dynamics through the analytic
+/// RNEA derivatives, the kinematic chain by differences) chained with the spline basis (each
+/// sample depends on 4 control points per joint). Checked against central finite differences of
+/// this class's functions in test/unit/test_ocp_gradients.cpp. The samples are evaluated on
+/// TransitionOcpConfig::threads OpenMP threads, with the same bits for any count.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -129,10 +131,27 @@ class TransitionNlp {
   void layOutVariables();
   void prepareSlices();
   void rebuildSamples();
-  /// evaluate() per sample, in this order: spline input, dynamics and the local Jacobian
-  /// jloc_; the cost (22) (sets u_scaled_); the stance cone, torque, clearance and hull rows;
-  /// at t_f the new contact's cone and the equalities.
-  void sampleSignals(const Sample& smp, EvalState& e);
+  /// One thread's scratch for sampleSignals().
+  struct Worker {
+    Worker(const StanceReducedDynamics& d, int local_columns);
+    std::unique_ptr<StanceReducedDynamics::Scratch> scratch;
+    Eigen::VectorXd input;
+    Eigen::MatrixXd jin;
+  };
+  /// One sample's signals and their local Jacobian (over its 4 control points and lambda_2).
+  struct SampleEval {
+    CubicBSplineBasis::Row brow;
+    Eigen::VectorXd signals;
+    Eigen::MatrixXd jloc;
+  };
+  /// TransitionOcpConfig::threads, 0 resolved to OpenMP's default.
+  int resolvedThreads() const;
+  /// evaluate() per sample: first (in parallel over the samples) the spline input, dynamics and
+  /// the local Jacobian into `se`; then, in sample order, with signals_ and jloc_ holding them,
+  /// the cost (22) (sets u_scaled_); the stance cone, torque, clearance and hull rows; at t_f
+  /// the new contact's cone and the equalities.
+  void sampleSignals(const Sample& smp, const Eigen::VectorXd& x, bool gradients, Worker& w,
+                     SampleEval& se) const;
   void addSampleCost(const Sample& smp, EvalState& e);
   void addPathInequalities(const Sample& smp, int i, EvalState& e);
   void addTerminalRows(EvalState& e);
@@ -174,9 +193,11 @@ class TransitionNlp {
   std::vector<Eigen::MatrixX2d> slice_A_;  ///< rows normalized
   std::vector<Eigen::VectorXd> slice_b_;
   int inequality_count_ = 0;
-  // Scratch for evaluate().
+  // Scratch for evaluate() (workers_ and sample_eval_ grow on first use).
   Eigen::VectorXd input_, signals_, u_scaled_;
-  Eigen::MatrixXd jin_, jloc_;
+  Eigen::MatrixXd jloc_;
+  std::vector<Worker> workers_;
+  std::vector<SampleEval> sample_eval_;
 };
 
 }  // namespace reach_trajopt

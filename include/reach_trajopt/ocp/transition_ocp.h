@@ -21,7 +21,8 @@
 /// (transition_check.h); if some cone, torque bound or hull is violated between NLP samples, add
 /// those times and re-solve from the last solution (at most max_refinements times). Status:
 /// converged (strict) or relaxed when the re-check passes (every family <= tolerance), else
-/// failed with the family, the amount and NLopt's code; a wall-clock time_limit bounds it all.
+/// failed with the family, the amount and NLopt's code; a wall-clock time_limit bounds it all
+/// (and, for the anytime solve, the caller's deadline: see solve()).
 
 #include <chrono>
 #include <memory>
@@ -49,6 +50,17 @@ class TransitionOcp {
   /// returns false.
   TransitionResult solve(const TransitionRequest& request,
                          const OcpProgressCallback& progress = {}) const;
+
+  /// Anytime: the same with a deadline (e.g. the step's: the plan is needed before the foot
+  /// lands), the earlier of it and time_limit after the call. At the deadline the run stops
+  /// between two SLSQP iterations with time left to sample and re-check the answer: the last
+  /// iterate, or, when that one breaks an NLP row, the lowest-cost iterate that held them all.
+  /// Its 1 ms re-check decides the status as always: converged (or relaxed) only when every
+  /// family is within tolerance, with the reason "time limit reached at a feasible iterate (not
+  /// optimal)"; otherwise failed, "time limit reached: ...". A deadline already past gives a
+  /// failed result at once.
+  TransitionResult solve(const TransitionRequest& request, const OcpProgressCallback& progress,
+                         std::chrono::steady_clock::time_point deadline) const;
 
   /// Throws ReachError naming the problem: wrong sizes or non-finite values, a horizon that is
   /// not positive or shorter than two output samples, slice / seed times outside [0, horizon],
