@@ -283,7 +283,7 @@ TEST(PushEnvelope, SweepEqualsSingleWalksOnAnyNumberOfJobs) {
       WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   PushGrid grid;
   grid.directions = 4;
-  grid.magnitudes = {0.2, 0.6};
+  grid.magnitudes = {0.2, 0.8};
   grid.seeds = {1, 2};
   grid.steps = 4;
   const WalkingPolicy baseline = WalkingPolicy::preset("baseline");
@@ -304,7 +304,7 @@ TEST(PushEnvelope, SweepEqualsSingleWalksOnAnyNumberOfJobs) {
       fell += r.fell;
     }
   }
-  EXPECT_GT(fell, 0) << "0.6 m/s pushes topple the baseline";
+  EXPECT_GT(fell, 0) << "0.8 m/s pushes topple the baseline";
   EXPECT_EQ(one.survived(), 16 - 2 * fell);
 }
 

@@ -23,14 +23,11 @@ template <typename Config>
 class ConfigFields;
 
 /// TVR parameters; defaults are the shipped ones (config/biped.yaml, section `planner:`), the
-/// paper's (Sec. IV-A) except kappa_x and t_s.
+/// paper's (Sec. IV-A) except kappa_x.
 struct TvrConfig {
   double com_height = 1.0;  ///< h [m] of the LIPM (> 0)
   double gravity = 9.81;    ///< g [m/s^2] (> 0)
-  /// Time to velocity reversal [s] (> 0). The paper's 0.15 s makes the step map (12) alternate
-  /// (eigenvalue -0.71 per step at T = 0.26 s): after a push the steps swing forward and back;
-  /// 0.3 s does not (eigenvalues 0.86 and 0.20; docs/walking.md).
-  double t_s = 0.3;
+  double t_s = 0.15;        ///< time to velocity reversal [s] (> 0)
   /// Sagittal bias kappa_1 (< 0 stabilizes): the authors' code value; with the paper's -0.66
   /// our biped walks in place but not forward.
   double kappa_x = -0.16;
