@@ -302,7 +302,7 @@ CASES = [
     ("resource", "envelope_steps_over_time_limit", "push_envelope", ["--steps", "300"], {},
      ["--steps 300", "walk.max_sim_time"]),
     ("resource", "envelope_sweep_over_limit", "push_envelope",
-     ["--directions", "64", "--fine", "--steps", "100"], {}, ["409600 footsteps", "--force"]),
+     ["--directions", "64", "--fine", "--steps", "100"], {}, ["512000 footsteps", "--force"]),
     ("resource", "verdict_grid_over_limit", "verdict_grid",
      ["--requests", FIXTURE_REQUESTS, "--grid", "41"], {}, ["--grid 41", "--force"]),
     ("silent", "state_q_1e300", "model_info", [BIPED, "--state", "{s}"],

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/control/swing_trajectory.h"
 #include "reach_trajopt/walk/push_envelope.h"
@@ -99,7 +101,8 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
 // drawing `samples` initial samples (the paper's 1e4 in the shipped file), from a push (initial CoM
 // velocity [m/s]) or at a commanded forward speed [m/s].
 WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2d& push,
-                      int samples, double forward_speed = 0.0, unsigned seed = 1) {
+                      int samples, double forward_speed = 0.0, unsigned seed = 1,
+                      std::optional<WalkConfig::FirstSwing> first_swing = std::nullopt) {
   WalkSetup setup =
       WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   setup.walk.policy = WalkingPolicy::parse(policy);
@@ -107,6 +110,7 @@ WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2
   setup.walk.initial_com_velocity = push;
   setup.walk.forward_speed = forward_speed;
   setup.walk.seed = seed;
+  if (first_swing) setup.walk.first_swing = *first_swing;
   setup.footsteps.reach.budgets.full.initial_samples = samples;
   return setup.experiment(kUrdf)->run();
 }
@@ -243,12 +247,14 @@ TEST(WalkingPolicy, EachPresetWalksAndItsRecordsShowItsParts) {
 }
 
 TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
-  // TVR without bounds under a lateral push proposes steps through the stance sole; with the
+  // TVR without bounds under a lateral push, the right leg swinging first (toward the stance
+  // leg), proposes steps through the stance sole; with the
   // kinematic check and on_fail=clip_to_bounds those are moved into the heuristic bounds of
   // config/biped.yaml (|x| <= 0.42 m, 0.25 <= |y| <= 0.65 m towards the swing side from the
   // stance sole), the others are left as TVR planned them.
-  const WalkResult r = runShipped("unbounded,check=kinematic,on_fail=clip_to_bounds", 4,
-                                  Eigen::Vector2d(0, 0.4), 300);
+  const WalkResult r =
+      runShipped("unbounded,check=kinematic,on_fail=clip_to_bounds", 4, Eigen::Vector2d(0, 0.4),
+                 300, 0.0, 1, WalkConfig::FirstSwing::kRight);
   EXPECT_EQ(r.policy.name, "custom");
   int clipped = 0;
   for (const StepRecord& s : r.records) {
@@ -268,9 +274,11 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
 }
 
 TEST(WalkingPolicy, CrossedLegsEndTheWalkAsAFall) {
-  // TVR alone under a 0.4 m/s lateral push puts the first swing sole into the stance foot: the
-  // legs' collision shapes touch and the run ends as a fall, naming the links.
-  const WalkResult r = runShipped("unbounded", 6, Eigen::Vector2d(0, 0.4), 300);
+  // TVR alone under a 0.4 m/s push to the left, the right leg swinging first (toward the
+  // stance leg: the first leg not chosen from the push), puts the first swing sole into the
+  // stance foot: the legs' collision shapes touch and the run ends as a fall, naming the links.
+  const WalkResult r = runShipped("unbounded", 6, Eigen::Vector2d(0, 0.4), 300, 0.0, 1,
+                                  WalkConfig::FirstSwing::kRight);
   EXPECT_TRUE(r.fell) << r.summaryLine();
   EXPECT_EQ(r.end_reason.rfind("legs collided (", 0), 0u) << r.end_reason;
 }
