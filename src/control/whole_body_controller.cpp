@@ -18,16 +18,7 @@ Eigen::Vector3d orientationError(const Eigen::Matrix3d& R_des, const Eigen::Matr
 
 }  // namespace
 
-void WbcConfig::validate() const {
-  const double vals[] = {w_com,   w_com_xy, kp_com,   kd_com,    w_pelvis,   kp_pelvis, kd_pelvis,
-                         w_swing, kp_swing, kd_swing, w_posture, kp_posture, kd_posture};
-  for (double v : vals)
-    if (!std::isfinite(v) || v < 0.0)
-      throw ConfigError("WbcConfig: weights and gains must be >= 0");
-  if (!(w_qdd > 0.0) || !(w_lambda > 0.0) || !std::isfinite(w_qdd) || !std::isfinite(w_lambda))
-    throw ConfigError(
-        "WbcConfig: w_qdd and w_lambda must be > 0 (they keep the QP strictly convex)");
-}
+void WbcConfig::validate() const { fields().checkRanges(*this); }
 
 const ConfigFields<WbcConfig>& WbcConfig::fields() {
   using C = WbcConfig;
@@ -36,23 +27,28 @@ const ConfigFields<WbcConfig>& WbcConfig::fields() {
                       "Whole-body controller: task weights (>= 0; larger wins over the other "
                       "tasks) and PD gains (>= 0; larger tracks faster but amplifies the "
                       "simulator's contact noise).")
-          .add("w_com", &C::w_com, "", "weight of the CoM height task")
-          .add("kp_com", &C::kp_com, "1/s^2", "its stiffness")
-          .add("kd_com", &C::kd_com, "1/s", "its damping")
-          .add("w_com_xy", &C::w_com_xy, "",
+          .add("w_com", &C::w_com, "", Range::nonNegative(), "weight of the CoM height task")
+          .add("kp_com", &C::kp_com, "1/s^2", Range::nonNegative(), "its stiffness")
+          .add("kd_com", &C::kd_com, "1/s", Range::nonNegative(), "its damping")
+          .add("w_com_xy", &C::w_com_xy, "", Range::nonNegative(),
                "horizontal CoM weight; small: the CoM moves as the pendulum the TVR planner "
                "assumes")
-          .add("w_pelvis", &C::w_pelvis, "", "weight of the pelvis orientation task")
-          .add("kp_pelvis", &C::kp_pelvis, "1/s^2", "its stiffness")
-          .add("kd_pelvis", &C::kd_pelvis, "1/s", "its damping")
-          .add("w_swing", &C::w_swing, "", "weight of the swing sole pose task")
-          .add("kp_swing", &C::kp_swing, "1/s^2", "its stiffness")
-          .add("kd_swing", &C::kd_swing, "1/s", "its damping")
-          .add("w_posture", &C::w_posture, "", "weight of the joint posture task")
-          .add("kp_posture", &C::kp_posture, "1/s^2", "its stiffness")
-          .add("kd_posture", &C::kd_posture, "1/s", "its damping")
-          .add("w_qdd", &C::w_qdd, "", "regularization of qdd, > 0 (keeps the QP strictly convex)")
-          .add("w_lambda", &C::w_lambda, "1/N^2", "regularization of the contact wrenches, > 0");
+          .add("w_pelvis", &C::w_pelvis, "", Range::nonNegative(),
+               "weight of the pelvis orientation task")
+          .add("kp_pelvis", &C::kp_pelvis, "1/s^2", Range::nonNegative(), "its stiffness")
+          .add("kd_pelvis", &C::kd_pelvis, "1/s", Range::nonNegative(), "its damping")
+          .add("w_swing", &C::w_swing, "", Range::nonNegative(),
+               "weight of the swing sole pose task")
+          .add("kp_swing", &C::kp_swing, "1/s^2", Range::nonNegative(), "its stiffness")
+          .add("kd_swing", &C::kd_swing, "1/s", Range::nonNegative(), "its damping")
+          .add("w_posture", &C::w_posture, "", Range::nonNegative(),
+               "weight of the joint posture task")
+          .add("kp_posture", &C::kp_posture, "1/s^2", Range::nonNegative(), "its stiffness")
+          .add("kd_posture", &C::kd_posture, "1/s", Range::nonNegative(), "its damping")
+          .add("w_qdd", &C::w_qdd, "", Range::positive(),
+               "regularization of qdd (keeps the QP strictly convex)")
+          .add("w_lambda", &C::w_lambda, "1/N^2", Range::positive(),
+               "regularization of the contact wrenches (keeps the QP strictly convex)");
   return f;
 }
 

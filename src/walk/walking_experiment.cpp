@@ -26,49 +26,16 @@ namespace reach_trajopt {
 // ---- WalkConfig -------------------------------------------------------------------------------
 
 void WalkConfig::validate() const {
-  auto positive = [](const char* name, double v) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw ConfigError(std::string("WalkConfig: ") + name + " must be > 0, got " +
-                        std::to_string(v));
-  };
-  auto nonNegative = [](const char* name, double v) {
-    if (!(v >= 0.0) || !std::isfinite(v))
-      throw ConfigError(std::string("WalkConfig: ") + name + " must be >= 0, got " +
-                        std::to_string(v));
-  };
-  if (steps < 0) throw ConfigError("WalkConfig: steps must be >= 0");
-  positive("single_support_duration", single_support_duration);
-  positive("double_support_duration", double_support_duration);
-  nonNegative("settle_duration", settle_duration);
-  nonNegative("swing_height", swing_height);
-  nonNegative("touchdown_depth", touchdown_depth);
-  positive("touchdown_force", touchdown_force);
-  nonNegative("late_touchdown", late_touchdown);
-  positive("check_horizon", check_horizon);
-  if (!(max_double_support_duration >= double_support_duration) ||
-      !std::isfinite(max_double_support_duration))
-    throw ConfigError(
-        "WalkConfig: max_double_support_duration must be finite and >= double_support_duration");
-  positive("lift_off_capture_tolerance", lift_off_capture_tolerance);
-  positive("lift_off_capture_gain", lift_off_capture_gain);
-  positive("min_single_support_duration", min_single_support_duration);
-  if (!(max_single_support_duration >= min_single_support_duration) ||
-      !std::isfinite(max_single_support_duration))
-    throw ConfigError(
-        "WalkConfig: max_single_support_duration must be finite and >= "
-        "min_single_support_duration");
+  fields().checkRanges(*this);
   if (!(check_horizon < single_support_duration))
     throw ConfigError("WalkConfig: check_horizon must be shorter than single_support_duration");
-  if (!(replan_fraction >= 0.0 && replan_fraction <= 1.0))
-    throw ConfigError("WalkConfig: replan_fraction must be in [0, 1]");
-  nonNegative("fixed_plan_latency", fixed_plan_latency);
-  nonNegative("knee_bend", knee_bend);
-  positive("fall_pelvis_height", fall_pelvis_height);
-  positive("max_sim_time", max_sim_time);
-  if (!std::isfinite(forward_speed)) throw ConfigError("WalkConfig: forward_speed is not finite");
+  if (!(max_double_support_duration >= double_support_duration))
+    throw ConfigError("WalkConfig: max_double_support_duration must be >= double_support_duration");
+  if (!(max_single_support_duration >= min_single_support_duration))
+    throw ConfigError(
+        "WalkConfig: max_single_support_duration must be >= min_single_support_duration");
   requireFinite("WalkConfig: initial_com_velocity", initial_com_velocity);
   requireFinite("WalkConfig: midswing_push", midswing_push);
-  if (midswing_push_step < 1) throw ConfigError("WalkConfig: midswing_push_step must be >= 1");
   policy.validate();
 }
 
@@ -94,9 +61,10 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
               "<preset>[,part=value...]: baseline (Sec. IV-A), unbounded, kinematic, proposed "
               "(Sec. IV-B); parts bounds, check, on_fail, swing (walk/walking_policy.h); it "
               "sets TvrConfig::heuristic_bounds")
-          .add("steps", &C::steps, "", "footsteps to walk (touchdowns), >= 0")
-          .add("single_support_duration", &C::single_support_duration, "s", "nominal swing time")
-          .add("double_support_duration", &C::double_support_duration, "s",
+          .add("steps", &C::steps, "", Range::nonNegative(), "footsteps to walk (touchdowns)")
+          .add("single_support_duration", &C::single_support_duration, "s", Range::positive(),
+               "nominal swing time")
+          .add("double_support_duration", &C::double_support_duration, "s", Range::positive(),
                "weight transfer between steps")
           .choice("step_timing", &C::step_timing,
                   {{"fixed", WalkConfig::StepTiming::kFixed},
@@ -105,9 +73,11 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
                   "lift-off in [min_, max_single_support_duration] so that the TVR step fits "
                   "the foot offset bounds; planner/step_timing.h)")
           .add("min_single_support_duration", &C::min_single_support_duration, "s",
+               Range::positive(),
                "step_timing tvr_bounds: shortest swing (policies with a check: at least "
-               "check_horizon + one tick), > 0")
+               "check_horizon + one tick)")
           .add("max_single_support_duration", &C::max_single_support_duration, "s",
+               Range::positive(),
                "step_timing tvr_bounds: longest swing, >= min_single_support_duration")
           .choice("lift_off", &C::lift_off,
                   {{"timed", WalkConfig::LiftOff::kTimed},
@@ -117,56 +87,57 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
                   "gait's lift-off point and lifts off there, or at once when it leaves the "
                   "soles; between double_support_duration and max_double_support_duration)")
           .add("max_double_support_duration", &C::max_double_support_duration, "s",
+               Range::positive(),
                "lift_off capture_point: longest double support, >= double_support_duration")
-          .add("lift_off_capture_tolerance", &C::lift_off_capture_tolerance, "m",
+          .add("lift_off_capture_tolerance", &C::lift_off_capture_tolerance, "m", Range::positive(),
                "lift_off capture_point: the capture point this close to its lift-off point "
-               "lets the swing sole lift off, > 0")
-          .add("lift_off_capture_gain", &C::lift_off_capture_gain, "1/s",
+               "lets the swing sole lift off")
+          .add("lift_off_capture_gain", &C::lift_off_capture_gain, "1/s", Range::positive(),
                "lift_off capture_point: the rate at which the double support steers the "
-               "capture point, > 0")
-          .add("settle_duration", &C::settle_duration, "s",
+               "capture point")
+          .add("settle_duration", &C::settle_duration, "s", Range::nonNegative(),
                "initial standing before the first lift-off")
-          .add("swing_height", &C::swing_height, "m", "swing apex above the ground")
-          .add("touchdown_depth", &C::touchdown_depth, "m",
+          .add("swing_height", &C::swing_height, "m", Range::nonNegative(),
+               "swing apex above the ground")
+          .add("touchdown_depth", &C::touchdown_depth, "m", Range::nonNegative(),
                "nominal swing end below the ground (touchdown by contact)")
-          .add("touchdown_force", &C::touchdown_force, "N",
-               "sole normal force that counts as touchdown, > 0")
-          .add("late_touchdown", &C::late_touchdown, "s",
+          .add("touchdown_force", &C::touchdown_force, "N", Range::positive(),
+               "sole normal force that counts as touchdown")
+          .add("late_touchdown", &C::late_touchdown, "s", Range::nonNegative(),
                "time past the nominal swing end before a fall is declared")
-          .add("check_horizon", &C::check_horizon, "s",
+          .add("check_horizon", &C::check_horizon, "s", Range::positive(),
                "policies with a check: the check and the OCP start this long before the nominal "
                "touchdown (replaces reach.horizon), < single_support_duration")
-          .add("replan_fraction", &C::replan_fraction, "",
-               "eq. (11) re-evaluated from the measured CoM during this fraction of the swing, "
-               "in [0, 1]")
+          .add("replan_fraction", &C::replan_fraction, "", Range::between(0.0, 1.0),
+               "eq. (11) re-evaluated from the measured CoM during this fraction of the swing")
           .choice("plan_latency", &C::plan_latency,
                   {{"pause", WalkConfig::PlanLatency::kPause},
                    {"measured", WalkConfig::PlanLatency::kMeasured},
                    {"fixed", WalkConfig::PlanLatency::kFixed}},
                   "when a step's plan takes effect: pause (the simulation waits), measured (after "
                   "its wall time in sim time), fixed (after fixed_plan_latency)")
-          .add("fixed_plan_latency", &C::fixed_plan_latency, "s",
+          .add("fixed_plan_latency", &C::fixed_plan_latency, "s", Range::nonNegative(),
                "plan_latency fixed: the plan takes effect this long after its check starts")
-          .add("knee_bend", &C::knee_bend, "rad", "standing posture")
-          .add("forward_speed", &C::forward_speed, "m/s",
+          .add("knee_bend", &C::knee_bend, "rad", Range::nonNegative(), "standing posture")
+          .add("forward_speed", &C::forward_speed, "m/s", Range{},
                "desired CoM speed along x (drives p_des of eq. 11)")
           .add("initial_com_velocity", &C::initial_com_velocity, "m/s", "push at t = 0, feet still")
           .add("midswing_push", &C::midswing_push, "m/s",
                "push while walking: a change of the base's horizontal velocity at half swing of "
                "step midswing_push_step (a standing run: 1 s into its settle phase)")
-          .add("midswing_push_step", &C::midswing_push_step, "",
-               "the step midswing_push is applied in, >= 1")
+          .add("midswing_push_step", &C::midswing_push_step, "", Range::atLeast(1),
+               "the step midswing_push is applied in")
           .choice("first_swing", &C::first_swing,
                   {{"capture_point", WalkConfig::FirstSwing::kFromCapturePoint},
                    {"left", WalkConfig::FirstSwing::kLeft},
                    {"right", WalkConfig::FirstSwing::kRight}},
                   "the sole that swings first (right: SS-L comes first; capture_point: the side "
                   "the capture point lies toward at lift-off)")
-          .add("fall_pelvis_height", &C::fall_pelvis_height, "m",
-               "pelvis origin below this height = fall, > 0")
+          .add("fall_pelvis_height", &C::fall_pelvis_height, "m", Range::positive(),
+               "pelvis origin below this height = fall")
           .add("seed", &C::seed, "",
                "seed of every random draw of the run (replaces reach.seed in the walk)")
-          .add("max_sim_time", &C::max_sim_time, "s", "hard stop, > 0")
+          .add("max_sim_time", &C::max_sim_time, "s", Range::positive(), "hard stop")
           .removed("mode",
                    "walk.mode was replaced by walk.policy (a preset: baseline, "
                    "unbounded, kinematic, proposed)");
