@@ -1,13 +1,27 @@
 #!/usr/bin/env bash
-# The push-recovery envelope of the four walking policies (nodes/tools/push_envelope.cpp):
-# pushes (initial CoM velocities) in 8 directions x 0.2, 0.4, 0.6 m/s x seeds 1 and 2, 20 steps
-# each, two walks side by side on the 2 cores. Prints one `BENCH walk.envelope` line per preset
-# and writes the polar figure and every walk to report/ (push_envelope.svg, push_envelope.csv).
-#   scripts/bench_envelope.sh [--fine]   (--fine: magnitudes 0.1 to 0.8 m/s by 0.1)
+# The push-recovery envelope of the four walking policies beside the standing robot
+# (nodes/tools/push_envelope.cpp), in both protocols: `standing` (an initial CoM velocity, feet
+# still) and `midswing` (a base velocity change at half swing of the 4th step, walking in place),
+# 8 directions x 0.2, 0.4, 0.6 m/s x seed 1, 20 steps each, two walks side by side on the 2
+# cores. Prints one `BENCH walk.envelope` line per preset and protocol (preset=standing: the
+# reference) and writes the polar figures and every walk to report/
+# (push_envelope_<protocol>.svg, push_envelope_<protocol>.csv).
+#   scripts/bench_envelope.sh [--fine]      (--fine: magnitudes 0.1 to 1.0 m/s by 0.1, 2 seeds)
+#   scripts/bench_envelope.sh --smoke DIR   (make test: the baseline, one push, 5 steps)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 cd "$REPO"
-mkdir -p report
-"$BIN/push_envelope" --jobs 2 --svg report/push_envelope.svg --csv report/push_envelope.csv "$@" \
-  | grep '^BENCH'
-echo "figure: $REPO/report/push_envelope.svg"
+out=report
+grid=(--magnitudes 0.2,0.4,0.6 --seeds 1)
+case "${1:-}" in
+  --fine) grid=(--fine --seeds 1,2) ;;
+  --smoke) out="${2:?usage: scripts/bench_envelope.sh --smoke DIR}"
+    grid=(--policies baseline --directions 1 --magnitudes 0.2 --seeds 1 --steps 5) ;;
+esac
+mkdir -p "$out"
+for protocol in standing midswing; do
+  "$BIN/push_envelope" --jobs 2 --standing --protocol "$protocol" "${grid[@]}" \
+    --svg "$out/push_envelope_$protocol.svg" --csv "$out/push_envelope_$protocol.csv" \
+    | grep '^BENCH'
+  echo "figure: $(cd "$out" && pwd)/push_envelope_$protocol.svg"
+done
