@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The reachability check inside the walk: the proposed walk of the demo (20 steps, lateral
-# push 0.4 m/s, config/biped.yaml) run with 2 and with 1 OpenMP threads (the seeded sampler
+# The reachability check inside the walk: the proposed walk of the demo (20 steps in place, the
+# base pushed 0.4 m/s backward at half swing of step 4, config/biped.yaml) run with 2 and with 1 OpenMP threads (the seeded sampler
 # gives the same sets, verdicts and therefore the same walk for any thread count), the
 # check's wall time of every step that ran it (kinematically infeasible footholds stop before
 # it). Prints
@@ -27,7 +27,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for t in 2 1; do
   OMP_NUM_THREADS=$t "$BIN/walk_experiment" --config "$config" --mode proposed --steps "$steps" \
-    --push 0,0.4 > "$out/walk_$t.log"
+    --midswing-push -0.4,0 > "$out/walk_$t.log"
 done
 # The demo's TALOS walk (scripts/demo: lateral push 0.3 m/s) for its OCP times.
 OMP_NUM_THREADS=2 "$BIN/walk_experiment" --config config/talos.yaml --mode proposed \
@@ -35,7 +35,7 @@ OMP_NUM_THREADS=2 "$BIN/walk_experiment" --config config/talos.yaml --mode propo
 seeds="2 3 4 5"
 for seed in $seeds; do
   OMP_NUM_THREADS=2 "$BIN/walk_experiment" --config "$config" --mode proposed --steps "$steps" \
-    --push 0,0.4 --seed "$seed" > "$out/seed_$seed.log"
+    --midswing-push -0.4,0 --seed "$seed" > "$out/seed_$seed.log"
 done
 /usr/bin/python3 - "$out" $seeds <<'PY'
 import re, sys, os
