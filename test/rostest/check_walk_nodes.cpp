@@ -158,6 +158,7 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
   setup.walk.policy = WalkingPolicy::parse(param<std::string>(pnh, "policy", "proposed"));
   setup.walk.steps = param(pnh, "steps", 3);
   setup.walk.seed = static_cast<unsigned>(param(pnh, "seed", 1));
+  setup.walk.initial_com_velocity.x() = param(pnh, "push_vx", 0.0);
   setup.walk.initial_com_velocity.y() = param(pnh, "push_vy", 0.0);
   const rb::TempUrdf urdf(rb::robotDescription(nh));
   const std::unique_ptr<WalkingExperiment> experiment = setup.experiment(urdf.path());
