@@ -214,11 +214,14 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
     return;
   }
   // Killed after kill_after_steps reports: those steps from the node, the last from sim_node,
-  // every step's check published (at most one twice: the one in flight when the node died).
+  // every step's check published (at most one twice: the one in flight when the node died),
+  // but for at most one: a plan the node answered as it was being killed, whose
+  // reachability_result left with the dying node (ROS does not deliver a dead publisher's
+  // queue; seen in CI). That the walk went on with that answer is the byte equality above.
   ASSERT_TRUE(got_killed);
   const std::set<double> stamps(got.check_stamps.begin(), got.check_stamps.end());
-  EXPECT_EQ(stamps.size(), checked) << "a checked step without its reachability_result";
-  ASSERT_GE(got.check_publishers.size(), checked);
+  EXPECT_GE(stamps.size() + 1, checked) << "checked steps without their reachability_result";
+  ASSERT_GE(got.check_publishers.size() + 1, checked);
   EXPECT_LE(got.check_publishers.size(), checked + 1);
   for (int i = 0; i < g_kill_after_steps; ++i)
     EXPECT_EQ(got.check_publishers[i], "/transition_ocp_node") << "step " << i + 1;
