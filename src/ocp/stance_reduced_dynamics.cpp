@@ -263,14 +263,8 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
       k.G = k0.G;
       k.Jb_inv = k0.Jb_inv;
       k.J2 = k0.J2;
-      k.qdd.tail(nu_) = qdda;
-      k.qdd.head<6>().noalias() = k0.G * qdda;
-      k.qdd.head<6>().noalias() -= k0.Jb_inv * s.drift_s;
       k.swing_position = k0.swing_position;
-      k.phi2 = s.swing.phi;
-      k.phidot2 = s.swing.phidot;
-      k.phiddot2 = s.swing.drift;
-      k.phiddot2.noalias() += s.swing.J_phi * k.qdd;
+      accelerationTerms(k0.G, k0.Jb_inv, s.drift_s, s.swing, qdda, k);
     }
     column(nu_ + i, s.kp, s.km, 2.0 * kVelocityStep, false);
   }
@@ -327,17 +321,26 @@ void StanceReducedDynamics::saveKinematic(const Scratch& s,
                                           Scratch::Kinematic& k) const {
   k.q = s.q;
   k.qd = s.qd;
-  k.qdd.tail(nu_) = qdda;
-  k.qdd.head<6>().noalias() = s.G * qdda;
-  k.qdd.head<6>().noalias() -= s.Jb_inv * s.drift_s;
   k.G = s.G;
   k.Jb_inv = s.Jb_inv;
   k.J2 = s.J2;
   k.swing_position = s.swing_position;
-  k.phi2 = s.swing.phi;
-  k.phidot2 = s.swing.phidot;
-  k.phiddot2 = s.swing.drift;
-  k.phiddot2.noalias() += s.swing.J_phi * k.qdd;
+  accelerationTerms(s.G, s.Jb_inv, s.drift_s, s.swing, qdda, k);
+}
+
+void StanceReducedDynamics::accelerationTerms(const Eigen::MatrixXd& G,
+                                              const Eigen::Matrix<double, 6, 6>& Jb_inv,
+                                              const Vector6d& drift_s,
+                                              const ContactConstraintTerms& swing,
+                                              const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                                              Scratch::Kinematic& k) const {
+  k.qdd.tail(nu_) = qdda;
+  k.qdd.head<6>().noalias() = G * qdda;
+  k.qdd.head<6>().noalias() -= Jb_inv * drift_s;
+  k.phi2 = swing.phi;
+  k.phidot2 = swing.phidot;
+  k.phiddot2 = swing.drift;
+  k.phiddot2.noalias() += swing.J_phi * k.qdd;
 }
 
 void StanceReducedDynamics::perturbedKinematic(Scratch& s,

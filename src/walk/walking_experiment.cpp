@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -297,6 +296,8 @@ struct WalkingExperiment::Loop {
   /// The box around both soles the double support's pivot stays in [m].
   void supportBox(Eigen::Vector2d& box_min, Eigen::Vector2d& box_max) const;
   Eigen::Vector2d soleXy(Side side) const;
+  /// The measured instantaneous capture point, CoM + CoM velocity / omega (eq. 9) [m].
+  Eigen::Vector2d capturePoint() const;
   /// Applies WalkConfig::midswing_push (once per run) and measures the pushed state.
   void pushOnce();
   /// The swing's duration by WalkConfig::step_timing, from the measured CoM state at lift-off.
@@ -440,8 +441,7 @@ bool WalkingExperiment::Loop::updatePhase(double t) {
       result_.end_reason = "completed";
       return false;
     }
-    feet_mid_ = 0.5 * (xy(m_.framePose(ws_, sole_[0]).translation()) +
-                       xy(m_.framePose(ws_, sole_[1]).translation()));
+    feet_mid_ = 0.5 * (soleXy(Side::kLeft) + soleXy(Side::kRight));
     if (wc_.first_swing == WalkConfig::FirstSwing::kFromCapturePoint) swing_ = firstSwingSide();
     if (wc_.lift_off == WalkConfig::LiftOff::kTimed) {
       beginSingleSupport(t);
@@ -470,7 +470,7 @@ bool WalkingExperiment::Loop::liftOff(double time_in_double) {
     return time_in_double >= wc_.double_support_duration;
   if (!initiating_ && time_in_double < wc_.double_support_duration) return false;
   if (time_in_double >= wc_.max_double_support_duration) return true;
-  const Eigen::Vector2d capture = xy(com_) + xy(vcom_) / planner_.lipm().omega();
+  const Eigen::Vector2d capture = capturePoint();
   Eigen::Vector2d box_min, box_max;
   supportBox(box_min, box_max);
   if ((capture.array() < box_min.array()).any() || (capture.array() > box_max.array()).any()) {
@@ -523,9 +523,12 @@ Eigen::Vector2d WalkingExperiment::Loop::soleXy(Side side) const {
 Side WalkingExperiment::Loop::firstSwingSide() const {
   // The capture point's lateral offset from the soles' midpoint, in the stance heading (the
   // walk starts facing +x).
-  const double omega = planner_.lipm().omega();
-  const double offset = com_.y() + vcom_.y() / omega - feet_mid_.y();
+  const double offset = capturePoint().y() - feet_mid_.y();
   return offset > 0.01 ? Side::kLeft : Side::kRight;
+}
+
+Eigen::Vector2d WalkingExperiment::Loop::capturePoint() const {
+  return xy(com_) + xy(vcom_) / planner_.lipm().omega();
 }
 
 bool WalkingExperiment::Loop::singleSupport(double t) {
@@ -582,8 +585,7 @@ double WalkingExperiment::Loop::swingDuration(double t) const {
   if (impl_.footsteps) range.min = std::max(range.min, impl_.footsteps->horizon() + dt_);
   range.min = std::min(range.min, range.nominal);
   range.max = std::max(wc_.single_support_duration, wc_.max_single_support_duration);
-  const Eigen::Vector2d stance =
-      xy(m_.framePose(ws_, sole_[static_cast<int>(opposite(swing_))]).translation());
+  const Eigen::Vector2d stance = soleXy(opposite(swing_));
   return adaptStepTiming(planner_, LipmState{xy(com_), xy(vcom_)}, stance, swing_, t, com0_.x(),
                          wc_.forward_speed, feet_mid_.y(), range)
       .swing_duration;
@@ -821,16 +823,6 @@ bool WalkingExperiment::Loop::controlAndStep(double t) {
   const Eigen::VectorXd& qd = world_->qd();
   const WbcOutput& out = wbc_.compute(q, qd, mode_, ref_);
   if (out.status != qp::QpStatus::kOptimal) ++result_.qp_failures;
-  if (std::getenv("WALK_DEBUG")) {
-    const Eigen::Vector3d sw = m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();
-    std::fprintf(stderr,
-                 "T %.3f ph=%d ts=%.3f st=%d com=(%.3f %.3f %.3f) v=(%.3f %.3f) ref=(%.3f %.3f) "
-                 "sw=(%.3f %.3f %.3f) swref=(%.3f %.3f %.3f) umax=%.1f msg=%s\n",
-                 t, (int)phase_, t - phase_start_, (int)out.status, com_.x(), com_.y(), com_.z(),
-                 vcom_.x(), vcom_.y(), ref_.com_position.x(), ref_.com_position.y(), sw.x(), sw.y(),
-                 sw.z(), ref_.swing_position.x(), ref_.swing_position.y(), ref_.swing_position.z(),
-                 out.u.cwiseAbs().maxCoeff(), out.message.c_str());
-  }
   if (on_tick_) {
     WalkTick info;
     info.time = t;

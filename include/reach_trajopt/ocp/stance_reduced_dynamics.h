@@ -138,6 +138,12 @@ class StanceReducedDynamics {
   /// qdd = T qdd_a + k and phiddot_2 included.
   void saveKinematic(const Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qdda,
                      Scratch::Kinematic& k) const;
+  /// qdd = [G qdd_a - J_sb^-1 drift_s; qdd_a] and the swing terms phi_2, phidot_2,
+  /// phiddot_2 = drift + J_phi qdd of `swing` into `k` (the rest of `k` as it is).
+  void accelerationTerms(const Eigen::MatrixXd& G, const Eigen::Matrix<double, 6, 6>& Jb_inv,
+                         const Vector6d& drift_s, const ContactConstraintTerms& swing,
+                         const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                         Scratch::Kinematic& k) const;
   /// Full kinematics at q_a (perturbed) into `k`: the base reconstructed, or, for a joint off the
   /// stance support path (`swing_only`), the base state of s.k0 kept and only the swing terms
   /// updated.
