@@ -22,7 +22,10 @@ const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
           .add("ring_step", &C::ring_step, "m", Range::positive(), "radius increment between rings")
           .add("rings", &C::rings, "", Range::between(1, 1000), "rings searched")
           .add("directions", &C::directions, "", Range::between(1, 360),
-               "points per ring, first along +x");
+               "points per ring, first along +x")
+          .add("max_checked", &C::max_checked, "", Range::between(1, 100),
+               "on_fail nearest_reachable: feasible candidates the reachability check examines "
+               "per step, nearest first");
   return f;
 }
 

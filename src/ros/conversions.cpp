@@ -214,6 +214,7 @@ reach_trajopt::StepReport toStepReportMsg(const StepRecord& r, const WalkingPoli
   m.mode = policy.name;
   m.policy = policy.definition();
   m.failed_check_action = r.failedCheckActionName();
+  m.foothold_source = r.footholdSourceName();
   m.swing_side = sideName(r.swing);
   m.plan_time = r.plan_time;
   m.touchdown_time = r.touchdown_time;

@@ -27,7 +27,8 @@ const std::pair<InfeasibleFootholdPolicy, const char*> kInfeasiblePolicies[] = {
     {InfeasibleFootholdPolicy::kNearestFeasible, "nearest_feasible"},
     {InfeasibleFootholdPolicy::kRelaxTowardTarget, "relax_toward_target"},
     {InfeasibleFootholdPolicy::kReject, "reject"},
-    {InfeasibleFootholdPolicy::kNoFallback, "no_fallback"}};
+    {InfeasibleFootholdPolicy::kNoFallback, "no_fallback"},
+    {InfeasibleFootholdPolicy::kNearestReachable, "nearest_reachable"}};
 
 template <typename Enum, size_t N>
 Enum parseName(const std::pair<Enum, const char*> (&table)[N], const std::string& field,
@@ -220,6 +221,9 @@ reach_trajopt::PlanFootstep::Response toPlanFootstepResponseMsg(const FootstepTr
   m.kinematics_reason = step.check.kinematics.reason;
   m.reachable = step.reachable;
   m.certificate = certificateName(step.certificate);
+  m.foothold_source = footholdSourceName(step.foothold_source);
+  m.candidates_checked = static_cast<std::uint32_t>(step.candidates_checked);
+  m.target_verdict = step.target_verdict ? stepVerdictName(*step.target_verdict) : "";
   m.verdict = stepVerdictName(step.verdict);
   m.reason = step.reason;
   m.hausdorff_distance = step.hausdorff_distance;
@@ -253,6 +257,12 @@ FootstepTransition fromPlanFootstepResponseMsg(const reach_trajopt::PlanFootstep
   s.reachable = m.reachable;
   s.check.reachable = m.reachable;
   s.certificate = valueOf(certificateNames(), m.certificate, "plan_footstep response: certificate");
+  s.foothold_source =
+      valueOf(footholdSourceNames(), m.foothold_source, "plan_footstep response: foothold_source");
+  s.candidates_checked = static_cast<int>(m.candidates_checked);
+  if (!m.target_verdict.empty())
+    s.target_verdict =
+        valueOf(stepVerdictNames(), m.target_verdict, "plan_footstep response: target_verdict");
   s.verdict = valueOf(stepVerdictNames(), m.verdict, "plan_footstep response: verdict");
   s.reason = m.reason;
   s.check.reason = m.reason;

@@ -76,6 +76,83 @@ FootstepTransitionPlanner::FootstepTransitionPlanner(std::shared_ptr<const Robot
 
 FootstepTransition FootstepTransitionPlanner::plan(const FootstepPlanRequest& r,
                                                    const FootstepPlanProgress& progress) const {
+  if (r.on_infeasible != InfeasibleFootholdPolicy::kNearestReachable)
+    return planTarget(r, progress);
+  if (r.check_reachability) return planNearestReachable(r, progress);
+  FootstepPlanRequest kinematic = r;  // the nearest foothold that passes the kinematic check
+  kinematic.on_infeasible = InfeasibleFootholdPolicy::kNearestFeasible;
+  return planTarget(kinematic, progress);
+}
+
+FootstepTransition FootstepTransitionPlanner::planNearestReachable(
+    const FootstepPlanRequest& r, const FootstepPlanProgress& progress) const {
+  FootstepPlanRequest at = r;
+  at.on_infeasible = InfeasibleFootholdPolicy::kNoFallback;
+  FootstepTransition target = planTarget(at, progress);
+  if (target.reachable && hasStrictTrajectory(r, target)) return target;
+  PassTotals totals{target.check_passes, target.check_time_s, target.ocp_time_s};
+  auto carryTotals = [&](FootstepTransition& step, int checked) {
+    step.check_passes = totals.passes;
+    step.check_time_s = totals.check_time_s;
+    step.ocp_time_s = totals.ocp_time_s;
+    step.candidates_checked = checked;
+  };
+  // The rings around the target, nearest first; each ring's kinematic checks as one batch.
+  const ContactTransition& t = target.transition;
+  FootholdCandidates batch;
+  batch.stance = t.stance;
+  batch.stance_contact = t.stance_contact;
+  batch.q_init = t.q0;
+  batch.pelvis_position = t.touchdown.pelvis_position;
+  std::optional<FootstepTransition> nearest_feasible;  // the first feasible candidate's plan
+  int checked = 0;
+  const NearestFootholdConfig& rings = nearest_.config();
+  for (int ring = 1; ring <= rings.rings && checked < rings.max_checked; ++ring) {
+    batch.candidates = nearest_.ringCandidates(r.target, ring);
+    const std::vector<CandidateOutcome> outcomes =
+        candidate_check_ ? candidate_check_(batch)
+                         : checkFootholdCandidates(*kinematics_, batch, false);
+    for (std::size_t i = 0; i < outcomes.size() && checked < rings.max_checked; ++i) {
+      if (!outcomes[i].error.empty() || !outcomes[i].kinematics.feasible) continue;
+      FootstepPlanRequest candidate = at;
+      candidate.target = batch.candidates[i];
+      FootstepTransition step = planTarget(candidate, progress);
+      ++checked;
+      totals.passes += step.check_passes;
+      totals.check_time_s += step.check_time_s;
+      totals.ocp_time_s += step.ocp_time_s;
+      if (step.reachable && hasStrictTrajectory(r, step)) {
+        carryTotals(step, checked);
+        step.request = r;
+        step.target_verdict = target.verdict;
+        step.foothold_source = FootholdSource::kNearestReachable;
+        char where[96];
+        std::snprintf(where, sizeof where, "nearest reachable foothold, %.3f m from the target: ",
+                      ring * rings.ring_step);
+        step.reason = where + step.reason + "; the target: " + target.reason;
+        return step;
+      }
+      if (!nearest_feasible) nearest_feasible = std::move(step);
+    }
+  }
+  // None certified: the target's own plan when feasible (its relaxed OCP), else the nearest
+  // feasible candidate's; both uncertified.
+  const bool from_candidate = !target.kinematically_feasible && nearest_feasible;
+  FootstepTransition kept = from_candidate ? std::move(*nearest_feasible) : std::move(target);
+  carryTotals(kept, checked);
+  kept.request = r;
+  if (from_candidate) {
+    kept.target_verdict = target.verdict;
+    if (kept.foothold_source == FootholdSource::kTarget)
+      kept.foothold_source = FootholdSource::kNearestFeasible;
+  }
+  kept.reason = "no reachable foothold among the " + std::to_string(checked) +
+                " nearest feasible candidates checked: " + kept.reason;
+  return kept;
+}
+
+FootstepTransition FootstepTransitionPlanner::planTarget(
+    const FootstepPlanRequest& r, const FootstepPlanProgress& progress) const {
   const RobotModel& m = *model_;
   m.checkState(r.q0, r.qd0);
   requireFinite("FootstepTransitionPlanner: target", r.target.position);
@@ -361,6 +438,7 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
       return;
     }
     nearest_feasible = near->foothold.position;
+    out.foothold_source = FootholdSource::kNearestFeasible;
     ocp.qf = near->kinematics.q_f;
     ocp.target.position = nearest_feasible;
     ocp.qdf = doubleSupportVelocity(m, ocp.qf, m.frameId(contact_.left_sole_frame),
@@ -382,6 +460,7 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
   // Without a usable trajectory the swing still goes to the nearest kinematically feasible
   // foothold (the target itself when it is feasible).
   out.foothold = out.usable() ? out.trajectory.landing_position : nearest_feasible;
+  if (out.usable() && out.trajectory.relaxed) out.foothold_source = FootholdSource::kRelaxed;
   if (!out.trajectory.reason.empty()) out.reason += "; OCP: " + out.trajectory.reason;
   if (r.check_reachability && check.kinematically_feasible) certify(out);
 }

@@ -1,5 +1,5 @@
 /// \file step_verdict.cpp
-/// The name tables of the footstep verdicts and certificates (see the header).
+/// The name tables of the footstep verdicts, certificates and foothold sources (see the header).
 
 #include "reach_trajopt/step/step_verdict.h"
 
@@ -20,6 +20,16 @@ const EnumNames<Certificate>& certificateNames() {
   static const EnumNames<Certificate> n = {{"", Certificate::kNone},
                                            {"bridge", Certificate::kBridge},
                                            {"local_solve", Certificate::kLocalSolve}};
+  return n;
+}
+
+const EnumNames<FootholdSource>& footholdSourceNames() {
+  static const EnumNames<FootholdSource> n = {
+      {"target", FootholdSource::kTarget},
+      {"clipped_to_bounds", FootholdSource::kClippedToBounds},
+      {"nearest_feasible", FootholdSource::kNearestFeasible},
+      {"nearest_reachable", FootholdSource::kNearestReachable},
+      {"relaxed", FootholdSource::kRelaxed}};
   return n;
 }
 

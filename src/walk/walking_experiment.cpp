@@ -158,10 +158,16 @@ std::string WalkResult::summaryLine() const {
       infeasible += r.verdict == StepVerdict::kKinematicallyInfeasible;
       failed += r.failed_check_action.has_value();
     }
-    int late = 0;
-    for (const StepRecord& r : records) late += r.plan_late;
+    int late = 0, nearest_feasible = 0, nearest_reachable = 0, relaxed = 0;
+    for (const StepRecord& r : records) {
+      late += r.plan_late;
+      nearest_feasible += r.foothold_source == FootholdSource::kNearestFeasible;
+      nearest_reachable += r.foothold_source == FootholdSource::kNearestReachable;
+      relaxed += r.foothold_source == FootholdSource::kRelaxed;
+    }
     os << " kinematically_infeasible=" << infeasible << " failed_checks=" << failed
-       << " late_plans=" << late;
+       << " late_plans=" << late << " from_nearest_feasible=" << nearest_feasible
+       << " from_nearest_reachable=" << nearest_reachable << " from_relaxed=" << relaxed;
   }
   if (policy.check == WalkingPolicy::FootholdCheck::kReachability) {
     // The verdicts: every "reachable" rests on a certified witness; its OCP was strict.
@@ -665,9 +671,11 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
 WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
     const FootstepTransition& step, double t) {
   const WalkingPolicy& policy = wc_.policy;
+  // A ring point (nearest_reachable) stands in for a target that failed the check.
   const bool failed =
-      !step.kinematically_feasible ||
+      step.target_verdict.has_value() || !step.kinematically_feasible ||
       (policy.check == WalkingPolicy::FootholdCheck::kReachability && !step.reachable);
+  current_.foothold_source = step.foothold_source;
   PendingPlan plan;
   plan.ask_time = t;
   plan.foothold = xy(step.foothold);
@@ -678,6 +686,7 @@ WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
       // The TVR step clipped to the heuristic bounds, reached by interpolation.
       plan.foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
       plan.track_ocp = false;
+      current_.foothold_source = FootholdSource::kClippedToBounds;
     }
   }
   if (plan.track_ocp) plan.trajectory = step.trajectory;
@@ -740,6 +749,12 @@ FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts) const {
       request.on_infeasible = InfeasibleFootholdPolicy::kNearestFeasible;
       request.ocp_policy = OcpPolicy::kByVerdict;
       break;
+    case WalkingPolicy::OnFailedCheck::kNearestReachable:
+      // Any foothold not shown reachable: the nearest certified ring point; none: as
+      // kNearestFeasible (without a reachability check: kNearestFeasible itself).
+      request.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
+      request.ocp_policy = OcpPolicy::kByVerdict;
+      break;
     case WalkingPolicy::OnFailedCheck::kClipToBounds:
       request.on_infeasible = InfeasibleFootholdPolicy::kNoFallback;
       request.ocp_policy = OcpPolicy::kStrict;
@@ -749,7 +764,8 @@ FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts) const {
 }
 
 void WalkingExperiment::Loop::recordCheck(const FootstepTransition& step) {
-  current_.verdict = step.verdict;
+  // The proposed foothold's verdict; the certificate below is the foothold's landed on.
+  current_.verdict = step.target_verdict.value_or(step.verdict);
   current_.hausdorff_distance = step.hausdorff_distance;
   current_.certificate = step.certificate;
   const WitnessPath& w = step.check.reach.witness;

@@ -32,7 +32,8 @@ const Names<Check>& checkNames() {
 const Names<OnFail>& onFailNames() {
   static const Names<OnFail> n = {{"clip_to_bounds", OnFail::kClipToBounds},
                                   {"nearest_feasible", OnFail::kNearestFeasible},
-                                  {"relaxed_ocp", OnFail::kRelaxedOcp}};
+                                  {"relaxed_ocp", OnFail::kRelaxedOcp},
+                                  {"nearest_reachable", OnFail::kNearestReachable}};
   return n;
 }
 const Names<Swing>& swingNames() {
@@ -63,8 +64,8 @@ const std::vector<WalkingPolicy>& presets() {
   static const std::vector<WalkingPolicy> p = {
       make("baseline", true, Check::kNone, OnFail::kClipToBounds, Swing::kInterpolation),
       make("unbounded", false, Check::kNone, OnFail::kClipToBounds, Swing::kInterpolation),
-      make("kinematic", false, Check::kKinematic, OnFail::kNearestFeasible, Swing::kOcp),
-      make("proposed", false, Check::kReachability, OnFail::kNearestFeasible, Swing::kOcp),
+      make("kinematic", false, Check::kKinematic, OnFail::kNearestReachable, Swing::kOcp),
+      make("proposed", false, Check::kReachability, OnFail::kNearestReachable, Swing::kOcp),
   };
   return p;
 }

@@ -26,8 +26,8 @@ TEST(WalkingPolicy, PresetsAreTheIssuesFour) {
   EXPECT_EQ(u.check, Check::kNone);
   const WalkingPolicy k = WalkingPolicy::preset("kinematic");
   const WalkingPolicy p = WalkingPolicy::preset("proposed");
-  EXPECT_EQ(k.definition(), "bounds=off check=kinematic on_fail=nearest_feasible swing=ocp");
-  EXPECT_EQ(p.definition(), "bounds=off check=reachability on_fail=nearest_feasible swing=ocp");
+  EXPECT_EQ(k.definition(), "bounds=off check=kinematic on_fail=nearest_reachable swing=ocp");
+  EXPECT_EQ(p.definition(), "bounds=off check=reachability on_fail=nearest_reachable swing=ocp");
   // kinematic and proposed differ in the check only.
   WalkingPolicy k_with_reach = k;
   k_with_reach.check = Check::kReachability;

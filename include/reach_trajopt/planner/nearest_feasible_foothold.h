@@ -31,6 +31,9 @@ struct NearestFootholdConfig {
   double ring_step = 0.02;  ///< radius increment between rings [m]
   int rings = 15;           ///< rings searched
   int directions = 12;      ///< points per ring
+  /// on_fail nearest_reachable (step/footstep_transition_planner.h): kinematically feasible
+  /// candidates the reachability check may examine per step, nearest first.
+  int max_checked = 4;
   /// \throws ConfigError naming the first bad field.
   void validate() const;
   /// The YAML keys of section `nearest_foothold:` (the member names), units and meaning.

@@ -12,7 +12,9 @@
 ///      that may still certify the step (a converged strict OCP is a checked path x_0 ->
 ///      x_f), then relaxed (to the closest reachable foothold) when it fails;
 ///   5. the fallback of a kinematically infeasible foothold: the nearest feasible one
-///      (planner/nearest_feasible_foothold.h), the relaxed OCP toward the target, or an error.
+///      (planner/nearest_feasible_foothold.h), the relaxed OCP toward the target, or an error;
+///      or, for any foothold not shown reachable (InfeasibleFootholdPolicy::kNearestReachable),
+///      the nearest ring point that steps 2-4 certify, with a strict trajectory.
 /// The passes follow PassSchedule::forStepPlanner (reach/sample_budget.h). With
 /// ReachConfig::quick_pass, steps 1-5 run first with budgets.quick and again with budgets.full
 /// only when the quick pass certified nothing or its certified step got no strict trajectory
@@ -67,6 +69,14 @@ enum class InfeasibleFootholdPolicy {
   kRelaxTowardTarget,  ///< the relaxed OCP toward the target, the IK's best posture as x_f
   kReject,             ///< a ReachError naming the IK's reason
   kNoFallback,         ///< no OCP; the foothold stays the target (the caller decides)
+  /// Not only for an infeasible foothold: whenever the target is not certified with a strict
+  /// trajectory, the nearest point of the rings of planner/nearest_feasible_foothold.h that is
+  /// kinematically feasible and that the reachability check (steps 2-4, every pass) certifies
+  /// with a strict trajectory, nearest first, at most NearestFootholdConfig::max_checked
+  /// candidates checked. None certified: the target's own plan when it is kinematically
+  /// feasible (its relaxed OCP), else the nearest feasible candidate's (uncertified, its OCP
+  /// strict then relaxed). Without a reachability check: kNearestFeasible.
+  kNearestReachable,
 };
 
 /// Which OCP a kinematically feasible foothold gets.
@@ -138,6 +148,13 @@ struct FootstepTransition {
   /// Where the swing sole will land [m]: the OCP's landing when usable, else the nearest
   /// kinematically feasible foothold to the target (the target when it is feasible).
   Eigen::Vector3d foothold = Eigen::Vector3d::Zero();
+  /// Where `foothold` came from: the target, a ring point (certified or not), the relaxed OCP.
+  FootholdSource foothold_source = FootholdSource::kTarget;
+  /// kNearestReachable: the candidates whose reachability was checked (0: the target passed).
+  int candidates_checked = 0;
+  /// kNearestReachable, when the foothold is not the target: the target's own verdict (the
+  /// fields above are those of the foothold landed on).
+  std::optional<StepVerdict> target_verdict;
   /// True when the trajectory may be tracked (OCP converged or relaxed).
   bool usable() const { return trajectory.status != OcpStatus::kFailed; }
 };
@@ -190,6 +207,13 @@ class FootstepTransitionPlanner {
   const FootstepReachability& footstepReachability() const { return footsteps_; }
 
  private:
+  /// plan() without the nearest-reachable search: the pass schedule for one target.
+  FootstepTransition planTarget(const FootstepPlanRequest& r,
+                                const FootstepPlanProgress& progress) const;
+  /// InfeasibleFootholdPolicy::kNearestReachable (see there); the times and passes of every
+  /// plan it made are summed in the answer.
+  FootstepTransition planNearestReachable(const FootstepPlanRequest& r,
+                                          const FootstepPlanProgress& progress) const;
   /// Step 1 of a pass of `horizon` [s]: the request and the transition to check into `out`
   /// (x_0, the held sole, the target, the touchdown prediction); returns the held stance sole
   /// pose as measured (the OCP's).

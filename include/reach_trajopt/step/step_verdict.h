@@ -33,4 +33,17 @@ enum class Certificate {
 const EnumNames<Certificate>& certificateNames();
 inline const char* certificateName(Certificate c) { return nameOf(certificateNames(), c); }
 
+/// Where the foothold a step lands on came from.
+enum class FootholdSource {
+  kTarget,            ///< "target": the proposed foothold itself (TVR's, bounded or not)
+  kClippedToBounds,   ///< "clipped_to_bounds": the TVR step clipped to the heuristic bounds
+  kNearestFeasible,   ///< "nearest_feasible": the nearest kinematically feasible ring point,
+                      ///< not certified by a reachability check
+  kNearestReachable,  ///< "nearest_reachable": the nearest ring point the reachability check
+                      ///< certified (with a strict trajectory)
+  kRelaxed,           ///< "relaxed": the relaxed OCP's closest reachable landing (Sec. III-E)
+};
+const EnumNames<FootholdSource>& footholdSourceNames();
+inline const char* footholdSourceName(FootholdSource s) { return nameOf(footholdSourceNames(), s); }
+
 }  // namespace reach_trajopt

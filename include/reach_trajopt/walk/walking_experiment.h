@@ -135,8 +135,12 @@ struct StepRecord {
   StepVerdict verdict = StepVerdict::kNotChecked;
   /// The check failed and the policy's on_fail part chose the foothold; none otherwise.
   std::optional<WalkingPolicy::OnFailedCheck> failed_check_action;
+  /// Where `planned` came from (the TVR step, clipped, a ring point certified or not, the
+  /// relaxed OCP's landing).
+  FootholdSource foothold_source = FootholdSource::kTarget;
   double hausdorff_distance = -1.0;  ///< [m], -1 when not computed
-  /// What certifies a kReachable verdict (FootstepTransition::certificate).
+  /// What certifies the foothold landed on (FootstepTransition::certificate): the target's
+  /// reachable verdict, or a certified ring point's (foothold_source nearest_reachable).
   Certificate certificate = Certificate::kNone;
   /// The check's bridged witness (reachability check, kinematically feasible footholds): its
   /// largest violation along the path (reach/witness_path.h), the full-state gap of its
@@ -160,9 +164,13 @@ struct StepRecord {
   /// The enum fields' names at the edges (CSV, messages, WALK lines).
   const char* verdictName() const { return stepVerdictName(verdict); }
   const char* certificateName() const { return reach_trajopt::certificateName(certificate); }
-  /// "clip_to_bounds", "nearest_feasible", "relaxed_ocp"; "" when the check did not fail.
+  /// "clip_to_bounds", "nearest_feasible", "relaxed_ocp", "nearest_reachable"; "" when the
+  /// check did not fail.
   const char* failedCheckActionName() const {
     return failed_check_action ? WalkingPolicy::actionName(*failed_check_action) : "";
+  }
+  const char* footholdSourceName() const {
+    return reach_trajopt::footholdSourceName(foothold_source);
   }
   /// "converged", "relaxed", "failed"; "none" when no OCP was solved.
   const char* ocpStatusName() const {

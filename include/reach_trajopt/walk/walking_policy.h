@@ -13,6 +13,12 @@
 ///         foothold (Sec. III-E);
 ///       relaxed_ocp: the relaxed OCP of Sec. III-E toward the target in both cases (an
 ///         infeasible target too: the IK's best posture as x_f);
+///       nearest_reachable: the nearest foothold the policy's check passes, checked before it
+///         is taken: with the reachability check, the nearest ring point it certifies with a
+///         strict trajectory (step/footstep_transition_planner.h,
+///         InfeasibleFootholdPolicy::kNearestReachable; none within
+///         nearest_foothold.max_checked candidates: nearest_feasible's answer, reported as
+///         such); with the kinematic check, nearest_feasible's ring search;
 ///   - the swing: interpolated (swing_trajectory.h) or the OCP's trajectory with its
 ///     feed-forward (needs a check: the OCP's x_f is the check's IK posture).
 /// A check "fails" when the foothold is kinematically infeasible, or, for the reachability
@@ -22,8 +28,8 @@
 /// OCP that fails gets the relaxed one, as for an unreachable foothold).
 ///
 /// Presets: baseline (Sec. IV-A: bounds, no check, interpolated swing), unbounded (TVR
-/// alone), kinematic (TVR + kinematic check + nearest feasible, OCP swing) and proposed
-/// (Sec. IV-B: TVR + reachability check + nearest feasible, OCP swing): kinematic and proposed
+/// alone), kinematic (TVR + kinematic check + nearest passing, OCP swing) and proposed
+/// (Sec. IV-B: TVR + reachability check + nearest reachable, OCP swing): kinematic and proposed
 /// differ in the reachability check only (its verdict, its sets in the OCP, eq. 23, and its
 /// witness as the OCP's seed). The paper's planner never proposes an infeasible foothold; for
 /// ours the proposed preset takes the ring search, because the relaxed OCP toward an infeasible
@@ -38,7 +44,7 @@ namespace reach_trajopt {
 /// @brief One walking policy: bounds, foothold check, failure handling, swing source.
 struct WalkingPolicy {
   enum class FootholdCheck { kNone, kKinematic, kReachability };
-  enum class OnFailedCheck { kClipToBounds, kNearestFeasible, kRelaxedOcp };
+  enum class OnFailedCheck { kClipToBounds, kNearestFeasible, kRelaxedOcp, kNearestReachable };
   enum class SwingSource { kInterpolation, kOcp };
 
   /// The preset it was made from, "custom" when a part was changed.
@@ -54,7 +60,8 @@ struct WalkingPolicy {
   /// A preset by name. \throws RequestError listing the presets.
   static WalkingPolicy preset(const std::string& name);
   /// "<preset>[,part=value...]" with parts bounds=on|off, check=none|kinematic|reachability,
-  /// on_fail=clip_to_bounds|nearest_feasible|relaxed_ocp, swing=interpolation|ocp; validated.
+  /// on_fail=clip_to_bounds|nearest_feasible|relaxed_ocp|nearest_reachable,
+  /// swing=interpolation|ocp; validated.
   /// \throws RequestError naming the bad token.
   static WalkingPolicy parse(const std::string& spec);
   /// "clip_to_bounds", "nearest_feasible" or "relaxed_ocp" (the on_fail part's values).

@@ -1,0 +1,160 @@
+// The sets choose the foothold (InfeasibleFootholdPolicy::kNearestReachable,
+// step/footstep_transition_planner.h) on footsteps of the demo's pushed walk
+// (test/fixtures/pushed_walk_requests.jsonl, its steps 1, 2 and 5) and on bench/reach's case:
+// a target the check certifies is kept; one it does not is replaced by a ring point that it
+// certifies, whose strict trajectory this test re-checks at every 1 ms sample with the model
+// (eq. 1 with both soles' wrenches, the held sole, x(t_f) on the ring point's IK posture), no
+// nearer than the nearest kinematically feasible ring point found by the kinematic search
+// alone; when none of the candidates is certified the answer says so and carries no certificate.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/step/footstep_plan_request_json.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/testing/reference_cases.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
+
+struct Pipeline : ShippedBiped {
+  Pipeline() : ShippedBiped(kRepo) {}
+  std::unique_ptr<FootstepTransitionPlanner> planner = makePlanner();
+};
+
+const Pipeline& pipeline() {
+  static const Pipeline p;
+  return p;
+}
+
+std::vector<FootstepPlanRequest> walkRequests() {
+  const Pipeline& p = pipeline();
+  return readPlanRequests(kRepo + "/test/fixtures/pushed_walk_requests.jsonl", p.model->nq(),
+                          p.config.reach);
+}
+
+FootstepTransition planNearestReachable(FootstepPlanRequest r) {
+  r.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
+  r.ocp_policy = OcpPolicy::kByVerdict;
+  return pipeline().planner->plan(r);
+}
+
+/// Largest residual of eq. (1) with both soles' wrenches [N, Nm] along the trajectory (1 ms
+/// samples), the held sole's largest displacement [m], |q(t_f) - q_f| and the swing sole's
+/// distance at t_f from the foothold the step reports [m].
+struct TrajectoryRecheck {
+  double dynamics = 0.0, held_sole = 0.0, end_q = 0.0, landing = 0.0;
+};
+
+TrajectoryRecheck recheck(const FootstepTransition& step) {
+  const Pipeline& p = pipeline();
+  const RobotModel& m = *p.model;
+  const TransitionResult& t = step.trajectory;
+  const FrameId left = m.frameId(p.contact.left_sole_frame);
+  const FrameId right = m.frameId(p.contact.right_sole_frame);
+  const Side stance_side = step.transition.stance;
+  const FrameId stance = stance_side == Side::kLeft ? left : right;
+  const FrameId swing = stance_side == Side::kLeft ? right : left;
+  Workspace ws(m);
+  Eigen::MatrixXd M(m.nq(), m.nq()), J_left(6, m.nq()), J_right(6, m.nq());
+  Eigen::VectorXd b(m.nq());
+  TrajectoryRecheck r;
+  for (int k = 0; k < t.q.cols(); ++k) {
+    m.update(ws, t.q.col(k), t.qd.col(k));
+    r.held_sole = std::max(
+        r.held_sole,
+        (m.framePose(ws, stance).translation() - step.transition.stance_contact.position).norm());
+    m.massMatrix(ws, M);
+    m.bias(ws, b);
+    m.frameJacobian(ws, left, J_left);
+    m.frameJacobian(ws, right, J_right);
+    Eigen::VectorXd res = M * t.qdd.col(k) + b - J_left.transpose() * t.lambda.col(k).head<6>() -
+                          J_right.transpose() * t.lambda.col(k).tail<6>();
+    res.tail(m.nu()) -= t.u.col(k);
+    r.dynamics = std::max(r.dynamics, res.cwiseAbs().maxCoeff());
+    if (k + 1 == t.q.cols())
+      r.landing = (m.framePose(ws, swing).translation() - step.foothold).head<2>().norm();
+  }
+  r.end_q = (t.q.col(t.q.cols() - 1) - step.check.kinematics.q_f).cwiseAbs().maxCoeff();
+  return r;
+}
+
+}  // namespace
+
+TEST(NearestReachable, ACertifiedTargetIsKept) {
+  const FootstepTransition step = planNearestReachable(walkRequests()[2]);  // the walk's step 5
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable) << step.reason;
+  EXPECT_EQ(step.foothold_source, FootholdSource::kTarget);
+  EXPECT_EQ(step.candidates_checked, 0);
+  EXPECT_FALSE(step.target_verdict.has_value());
+  EXPECT_LT((step.foothold - step.request.target.position).head<2>().norm(), 0.01);
+}
+
+TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
+  const Pipeline& p = pipeline();
+  const FootstepPlanRequest r = walkRequests()[0];  // step 1: TVR's step through the stance sole
+  const FootstepTransition step = planNearestReachable(r);
+  std::cout << step.reason << "\n";
+  ASSERT_TRUE(step.target_verdict.has_value());
+  EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
+  ASSERT_EQ(step.foothold_source, FootholdSource::kNearestReachable) << step.reason;
+  EXPECT_GE(step.candidates_checked, 1);
+  EXPECT_LE(step.candidates_checked, p.config.nearest_foothold.max_checked);
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
+  EXPECT_NE(step.certificate, Certificate::kNone);
+  ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
+  EXPECT_FALSE(step.trajectory.relaxed);
+  // The trajectory, re-checked here at every 1 ms sample.
+  const TrajectoryRecheck c = recheck(step);
+  std::cout << "eq. (1) " << c.dynamics << " N, held sole " << c.held_sole << " m, q(t_f) - q_f "
+            << c.end_q << ", landing " << c.landing << " m\n";
+  EXPECT_LE(c.dynamics, 1e-6);
+  EXPECT_LE(c.held_sole, 1e-3);
+  EXPECT_LE(c.end_q, 1e-3);
+  EXPECT_LE(c.landing, 1e-3);
+  // A ring point: no nearer than the nearest kinematically feasible one, within the search.
+  const NearestFeasibleFoothold rings(
+      std::make_shared<KinematicFeasibility>(p.model, p.config.kinematics, p.contact),
+      p.config.nearest_foothold);
+  const std::optional<NearestFoothold> feasible =
+      rings.find(step.transition.stance, step.transition.stance_contact, r.target,
+                 step.transition.q0, step.transition.touchdown.pelvis_position);
+  ASSERT_TRUE(feasible.has_value());
+  const double nearest_feasible_m =
+      (feasible->foothold.position - r.target.position).head<2>().norm();
+  const double chosen_m = (step.foothold - r.target.position).head<2>().norm();
+  std::cout << "nearest feasible " << nearest_feasible_m << " m, chosen " << chosen_m << " m\n";
+  EXPECT_GE(chosen_m, nearest_feasible_m - 1e-3);
+  EXPECT_LE(chosen_m, p.config.nearest_foothold.searchRadius() + 1e-3);
+}
+
+TEST(NearestReachable, NoCertifiedCandidateSaysSoAndCertifiesNothing) {
+  // bench/reach's case: the sole 80 ms before touchdown, too fast to stop on its target.
+  // One candidate checked (each costs the target's passes again).
+  const Pipeline& p = pipeline();
+  FootstepPlannerConfig one_candidate = p.config;
+  one_candidate.nearest_foothold.max_checked = 1;
+  const FootstepTransitionPlanner planner(p.model, p.contact, one_candidate);
+  FootstepPlanRequest r = benchSwingCase(p.model, p.config, p.contact);
+  r.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
+  const FootstepTransition step = planner.plan(r);
+  std::cout << step.reason << "\n";
+  EXPECT_EQ(step.certificate, Certificate::kNone);
+  EXPECT_NE(step.verdict, StepVerdict::kReachable);
+  EXPECT_NE(step.foothold_source, FootholdSource::kNearestReachable);
+  EXPECT_EQ(step.candidates_checked, 1);
+  EXPECT_NE(step.reason.find("no reachable foothold among the"), std::string::npos) << step.reason;
+}
+
+TEST(NearestReachable, WithoutAReachabilityCheckItIsTheKinematicSearch) {
+  FootstepPlanRequest r = walkRequests()[0];
+  r.check_reachability = false;
+  const FootstepTransition step = planNearestReachable(r);
+  EXPECT_EQ(step.verdict, StepVerdict::kKinematicallyInfeasible);
+  EXPECT_EQ(step.foothold_source, FootholdSource::kNearestFeasible);
+  EXPECT_EQ(step.certificate, Certificate::kNone);
+}
