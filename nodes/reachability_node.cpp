@@ -125,11 +125,7 @@ class ReachabilityNode {
   // check_reachability_action: the service's check with feedback after each slice; a newer
   // goal or a cancel preempts it before its next slice.
   void execute(const reach_trajopt::CheckReachabilityGoalConstPtr& goal) {
-    auto req = rb::footholdRequestOf<reach_trajopt::CheckReachability::Request>(*goal);
-    req.forward_samples = goal->forward_samples;
-    req.backward_samples = goal->backward_samples;
-    req.seed = goal->seed;
-    req.return_samples = goal->return_samples;
+    const auto req = rb::serviceRequestOf<reach_trajopt::CheckReachability::Request>(*goal);
     bool cancelled = false;
     const ReachProgressCallback progress = [&](const ReachProgress& p) {
       if (action_->isPreemptRequested() || !ros::ok()) return !(cancelled = true);
@@ -138,13 +134,10 @@ class ReachabilityNode {
       action_->publishFeedback(f);
       return true;
     };
-    reach_trajopt::CheckReachability::Response res;
-    answer(req, res, progress);
-    reach_trajopt::CheckReachabilityResult result;
-    result.success = res.success;
-    result.message = res.message;
-    result.result = res.result;
-    rb::finishGoal(*action_, result, cancelled, res.success, res.message);
+    rb::finishGoalWithAnswer<reach_trajopt::CheckReachability::Response,
+                             reach_trajopt::CheckReachabilityResult>(
+        *action_, cancelled, [&](auto& res) { answer(req, res, progress); },
+        [](const auto& res, auto& result) { result.result = res.result; });
   }
 
   bool checkFootholds(reach_trajopt::CheckFootholds::Request& req,
@@ -160,10 +153,8 @@ class ReachabilityNode {
           checked_pub_.publish(count);
         },
         [&](const std::string& reason) {
-          res = reach_trajopt::CheckFootholds::Response();
+          res = rb::rejectedResponse<reach_trajopt::CheckFootholds::Response>(reason);
           res.request_id = req.request_id;
-          res.success = false;
-          res.message = reason;
         });
   }
 
@@ -187,9 +178,7 @@ class ReachabilityNode {
           footsteps_checked_pub_.publish(count);
         },
         [&](const std::string& reason) {
-          res = reach_trajopt::CheckFootstep::Response();
-          res.success = false;
-          res.message = reason;
+          res = rb::rejectedResponse<reach_trajopt::CheckFootstep::Response>(reason);
         });
   }
 

@@ -154,9 +154,7 @@ class TransitionOcpNode {
   // plan_transition_action: the service's plan with feedback from the check and the OCP; a
   // newer goal or a cancel preempts it at its next progress report.
   void executeTransition(const reach_trajopt::PlanTransitionGoalConstPtr& goal) {
-    auto req = rb::footholdRequestOf<reach_trajopt::PlanTransition::Request>(*goal);
-    req.check_reachability = goal->check_reachability;
-    req.allow_relaxation = goal->allow_relaxation;
+    const auto req = rb::serviceRequestOf<reach_trajopt::PlanTransition::Request>(*goal);
     bool cancelled = false;
     auto wanted = [&] {
       return !(cancelled = transition_action_->isPreemptRequested() || !ros::ok());
@@ -183,14 +181,13 @@ class TransitionOcpNode {
       transition_action_->publishFeedback(f);
       return true;
     };
-    reach_trajopt::PlanTransition::Response res;
-    answerTransition(req, res, progress);
-    reach_trajopt::PlanTransitionResult result;
-    result.success = res.success;
-    result.message = res.message;
-    result.reachability = res.reachability;
-    result.trajectory = res.trajectory;
-    rb::finishGoal(*transition_action_, result, cancelled, res.success, res.message);
+    rb::finishGoalWithAnswer<reach_trajopt::PlanTransition::Response,
+                             reach_trajopt::PlanTransitionResult>(
+        *transition_action_, cancelled, [&](auto& res) { answerTransition(req, res, progress); },
+        [](const auto& res, auto& result) {
+          result.reachability = res.reachability;
+          result.trajectory = res.trajectory;
+        });
   }
 
   // One plan_transition request, for the service and the action (with its progress).
@@ -271,9 +268,7 @@ class TransitionOcpNode {
                                     static_cast<int>(req.marker_id), t0));
         },
         [&](const std::string& reason) {
-          res = reach_trajopt::PlanFootstep::Response();
-          res.success = false;
-          res.message = reason;
+          res = rb::rejectedResponse<reach_trajopt::PlanFootstep::Response>(reason);
           res.trajectory = rb::errorTrajectoryMsg(reason, t0);
         });
   }

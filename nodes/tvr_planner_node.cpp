@@ -63,9 +63,7 @@ class TvrPlannerNode {
           proposed_pub_.publish(count);
         },
         [&](const std::string& reason) {
-          res = reach_trajopt::ProposeFootstep::Response();
-          res.success = false;
-          res.message = reason;
+          res = rb::rejectedResponse<reach_trajopt::ProposeFootstep::Response>(reason);
         });
   }
 

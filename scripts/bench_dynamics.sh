@@ -9,17 +9,10 @@
 #   BENCH dynamics.{full,mass_matrix,bias} robot=... ours_us=... ref=pinocchio ref_us=... ratio=...
 # Extra arguments go to bench_dynamics (--rounds N --batch K).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
-
-core="$WS/devel/lib/libreach_trajopt_core.so"
-if [ ! -f "$core" ]; then
-  echo "[bench_dynamics] $core not found: build first (REACH_WS=$WS bash scripts/build)" >&2
-  exit 1
-fi
-if [ ! -x "$VENV/bin/python" ]; then
-  echo "[bench_dynamics] venv $VENV missing: run scripts/bootstrap" >&2
-  exit 1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
+bench_need_core
+bench_need -x "$VENV/bin/python" "run scripts/bootstrap"
+core="$CORE_LIBRARY"
 site="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
 prefix="$site/cmeel.prefix"
 build="$WS/bench_dynamics"

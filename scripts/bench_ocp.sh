@@ -7,12 +7,9 @@
 #   scripts/bench_ocp.sh [repeats]
 # Build directory: $REACH_WS/bench_ocp (REACH_WS defaults to .build_ws, as in scripts/env.sh).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
-core="$WS/devel/lib/libreach_trajopt_core.so"
-if [ ! -f "$core" ]; then
-  echo "[bench_ocp] $core not found: run scripts/build first" >&2
-  exit 1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
+bench_need_core
+core="$CORE_LIBRARY"
 if ! pkg-config --exists ipopt; then
   echo "[bench_ocp] IPOPT (ipopt.pc) not found: run scripts/bootstrap --bench" >&2
   exit 1

@@ -12,17 +12,14 @@
 # same two lines for Crocoddyl on 1 ms knots (ocp.talos_step_knots_1ms, one solve each).
 #   scripts/bench_ocp_talos.sh [repeats]
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
 repeats="${1:-3}"
 req="$REPO/bench/crocoddyl/talos_step_request.json"
 cfg="$REPO/config/talos.yaml"
 py="$REPO/.venv-croc/bin/python"
-if [ ! -x "$py" ]; then
-  echo "[bench_ocp_talos] $py not found: run scripts/bootstrap --bench" >&2
-  exit 1
-fi
+bench_need -x "$py" "run scripts/bootstrap --bench"
 for tool in plan_transition check_transition; do
-  [ -x "$BIN/$tool" ] || { echo "[bench_ocp_talos] $BIN/$tool not found: run scripts/build" >&2; exit 1; }
+  bench_need -x "$BIN/$tool" "run scripts/build"
 done
 out="$WS/bench_ocp_talos"
 mkdir -p "$out"

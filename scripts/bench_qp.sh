@@ -4,12 +4,9 @@
 #   scripts/bench_qp.sh [scale]   scale multiplies the number of problems (default 1)
 # Build directory: $REACH_WS/bench_qp (REACH_WS defaults to .build_ws, as in scripts/env.sh).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
 prefix="$VENV/lib/python3.11/site-packages/cmeel.prefix"
-if [ ! -d "$prefix/lib/cmake/eiquadprog" ]; then
-  echo "[bench_qp] eiquadprog wheel not found under $prefix: run scripts/bootstrap" >&2
-  exit 1
-fi
+bench_need -d "$prefix/lib/cmake/eiquadprog" "(the eiquadprog wheel) run scripts/bootstrap"
 build="$WS/bench_qp"
 cmake -S "$REPO/bench/qp" -B "$build" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_CMAKE_SYSTEM_PATH=OFF >/dev/null

@@ -7,11 +7,8 @@
 #   scripts/bench_reach.sh [reference] [repeats] [initial_samples]
 # Build directory: $REACH_WS/bench_reach (REACH_WS defaults to .build_ws, as in scripts/env.sh).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
-if [ ! -e "$WS/devel/lib/libreach_trajopt_core.so" ]; then
-  echo "[bench_reach] $WS/devel/lib/libreach_trajopt_core.so not found: run scripts/build" >&2
-  exit 1
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
+bench_need_core
 build="$WS/bench_reach"
 cmake -S "$REPO/bench/reach" -B "$build" -DCMAKE_BUILD_TYPE=Release -DREACH_WS="$WS" >/dev/null
 cmake --build "$build" -j2 >/dev/null

@@ -167,6 +167,16 @@ def protocols(lines):
 BIPED = {"robot": lambda r: r in (None, "biped")}
 
 
+def walk_time(title, limit_s, name, key, walk_check_key):
+    """A figure row of a time of the biped's walk: `key` of the BENCH line `name`, else
+    `walk_check_key` of reach.walk_check's 2-thread line; it passes at <= limit_s."""
+    within = lambda x: x <= limit_s  # noqa: E731
+    return (title,
+            first_of(single(name, key, "s", within, BIPED),
+                     single("reach.walk_check", walk_check_key, "s", within, {"threads": "2"})),
+            "<= %g s" % limit_s, "scripts/bench_walk_check.sh")
+
+
 def figures(lines):
     F = [
         ("rigid-body dynamics (M, b, Jacobians) of the biped, time / Pinocchio's",
@@ -190,20 +200,14 @@ def figures(lines):
         ("check per step, demo walk, 2 threads: max",
          single("reach.walk_check", "max_s", "s", lambda x: x <= 0.3, {"threads": "2"}),
          "<= 0.3 s", "scripts/bench_walk_check.sh"),
-        ("transition OCP per step of the walk: mean",
-         first_of(single("ocp.walk", "mean_s", "s", lambda x: x <= 0.1, BIPED),
-                  single("reach.walk_check", "ocp_mean_s", "s", lambda x: x <= 0.1,
-                         {"threads": "2"})),
-         "<= 0.1 s", "scripts/bench_walk_check.sh"),
+        walk_time("transition OCP per step of the walk: mean", 0.1, "ocp.walk", "mean_s",
+                  "ocp_mean_s"),
         ("transition OCP per step: max (ocp.walk, else the walks of seeds 2-5)",
          first_of(single("ocp.walk", "max_s", "s", lambda x: x <= 0.2, BIPED),
                   single("reach.walk_check_seeds", "ocp_max_s", "s", lambda x: x <= 0.2)),
          "<= 0.2 s", "scripts/bench_walk_check.sh"),
-        ("a step's plan (check + OCP): p95, else the max",
-         first_of(single("walk.plan_latency", "p95_s", "s", lambda x: x <= 0.2, BIPED),
-                  single("reach.walk_check", "step_max_s", "s", lambda x: x <= 0.2,
-                         {"threads": "2"})),
-         "<= 0.2 s", "scripts/bench_walk_check.sh"),
+        walk_time("a step's plan (check + OCP): p95, else the max", 0.2, "walk.plan_latency",
+                  "p95_s", "step_max_s"),
         ("transition OCP per step of the TALOS walk: mean",
          single("ocp.walk", "mean_s", "s", lambda x: x <= 0.15, {"robot": "talos"}),
          "<= 0.15 s", "scripts/bench_walk_check.sh"),

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "json_error.h"
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
@@ -120,12 +121,7 @@ double thresholdOption(const reach_trajopt::CliArgs& args,
 
 int main(int argc, char** argv) {
   using namespace reach_trajopt;
-  try {
-    const CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return runJsonTool(kTool, argc, argv, [](const CliArgs& args) {
     const std::vector<std::string>& files = args.positional();
     requireTwoFiles(files);
     const FootstepPlannerSetup setup = FootstepPlannerSetup::fromYamlFile(args.value("--config"));
@@ -150,9 +146,5 @@ int main(int argc, char** argv) {
     out["samples"] = traj.time.size();
     std::cout << out.dump() << "\n";
     return 0;
-  } catch (const std::exception& e) {
-    json out = {{"status", "error"}, {"reason", e.what()}};
-    std::cout << out.dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
-    return 2;
-  }
+  });
 }

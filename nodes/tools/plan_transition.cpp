@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "json_error.h"
 #include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
@@ -127,12 +128,7 @@ void solveTerminalState(const reach_trajopt::FootstepPlannerSetup& setup,
 
 int main(int argc, char** argv) {
   using namespace reach_trajopt;
-  try {
-    const CliArgs args = kTool.parse(argc, argv);
-    if (args.help()) {
-      std::cout << kTool.usage();
-      return 0;
-    }
+  return runJsonTool(kTool, argc, argv, [](const CliArgs& args) {
     if (args.positional().size() > 1)
       throw RequestError("expected one request file (got " +
                          std::to_string(args.positional().size()) + ")");
@@ -149,10 +145,5 @@ int main(int argc, char** argv) {
     const TransitionResult res = ocp.solve(in.request);
     std::cout << resultJson(res, in.request, stride).dump() << "\n";
     return res.status == OcpStatus::kFailed ? 1 : 0;
-  } catch (const std::exception& e) {
-    json out = {{"status", "error"}, {"reason", e.what()}};
-    // A message may quote bytes of the input that are not UTF-8: replace them, never throw.
-    std::cout << out.dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
-    return 2;
-  }
+  });
 }

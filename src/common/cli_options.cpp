@@ -56,6 +56,12 @@ const CliOption* CliTool::find(const std::string& arg) const {
 }
 
 int CliTool::run(int argc, char** argv, const std::function<int(const CliArgs&)>& body) const {
+  return run(argc, argv, body,
+             [this](const std::exception& e) { std::cerr << name_ << ": " << e.what() << "\n"; });
+}
+
+int CliTool::run(int argc, char** argv, const std::function<int(const CliArgs&)>& body,
+                 const std::function<void(const std::exception&)>& reportError) const {
   try {
     const CliArgs args = parse(argc, argv);
     if (args.help()) {
@@ -64,7 +70,7 @@ int CliTool::run(int argc, char** argv, const std::function<int(const CliArgs&)>
     }
     return body(args);
   } catch (const std::exception& e) {
-    std::cerr << name_ << ": " << e.what() << "\n";
+    reportError(e);
     return 2;
   }
 }

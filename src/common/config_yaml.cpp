@@ -97,6 +97,21 @@ YAML::Node checkedRoot(const YAML::Node& root, const std::string& source) {
   return root;
 }
 
+/// Reads the scalar `node` (the value of `key` in `section`) as a T into `value`: false when
+/// missing, a ConfigError "<where>: expected <expected>, got <what>" when not a T.
+template <typename T>
+bool readScalar(const YamlSection& section, const YAML::Node& node, const std::string& key,
+                const char* expected, T& value) {
+  if (!node) return false;
+  try {
+    if (!node.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
+    value = node.as<T>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(section.where(key) + ": expected " + expected + ", got " + describe(node));
+  }
+  return true;
+}
+
 }  // namespace
 
 const std::vector<std::string>& configSections() {
@@ -197,39 +212,15 @@ bool YamlSection::read(const std::string& key, double& value) const {
 }
 
 bool YamlSection::read(const std::string& key, int& value) const {
-  const YAML::Node n = impl_->node[key];
-  if (!n) return false;
-  try {
-    if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
-    value = n.as<int>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(where(key) + ": expected an integer, got " + describe(n));
-  }
-  return true;
+  return readScalar(*this, impl_->node[key], key, "an integer", value);
 }
 
 bool YamlSection::read(const std::string& key, long long& value) const {
-  const YAML::Node n = impl_->node[key];
-  if (!n) return false;
-  try {
-    if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
-    value = n.as<long long>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(where(key) + ": expected an integer, got " + describe(n));
-  }
-  return true;
+  return readScalar(*this, impl_->node[key], key, "an integer", value);
 }
 
 bool YamlSection::read(const std::string& key, bool& value) const {
-  const YAML::Node n = impl_->node[key];
-  if (!n) return false;
-  try {
-    if (!n.IsScalar()) throw YAML::Exception(YAML::Mark::null_mark(), "not a scalar");
-    value = n.as<bool>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(where(key) + ": expected true or false, got " + describe(n));
-  }
-  return true;
+  return readScalar(*this, impl_->node[key], key, "true or false", value);
 }
 
 bool YamlSection::read(const std::string& key, std::string& value) const {

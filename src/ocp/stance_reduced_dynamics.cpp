@@ -8,6 +8,21 @@
 
 namespace reach_trajopt {
 
+namespace {
+
+/// Copies the terms that depend on the configuration alone (q, G, J_sb^-1, J_2, the swing
+/// sole's position) from `from` (the scratch or a saved kinematic) into `k`.
+template <class From>
+void copyConfigurationTerms(const From& from, StanceReducedDynamics::Scratch::Kinematic& k) {
+  k.q = from.q;
+  k.G = from.G;
+  k.Jb_inv = from.Jb_inv;
+  k.J2 = from.J2;
+  k.swing_position = from.swing_position;
+}
+
+}  // namespace
+
 StanceReducedDynamics::StanceReducedDynamics(std::shared_ptr<const RobotModel> model,
                                              FrameId stance_frame,
                                              const Eigen::Isometry3d& stance_pose,
@@ -258,12 +273,8 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
       model_->updateVelocity(s.ws, s.qd);
       s.drift_s = model_->frameJdotQd(s.ws, stance_frame_);
       swing_.evaluate(*model_, s.ws, s.swing);
-      k.q = k0.q;
+      copyConfigurationTerms(k0, k);
       k.qd = s.qd;
-      k.G = k0.G;
-      k.Jb_inv = k0.Jb_inv;
-      k.J2 = k0.J2;
-      k.swing_position = k0.swing_position;
       accelerationTerms(k0.G, k0.Jb_inv, s.drift_s, s.swing, qdda, k);
     }
     column(nu_ + i, s.kp, s.km, 2.0 * kVelocityStep, false);
@@ -319,12 +330,8 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
 void StanceReducedDynamics::saveKinematic(const Scratch& s,
                                           const Eigen::Ref<const Eigen::VectorXd>& qdda,
                                           Scratch::Kinematic& k) const {
-  k.q = s.q;
+  copyConfigurationTerms(s, k);
   k.qd = s.qd;
-  k.G = s.G;
-  k.Jb_inv = s.Jb_inv;
-  k.J2 = s.J2;
-  k.swing_position = s.swing_position;
   accelerationTerms(s.G, s.Jb_inv, s.drift_s, s.swing, qdda, k);
 }
 

@@ -102,25 +102,28 @@ std::string verdictReason(const SamplingBudget& budget, const std::vector<SliceC
   return os.str();
 }
 
+/// Adds each of `members` of `from` to the same member of `to` (the counts or times of two
+/// sample budgets).
+template <class Struct, class Value, std::size_t N>
+void addMembers(Struct& to, const Struct& from, Value Struct::*const (&members)[N]) {
+  for (Value Struct::*m : members) to.*m += from.*m;
+}
+
 }  // namespace
 
 void ReachCounts::add(const ReachCounts& o) {
-  forward_samples += o.forward_samples;
-  backward_samples += o.backward_samples;
-  forward_qps += o.forward_qps;
-  backward_qps += o.backward_qps;
-  forward_rejected += o.forward_rejected;
-  backward_rejected += o.backward_rejected;
-  backward_prefiltered += o.backward_prefiltered;
+  using C = ReachCounts;
+  static constexpr long C::*kSummed[] = {
+      &C::forward_samples,  &C::backward_samples,  &C::forward_qps,         &C::backward_qps,
+      &C::forward_rejected, &C::backward_rejected, &C::backward_prefiltered};
+  addMembers(*this, o, kSummed);
 }
 
 void ReachTimings::add(const ReachTimings& o) {
-  forward += o.forward;
-  backward += o.backward;
-  boundary += o.boundary;
-  hausdorff += o.hausdorff;
-  witness += o.witness;
-  total += o.total;
+  using T = ReachTimings;
+  static constexpr double T::*kSummed[] = {&T::forward,   &T::backward, &T::boundary,
+                                           &T::hausdorff, &T::witness,  &T::total};
+  addMembers(*this, o, kSummed);
 }
 
 ReachabilityAnalyzer::ReachabilityAnalyzer(std::shared_ptr<const RobotModel> model,

@@ -264,5 +264,10 @@ reach_trajopt::ContactPlan toContactPlanMsg(const TvrInput& input, const TvrStep
   return m;
 }
 
+void requireWorldFrame(const std::string& frame_id, const std::string& field) {
+  if (!frame_id.empty() && frame_id != kWorldFrame)
+    throw RequestError(field + "unknown frame '" + frame_id + "': positions must be in 'world'");
+}
+
 }  // namespace ros_bridge
 }  // namespace reach_trajopt

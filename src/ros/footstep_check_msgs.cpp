@@ -18,6 +18,24 @@ namespace ros_bridge {
 
 namespace {
 
+/// The witness path's fields that the check_footstep response carries as they are, one list
+/// for both directions: `copy(response field, witness field)` for each (const on the side
+/// read). The path q and the violation are converted on their own.
+template <class Response, class Witness, class Copy>
+void forEachWitnessField(Response& m, Witness& w, Copy&& copy) {
+  copy(m.witness_valid, w.valid);
+  copy(m.witness_certified, w.certified);
+  copy(m.witness_junction, w.junction);
+  copy(m.witness_bridge_start, w.bridge_start);
+  copy(m.witness_time, w.time);
+  copy(m.witness_output_gap, w.output_gap);
+  copy(m.witness_position_gap, w.position_gap);
+  copy(m.witness_velocity_gap, w.velocity_gap);
+  copy(m.witness_terminal_position_gap, w.terminal_position_gap);
+  copy(m.witness_terminal_velocity_gap, w.terminal_velocity_gap);
+  copy(m.witness_terminal_output_gap, w.terminal_output_gap);
+}
+
 std::vector<double> flatContact(const FlatContact& c) {
   return {c.position.x(), c.position.y(), c.position.z(), c.yaw};
 }
@@ -75,9 +93,7 @@ reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(
 
 FootstepCheckCall fromCheckFootstepRequestMsg(const reach_trajopt::CheckFootstep::Request& m,
                                               int nq, const ReachConfig& base) {
-  if (!m.header.frame_id.empty() && m.header.frame_id != kWorldFrame)
-    throw RequestError("header.frame_id: unknown frame '" + m.header.frame_id +
-                       "': positions must be in 'world'");
+  requireWorldFrame(m.header.frame_id, "header.frame_id: ");
   FootstepCheckCall c;
   ContactTransition& r = c.request;
   if (m.stance != "left" && m.stance != "right")
@@ -160,19 +176,9 @@ reach_trajopt::CheckFootstep::Response toCheckFootstepResponseMsg(
     m.window_overlap.push_back(c.overlap);
   }
   const WitnessPath& w = reach.witness;
-  m.witness_valid = w.valid;
-  m.witness_certified = w.certified;
-  m.witness_junction = w.junction;
-  m.witness_bridge_start = w.bridge_start;
-  m.witness_time = w.time;
+  forEachWitnessField(m, w, [](auto& to, const auto& from) { to = from; });
   m.witness_q.assign(w.q.data(), w.q.data() + w.q.size());
   if (w.valid) m.witness_violation = pathViolationVector(w.violation);
-  m.witness_output_gap = w.output_gap;
-  m.witness_position_gap = w.position_gap;
-  m.witness_velocity_gap = w.velocity_gap;
-  m.witness_terminal_position_gap = w.terminal_position_gap;
-  m.witness_terminal_velocity_gap = w.terminal_velocity_gap;
-  m.witness_terminal_output_gap = w.terminal_output_gap;
   for (const ReachableSlice& s : check.set_constraint) {
     m.constraint_time.push_back(s.time);
     m.constraint_rows.push_back(static_cast<uint32_t>(s.A.rows()));
@@ -216,11 +222,7 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
     reach.window.push_back(c);
   }
   WitnessPath& w = reach.witness;
-  w.valid = m.witness_valid;
-  w.certified = m.witness_certified;
-  w.junction = m.witness_junction;
-  w.bridge_start = m.witness_bridge_start;
-  w.time = m.witness_time;
+  forEachWitnessField(m, w, [](const auto& from, auto& to) { to = from; });
   if (!m.witness_q.empty()) {
     requireEntries(m.witness_q, n * m.witness_time.size(), "witness_q");
     w.q = Eigen::Map<const Eigen::MatrixXd>(m.witness_q.data(), nq,
@@ -231,12 +233,6 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
   if (w.valid) {
     w.violation = pathViolationFromVector(m.witness_violation, "check_footstep");
   }
-  w.output_gap = m.witness_output_gap;
-  w.position_gap = m.witness_position_gap;
-  w.velocity_gap = m.witness_velocity_gap;
-  w.terminal_position_gap = m.witness_terminal_position_gap;
-  w.terminal_velocity_gap = m.witness_terminal_velocity_gap;
-  w.terminal_output_gap = m.witness_terminal_output_gap;
   requireEntries(m.constraint_rows, m.constraint_time.size(), "constraint_rows");
   size_t rows = 0;
   for (uint32_t r : m.constraint_rows) rows += r;

@@ -52,27 +52,32 @@ Eigen::VectorXd finiteVector(const std::vector<double>& v, size_t size, const st
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
+namespace {
+
+/// The fields of a sample budget, one list for both directions: `copy(msg field, budget field)`
+/// for each (const on the side read).
+template <class Msg, class Budget, class Copy>
+void forEachSampleBudgetField(Msg& m, Budget& b, Copy&& copy) {
+  copy(m.initial_samples, b.initial_samples);
+  copy(m.children_per_parent, b.children_per_parent);
+  copy(m.backward_children_per_parent, b.backward_children_per_parent);
+  copy(m.max_boundary, b.max_boundary);
+  copy(m.interior_samples, b.interior_samples);
+  copy(m.certificate_candidates, b.certificate_candidates);
+  copy(m.constraint_margin, b.constraint_margin);
+}
+
+}  // namespace
+
 reach_trajopt::SampleBudget toSampleBudgetMsg(const SamplingBudget& b) {
   reach_trajopt::SampleBudget m;
-  m.initial_samples = b.initial_samples;
-  m.children_per_parent = b.children_per_parent;
-  m.backward_children_per_parent = b.backward_children_per_parent;
-  m.max_boundary = b.max_boundary;
-  m.interior_samples = b.interior_samples;
-  m.certificate_candidates = b.certificate_candidates;
-  m.constraint_margin = b.constraint_margin;
+  forEachSampleBudgetField(m, b, [](auto& to, const auto& from) { to = from; });
   return m;
 }
 
 SamplingBudget fromSampleBudgetMsg(const reach_trajopt::SampleBudget& m) {
   SamplingBudget b;
-  b.initial_samples = m.initial_samples;
-  b.children_per_parent = m.children_per_parent;
-  b.backward_children_per_parent = m.backward_children_per_parent;
-  b.max_boundary = m.max_boundary;
-  b.interior_samples = m.interior_samples;
-  b.certificate_candidates = m.certificate_candidates;
-  b.constraint_margin = m.constraint_margin;
+  forEachSampleBudgetField(m, b, [](const auto& from, auto& to) { to = from; });
   return b;
 }
 
@@ -140,9 +145,7 @@ reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlan
 
 FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep::Request& m,
                                                int nq, const ReachConfig& base) {
-  if (!m.header.frame_id.empty() && m.header.frame_id != kWorldFrame)
-    throw RequestError("header.frame_id: unknown frame '" + m.header.frame_id +
-                       "': positions must be in 'world'");
+  requireWorldFrame(m.header.frame_id, "header.frame_id: ");
   FootstepPlanRequest r;
   if (m.stance != "left" && m.stance != "right")
     throw RequestError("stance: expected 'left' or 'right', got '" + m.stance + "'");

@@ -96,6 +96,28 @@ visualization_msgs::Marker pathMarker(const std::vector<Eigen::Vector3d>& path,
   return m;
 }
 
+namespace {
+
+/// One layer of a slice's markers: its output samples (points) or their boundary (a closed
+/// line strip), forward or backward.
+struct SliceLayer {
+  const char* ns;
+  std::vector<geometry_msgs::Point> reach_trajopt::ReachabilitySlice::*points;
+  bool boundary;
+  Rgba color;
+};
+
+/// The layers in the order their markers are published.
+const SliceLayer kSliceLayers[] = {
+    {kNsForwardSet, &reach_trajopt::ReachabilitySlice::forward_outputs, false, kForwardColor},
+    {kNsBackwardSet, &reach_trajopt::ReachabilitySlice::backward_outputs, false, kBackwardColor},
+    {kNsForwardBoundary, &reach_trajopt::ReachabilitySlice::forward_boundary, true, kForwardColor},
+    {kNsBackwardBoundary, &reach_trajopt::ReachabilitySlice::backward_boundary, true,
+     kBackwardColor},
+};
+
+}  // namespace
+
 visualization_msgs::MarkerArray reachabilityMarkers(const reach_trajopt::ReachabilityResult& r,
                                                     int max_slices) {
   visualization_msgs::MarkerArray a;
@@ -107,32 +129,20 @@ visualization_msgs::MarkerArray reachabilityMarkers(const reach_trajopt::Reachab
     const int i = shown == 1 ? 0 : static_cast<int>(std::lround(double(k) * (n - 1) / (shown - 1)));
     const reach_trajopt::ReachabilitySlice& s = r.slices[i];
     const ros::Time stamp = s.header.stamp.isZero() ? r.header.stamp : s.header.stamp;
-    if (!s.forward_outputs.empty()) {
-      auto m = baseMarker(kNsForwardSet, i, visualization_msgs::Marker::POINTS, frame, stamp,
-                          kForwardColor);
-      m.scale.x = m.scale.y = kSamplePointSize;
-      m.points = s.forward_outputs;
-      a.markers.push_back(m);
-    }
-    if (!s.backward_outputs.empty()) {
-      auto m = baseMarker(kNsBackwardSet, i, visualization_msgs::Marker::POINTS, frame, stamp,
-                          kBackwardColor);
-      m.scale.x = m.scale.y = kSamplePointSize;
-      m.points = s.backward_outputs;
-      a.markers.push_back(m);
-    }
-    if (!s.forward_boundary.empty()) {
-      auto m = baseMarker(kNsForwardBoundary, i, visualization_msgs::Marker::LINE_STRIP, frame,
-                          stamp, kForwardColor);
-      m.scale.x = kBoundaryWidth;
-      addClosed(m, s.forward_boundary);
-      a.markers.push_back(m);
-    }
-    if (!s.backward_boundary.empty()) {
-      auto m = baseMarker(kNsBackwardBoundary, i, visualization_msgs::Marker::LINE_STRIP, frame,
-                          stamp, kBackwardColor);
-      m.scale.x = kBoundaryWidth;
-      addClosed(m, s.backward_boundary);
+    for (const SliceLayer& layer : kSliceLayers) {
+      const std::vector<geometry_msgs::Point>& points = s.*layer.points;
+      if (points.empty()) continue;
+      auto m = baseMarker(layer.ns, i,
+                          layer.boundary ? visualization_msgs::Marker::LINE_STRIP
+                                         : visualization_msgs::Marker::POINTS,
+                          frame, stamp, layer.color);
+      if (layer.boundary) {
+        m.scale.x = kBoundaryWidth;
+        addClosed(m, points);
+      } else {
+        m.scale.x = m.scale.y = kSamplePointSize;
+        m.points = points;
+      }
       a.markers.push_back(m);
     }
   }

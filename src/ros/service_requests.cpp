@@ -80,8 +80,7 @@ ContactTransition parseFootholdRequest(const RobotModel& model, const ContactCon
                                        const geometry_msgs::Point& foothold, double duration,
                                        double default_duration, const Eigen::VectorXd& standing_q,
                                        const FootholdRequestLimits& limits) {
-  if (!frame_id.empty() && frame_id != kWorldFrame)
-    throw RequestError("unknown frame '" + frame_id + "': positions must be in 'world'");
+  requireWorldFrame(frame_id);
   if (contact_mode.empty() || contact_mode == "flight")
     throw RequestError("empty contact set (mode '" + contact_mode +
                        "'): the robot must stand on one sole (SS-L or SS-R)");

@@ -18,17 +18,7 @@ import pytest
 
 from conftest import REPO, run_tool, write_json
 
-DI_URDF = """<robot name="double_integrator">
-  <link name="world"/>
-  <link name="slider">
-    <inertial><origin xyz="0 0 0"/><mass value="2.0"/>
-      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
-  <joint name="x" type="prismatic">
-    <parent link="world"/><child link="slider"/><axis xyz="1 0 0"/>
-    <limit lower="-50" upper="50" effort="10" velocity="50"/>
-  </joint>
-</robot>"""
+DI_URDF = (REPO / "test" / "fixtures" / "double_integrator.urdf").read_text()
 MASS, FORCE, DT = 2.0, 10.0, 1e-3
 ACC = FORCE / MASS
 

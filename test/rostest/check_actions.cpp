@@ -24,24 +24,44 @@
 #include "reach_trajopt/PlanTransition.h"
 #include "reach_trajopt/PlanTransitionAction.h"
 #include "reach_trajopt/ros/action_goals.h"
+#include "reference_step.h"
 
 namespace {
 
 using Client = actionlib::SimpleActionClient<reach_trajopt::CheckReachabilityAction>;
 using State = actionlib::SimpleClientGoalState;
+using reach_trajopt::test::fillReferenceStep;
 const char* kAction = "check_reachability_action";
 
 reach_trajopt::CheckReachabilityGoal makeGoal(uint32_t samples) {
   reach_trajopt::CheckReachabilityGoal g;
-  g.header.frame_id = "world";
-  g.contact_mode = "SS-L";
-  g.foothold.x = 0.05;
-  g.foothold.y = -0.2;
+  fillReferenceStep(g);
   g.forward_samples = samples;
   return g;
 }
 
 using reach_trajopt::test::bytes;
+
+/// Calls the one-shot `service` (the same request the action serves for a goal) and asserts
+/// that it answers with success.
+template <typename Srv>
+void callSucceeding(const char* service, Srv& srv) {
+  ros::ServiceClient client = ros::NodeHandle().serviceClient<Srv>(service);
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+}
+
+/// `client` sends `goal`; its action aborts it (success = false) with a message containing
+/// `words`.
+template <typename ActionClient, typename Goal>
+void expectAborted(ActionClient& client, const Goal& goal, const std::string& words) {
+  client.sendGoal(goal);
+  ASSERT_TRUE(client.waitForResult(ros::Duration(60.0)));
+  EXPECT_EQ(client.getState(), State::ABORTED);
+  EXPECT_FALSE(client.getResult()->success);
+  EXPECT_NE(client.getResult()->message.find(words), std::string::npos)
+      << client.getResult()->message;
+}
 
 reach_trajopt::ReachabilityResult withoutWallTimes(reach_trajopt::ReachabilityResult r) {
   r.header.seq = 0;
@@ -120,14 +140,10 @@ TEST(Actions, FeedbackEverySliceAndTheResultOfTheService) {
   EXPECT_EQ(accounted, seen.size());
 
   // The same request through the one-shot service: the same answer.
-  ros::ServiceClient service =
-      ros::NodeHandle().serviceClient<reach_trajopt::CheckReachability>("check_reachability");
-  reach_trajopt::CheckReachability srv;  // the request the action serves for the goal
+  reach_trajopt::CheckReachability srv;
   srv.request =
-      reach_trajopt::ros_bridge::footholdRequestOf<reach_trajopt::CheckReachability::Request>(goal);
-  srv.request.forward_samples = goal.forward_samples;
-  ASSERT_TRUE(service.call(srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
+      reach_trajopt::ros_bridge::serviceRequestOf<reach_trajopt::CheckReachability::Request>(goal);
+  ASSERT_NO_FATAL_FAILURE(callSucceeding("check_reachability", srv));
   EXPECT_EQ(result.message, srv.response.message);
   EXPECT_EQ(bytes(withoutWallTimes(result.result)), bytes(withoutWallTimes(srv.response.result)));
 }
@@ -169,21 +185,11 @@ TEST(Actions, MalformedGoalsAreAbortedWithTheReasonAndTheActionsServeOn) {
   ASSERT_TRUE(plan.waitForServer(ros::Duration(60.0)));
   reach_trajopt::CheckReachabilityGoal bad = makeGoal(300);
   bad.contact_mode = "SS-X";
-  check.sendGoal(bad);
-  ASSERT_TRUE(check.waitForResult(ros::Duration(60.0)));
-  EXPECT_EQ(check.getState(), State::ABORTED);
-  EXPECT_FALSE(check.getResult()->success);
-  EXPECT_NE(check.getResult()->message.find("SS-X"), std::string::npos)
-      << check.getResult()->message;
+  ASSERT_NO_FATAL_FAILURE(expectAborted(check, bad, "SS-X"));
   reach_trajopt::PlanTransitionGoal bad_plan;
   bad_plan.contact_mode = "SS-L";
   bad_plan.foothold.x = std::numeric_limits<double>::quiet_NaN();
-  plan.sendGoal(bad_plan);
-  ASSERT_TRUE(plan.waitForResult(ros::Duration(60.0)));
-  EXPECT_EQ(plan.getState(), State::ABORTED);
-  EXPECT_FALSE(plan.getResult()->success);
-  EXPECT_NE(plan.getResult()->message.find("non-finite"), std::string::npos)
-      << plan.getResult()->message;
+  ASSERT_NO_FATAL_FAILURE(expectAborted(plan, bad_plan, "non-finite"));
   check.sendGoal(makeGoal(300));  // still serving
   ASSERT_TRUE(check.waitForResult(ros::Duration(120.0)));
   EXPECT_EQ(check.getState(), State::SUCCEEDED) << check.getState().getText();
@@ -199,10 +205,7 @@ TEST(Actions, PlanTransitionReportsTheCheckThenTheOcpAndCancels) {
   PlanClient client("plan_transition_action", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(60.0)));
   reach_trajopt::PlanTransitionGoal goal;
-  goal.header.frame_id = "world";
-  goal.contact_mode = "SS-L";
-  goal.foothold.x = 0.05;
-  goal.foothold.y = -0.2;
+  fillReferenceStep(goal);
   goal.check_reachability = true;
   goal.allow_relaxation = true;
   std::mutex mutex;
@@ -246,15 +249,10 @@ TEST(Actions, PlanTransitionReportsTheCheckThenTheOcpAndCancels) {
     seen.clear();
   }
 
-  ros::ServiceClient service =
-      ros::NodeHandle().serviceClient<reach_trajopt::PlanTransition>("plan_transition");
-  reach_trajopt::PlanTransition srv;  // the request the action serves for the goal
+  reach_trajopt::PlanTransition srv;
   srv.request =
-      reach_trajopt::ros_bridge::footholdRequestOf<reach_trajopt::PlanTransition::Request>(goal);
-  srv.request.check_reachability = goal.check_reachability;
-  srv.request.allow_relaxation = goal.allow_relaxation;
-  ASSERT_TRUE(service.call(srv));
-  ASSERT_TRUE(srv.response.success) << srv.response.message;
+      reach_trajopt::ros_bridge::serviceRequestOf<reach_trajopt::PlanTransition::Request>(goal);
+  ASSERT_NO_FATAL_FAILURE(callSucceeding("plan_transition", srv));
   EXPECT_EQ(result.message, srv.response.message);
   EXPECT_EQ(bytes(withoutWallTimes(result.reachability)),
             bytes(withoutWallTimes(srv.response.reachability)));

@@ -33,8 +33,11 @@
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/tvr_proposal_msgs.h"
 #include "reach_trajopt/walk/standing_pose.h"
+#include "reference_step.h"
 
 namespace {
+
+using reach_trajopt::test::fillReferenceStep;
 
 constexpr int kNq = 18;      // urdf/biped.urdf: 6 virtual + 12 leg joints
 constexpr int kRounds = 12;  // rounds over all malformed kinds, per service and pass
@@ -197,10 +200,7 @@ void hammer(const char* service, Tally& t, std::function<void(typename Srv::Requ
   for (int round = 0; round < kRounds; ++round) {
     for (std::size_t i = 0; i < all.size(); ++i) {
       Srv srv;
-      srv.request.header.frame_id = "world";
-      srv.request.contact_mode = "SS-L";
-      srv.request.foothold.x = 0.05;
-      srv.request.foothold.y = -0.2;
+      fillReferenceStep(srv.request);
       all[i](srv.request);
       ++t.calls;
       if (!call(srv)) {
@@ -213,10 +213,7 @@ void hammer(const char* service, Tally& t, std::function<void(typename Srv::Requ
         ADD_FAILURE() << service << " kind " << i << " accepted: " << srv.response.message;
     }
     Srv srv;  // a service-specific over-limit request
-    srv.request.header.frame_id = "world";
-    srv.request.contact_mode = "SS-L";
-    srv.request.foothold.x = 0.05;
-    srv.request.foothold.y = -0.2;
+    fillReferenceStep(srv.request);
     extra(srv.request);
     ++t.calls;
     if (call(srv) && !srv.response.success) ++t.answered;
@@ -270,10 +267,7 @@ TEST(BadRequests, NodesRejectEverythingAndStayFlat) {
   const int calls_per_pass = t.calls / kPasses;
   // Still serving: a valid, small check.
   reach_trajopt::CheckReachability ok;
-  ok.request.header.frame_id = "world";
-  ok.request.contact_mode = "SS-L";
-  ok.request.foothold.x = 0.05;
-  ok.request.foothold.y = -0.2;
+  fillReferenceStep(ok.request);
   ok.request.forward_samples = 200;
   const bool alive = callService("check_reachability", ok) && ok.response.success &&
                      rssMiB(pid_reach) > 0 && rssMiB(pid_ocp) > 0;
@@ -294,10 +288,7 @@ TEST(BadRequests, NodesRejectEverythingAndStayFlat) {
 // time limit (ocp.time_limit = 10 s in config/biped.yaml) plus the sampling of the answer.
 TEST(BadRequests, LongestAllowedSwingKeepsTheTimeLimit) {
   reach_trajopt::PlanTransition srv;
-  srv.request.header.frame_id = "world";
-  srv.request.contact_mode = "SS-L";
-  srv.request.foothold.x = 0.05;
-  srv.request.foothold.y = -0.2;
+  fillReferenceStep(srv.request);
   srv.request.swing_duration = 5.0;
   srv.request.allow_relaxation = true;
   const auto t0 = std::chrono::steady_clock::now();
@@ -313,6 +304,18 @@ TEST(BadRequests, LongestAllowedSwingKeepsTheTimeLimit) {
   EXPECT_LT(seconds, kLimit + 5.0) << srv.response.message;
 }
 
+// `service` answers the reference step with `duration` [s] with success = false and a message
+// containing `words`.
+template <typename Srv>
+void expectSwingDurationRejected(const char* service, double duration, const std::string& words) {
+  Srv srv;
+  fillReferenceStep(srv.request);
+  srv.request.swing_duration = duration;
+  ASSERT_TRUE(callService(service, srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find(words), std::string::npos) << srv.response.message;
+}
+
 // A swing_duration of inf or 1e-9 s is answered about swing_duration (issue 43: "must be
 // positive" and a message about window_start multiples of dt), by both services.
 TEST(BadRequests, SwingDurationMessagesNameTheProblem) {
@@ -320,24 +323,9 @@ TEST(BadRequests, SwingDurationMessagesNameTheProblem) {
       {kInf, "swing_duration must be finite"},
       {1e-9, "swing_duration 1e-09 s is shorter than one time step of the check"}};
   for (const auto& [duration, words] : cases) {
-    reach_trajopt::CheckReachability check;
-    check.request.header.frame_id = "world";
-    check.request.contact_mode = "SS-L";
-    check.request.foothold.x = 0.05;
-    check.request.foothold.y = -0.2;
-    check.request.swing_duration = duration;
-    ASSERT_TRUE(callService("check_reachability", check));
-    EXPECT_FALSE(check.response.success);
-    EXPECT_NE(check.response.message.find(words), std::string::npos) << check.response.message;
-    reach_trajopt::PlanTransition plan;
-    plan.request.header.frame_id = "world";
-    plan.request.contact_mode = "SS-L";
-    plan.request.foothold.x = 0.05;
-    plan.request.foothold.y = -0.2;
-    plan.request.swing_duration = duration;
-    ASSERT_TRUE(callService("plan_transition", plan));
-    EXPECT_FALSE(plan.response.success);
-    EXPECT_NE(plan.response.message.find(words), std::string::npos) << plan.response.message;
+    expectSwingDurationRejected<reach_trajopt::CheckReachability>("check_reachability", duration,
+                                                                  words);
+    expectSwingDurationRejected<reach_trajopt::PlanTransition>("plan_transition", duration, words);
   }
 }
 

@@ -14,27 +14,21 @@
 
 #include "reach_trajopt/CheckReachability.h"
 #include "reach_trajopt/PlanTransition.h"
+#include "reference_step.h"
 
 namespace {
 
+using reach_trajopt::test::fillReferenceStep;
+
 int g_nq = 0, g_nu = 0;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-template <typename Req>
-void fillDefaults(Req& r) {
-  r.header.frame_id = "world";
-  r.contact_mode = "SS-L";
-  r.foothold.x = 0.05;
-  r.foothold.y = -0.2;
-  r.foothold.z = 0.0;
-}
 
 /// A malformed variant of a request and a piece of the reason it must get.
 template <typename Req>
 std::vector<std::pair<std::string, Req>> malformed() {
   std::vector<std::pair<std::string, Req>> cases;
   Req base;
-  fillDefaults(base);
+  fillReferenceStep(base);
   auto add = [&](const std::string& reason, auto edit) {
     Req r = base;
     edit(r);
@@ -61,33 +55,34 @@ std::vector<std::pair<std::string, Req>> malformed() {
 
 }  // namespace
 
-TEST(Services, CheckReachabilityRejectsMalformedRequests) {
-  for (auto& [reason, req] : malformed<reach_trajopt::CheckReachability::Request>()) {
-    reach_trajopt::CheckReachability srv;
+// Each malformed() variant of Srv's request: `service` answers success = false with the reason
+// and an "error" status (`statusOf(response)`), and keeps serving.
+template <typename Srv, typename StatusOf>
+void expectMalformedRejected(const char* service, StatusOf statusOf) {
+  for (auto& [reason, req] : malformed<typename Srv::Request>()) {
+    Srv srv;
     srv.request = req;
-    ASSERT_TRUE(ros::service::call("check_reachability", srv)) << "the node stopped serving";
+    ASSERT_TRUE(ros::service::call(service, srv)) << "the node stopped serving";
     EXPECT_FALSE(srv.response.success) << reason;
     EXPECT_NE(srv.response.message.find(reason), std::string::npos)
         << "expected '" << reason << "' in: " << srv.response.message;
-    EXPECT_EQ(srv.response.result.verdict, "error");
+    EXPECT_EQ(statusOf(srv.response), "error");
   }
 }
 
+TEST(Services, CheckReachabilityRejectsMalformedRequests) {
+  expectMalformedRejected<reach_trajopt::CheckReachability>(
+      "check_reachability", [](const auto& res) { return res.result.verdict; });
+}
+
 TEST(Services, PlanTransitionRejectsMalformedRequests) {
-  for (auto& [reason, req] : malformed<reach_trajopt::PlanTransition::Request>()) {
-    reach_trajopt::PlanTransition srv;
-    srv.request = req;
-    ASSERT_TRUE(ros::service::call("plan_transition", srv)) << "the node stopped serving";
-    EXPECT_FALSE(srv.response.success) << reason;
-    EXPECT_NE(srv.response.message.find(reason), std::string::npos)
-        << "expected '" << reason << "' in: " << srv.response.message;
-    EXPECT_EQ(srv.response.trajectory.status, "error");
-  }
+  expectMalformedRejected<reach_trajopt::PlanTransition>(
+      "plan_transition", [](const auto& res) { return res.trajectory.status; });
 }
 
 TEST(Services, CheckReachabilityRoundTrip) {
   reach_trajopt::CheckReachability srv;
-  fillDefaults(srv.request);          // empty q: the node's standing pose, left sole the stance
+  fillReferenceStep(srv.request);     // empty q: the node's standing pose, left sole the stance
   srv.request.forward_samples = 300;  // a small check: this tests the plumbing
   srv.request.return_samples = true;
   ASSERT_TRUE(ros::service::call("check_reachability", srv));
@@ -117,7 +112,7 @@ TEST(Services, CheckReachabilityRoundTrip) {
   }
   std::printf("check_reachability: %s\n", srv.response.message.c_str());
   reach_trajopt::CheckReachability again;
-  fillDefaults(again.request);
+  fillReferenceStep(again.request);
   again.request.contact_mode = "DS";
   ASSERT_TRUE(ros::service::call("check_reachability", again));
   EXPECT_FALSE(again.response.success);
@@ -125,7 +120,7 @@ TEST(Services, CheckReachabilityRoundTrip) {
 
 TEST(Services, PlanTransitionRoundTrip) {
   reach_trajopt::PlanTransition srv;
-  fillDefaults(srv.request);
+  fillReferenceStep(srv.request);
   srv.request.allow_relaxation = true;
   ASSERT_TRUE(ros::service::call("plan_transition", srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;

@@ -14,6 +14,7 @@
 #include "reach_trajopt/contact/contact_mode.h"
 #include "reach_trajopt/contact/contact_sequence.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -221,11 +222,7 @@ TEST(ContactConfig, ShippedYamlLoads) {
 
 // ---- eq. (5) on the shipped biped: J_phi and the drift against central differences ----------
 namespace {
-std::shared_ptr<const RobotModel> biped() {
-  static const auto model =
-      RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
-  return model;
-}
+std::shared_ptr<const RobotModel> biped() { return shippedBipedModel(REACH_TRAJOPT_SOURCE_DIR); }
 }  // namespace
 
 TEST(ContactConstraint, JacobianAndDriftMatchFiniteDifferences) {

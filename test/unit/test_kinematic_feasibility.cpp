@@ -11,6 +11,7 @@
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
 
@@ -18,11 +19,7 @@ namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::shared_ptr<const RobotModel> biped() {
-  static const auto model =
-      RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
-  return model;
-}
+std::shared_ptr<const RobotModel> biped() { return shippedBipedModel(REACH_TRAJOPT_SOURCE_DIR); }
 
 FlatContact contact(double x, double y, double z = 0.0, double yaw = 0.0) {
   FlatContact c;

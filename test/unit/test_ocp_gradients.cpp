@@ -20,18 +20,21 @@ using namespace reach_trajopt;
 
 namespace {
 
-std::shared_ptr<const RobotModel> biped() {
-  static const auto model =
-      RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
-  return model;
+std::shared_ptr<const RobotModel> biped() { return shippedBipedModel(REACH_TRAJOPT_SOURCE_DIR); }
+
+/// The reduced dynamics of `r`'s step: the left sole held at its pose, the right one moving
+/// to its target.
+StanceReducedDynamics stepDynamics(const TransitionRequest& r) {
+  const auto m = biped();
+  return StanceReducedDynamics(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
+                               r.targetPose(), 0.0);
 }
 
 /// SS-L, right sole stepping to (0.25, -0.1); x_0 from the IK stance with the right leg folded.
 TransitionRequest request() {
   const auto m = biped();
   TransitionRequest r = ocpStepCase(m, 0.25, 0.25, 0.2);
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
-                          r.targetPose(), 0.0);
+  StanceReducedDynamics d = stepDynamics(r);
   StanceReducedDynamics::Scratch s(d);
   const Eigen::VectorXd qa = r.q0.tail(m->nu());
   // A moving start: joint velocities, base velocity from the stance contact (J_s qd = 0).
@@ -73,8 +76,7 @@ double relativeError(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
 TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
   const auto m = biped();
   const TransitionRequest r = request();
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
-                          r.targetPose(), 0.0);
+  StanceReducedDynamics d = stepDynamics(r);
   StanceReducedDynamics::Scratch s(d);
   const int nu = m->nu(), nq = m->nq();
   Eigen::VectorXd input = Eigen::VectorXd::Zero(d.inputCount());
@@ -112,8 +114,7 @@ TEST(StanceReducedDynamics, HoldsStanceContactAndEquationOne) {
 TEST(StanceReducedDynamics, SignalJacobianMatchesCentralDifferences) {
   const auto m = biped();
   const TransitionRequest r = request();
-  StanceReducedDynamics d(m, m->frameId("l_sole"), r.heldPose(), m->frameId("r_sole"),
-                          r.targetPose(), 0.0);
+  StanceReducedDynamics d = stepDynamics(r);
   StanceReducedDynamics::Scratch s(d);
   const int nu = m->nu();
   Eigen::VectorXd input = Eigen::VectorXd::Zero(d.inputCount());

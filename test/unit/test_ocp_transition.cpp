@@ -50,11 +50,7 @@ TransitionOcpConfig caseConfig() {
   return c;
 }
 
-std::shared_ptr<const RobotModel> biped() {
-  static const auto model =
-      RobotModel::fromUrdfFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf");
-  return model;
-}
+std::shared_ptr<const RobotModel> biped() { return shippedBipedModel(REACH_TRAJOPT_SOURCE_DIR); }
 
 /// SS-L: left sole at (0, 0.1), right sole to (target_x, -0.1). x_0: the IK stance for a
 /// 0.25 m step with the right leg folded (swing sole about 0.1 m up, 0.2 m behind), at rest.

@@ -40,6 +40,15 @@ std::string configError(F f) {
   return test::thrownMessage<ConfigError>(f);
 }
 
+/// Reading `yaml` (named `file`) as Config's `section` throws a ConfigError containing `words`.
+template <typename Config>
+void expectSectionError(const std::string& yaml, const std::string& file,
+                        const std::string& section, const std::string& words) {
+  const std::string message =
+      configError([&] { Config::fromYaml(YamlSection::loadString(yaml, file).section(section)); });
+  EXPECT_NE(message.find(words), std::string::npos) << message;
+}
+
 /// A config struct as a component would write it (see config_fields.h).
 struct ToyConfig {
   double length = 0.5;  ///< [m]
@@ -147,30 +156,15 @@ TEST(ParameterTable, ValueTextReadsBackExactly) {
 }
 
 TEST(ParameterTable, UnknownAndBadKeysNameTheFileAndKey) {
-  const std::string unknown = configError([] {
-    WalkConfig::fromYaml(YamlSection::loadString("walk: {stpes: 3}", "w.yaml").section("walk"));
-  });
-  EXPECT_NE(unknown.find("w.yaml: walk.stpes: unknown key (known: policy steps"), std::string::npos)
-      << unknown;
-  const std::string policy = configError([] {
-    WalkConfig::fromYaml(YamlSection::loadString("walk: {policy: fast}", "w.yaml").section("walk"));
-  });
-  EXPECT_NE(policy.find("w.yaml: walk.policy: walking policy: unknown preset 'fast'"),
-            std::string::npos)
-      << policy;
-  const std::string side = configError([] {
-    WalkConfig::fromYaml(
-        YamlSection::loadString("walk: {first_swing: up}", "w.yaml").section("walk"));
-  });
-  EXPECT_NE(side.find("walk.first_swing: expected 'capture_point', 'left' or 'right', got 'up'"),
-            std::string::npos)
-      << side;
-  const std::string size = configError([] {
-    WalkConfig::fromYaml(
-        YamlSection::loadString("walk: {initial_com_velocity: [1]}", "w.yaml").section("walk"));
-  });
-  EXPECT_NE(size.find("walk.initial_com_velocity: expected 2 numbers, got 1"), std::string::npos)
-      << size;
+  expectSectionError<WalkConfig>("walk: {stpes: 3}", "w.yaml", "walk",
+                                 "w.yaml: walk.stpes: unknown key (known: policy steps");
+  expectSectionError<WalkConfig>("walk: {policy: fast}", "w.yaml", "walk",
+                                 "w.yaml: walk.policy: walking policy: unknown preset 'fast'");
+  expectSectionError<WalkConfig>(
+      "walk: {first_swing: up}", "w.yaml", "walk",
+      "walk.first_swing: expected 'capture_point', 'left' or 'right', got 'up'");
+  expectSectionError<WalkConfig>("walk: {initial_com_velocity: [1]}", "w.yaml", "walk",
+                                 "walk.initial_com_velocity: expected 2 numbers, got 1");
   // Values read by name and through the table.
   const WalkConfig w = WalkConfig::fromYaml(
       YamlSection::loadString("walk: {policy: proposed, first_swing: left, seed: 7}", "w.yaml")
@@ -182,23 +176,14 @@ TEST(ParameterTable, UnknownAndBadKeysNameTheFileAndKey) {
 
 TEST(ParameterTable, RobotFactsLiveInOnePlace) {
   // The sole frames are the contact section's; an old sim.yaml that names them is an error.
-  const std::string frames = configError([] {
-    SimConfig::fromYaml(
-        YamlSection::loadString("sim: {left_sole_frame: l_sole}", "old_sim.yaml").section("sim"));
-  });
-  EXPECT_NE(frames.find("old_sim.yaml: sim.left_sole_frame: removed: the sole frames are "
-                        "contact.left_sole_frame"),
-            std::string::npos)
-      << frames;
+  expectSectionError<SimConfig>("sim: {left_sole_frame: l_sole}", "old_sim.yaml", "sim",
+                                "old_sim.yaml: sim.left_sole_frame: removed: the sole frames are "
+                                "contact.left_sole_frame");
   // The relaxed OCP's landing height is the IK's pelvis height.
-  const std::string pelvis = configError([] {
-    TransitionOcpConfig::fromYaml(
-        YamlSection::loadString("ocp: {terminal_pelvis_height: 1.0}", "o.yaml").section("ocp"));
-  });
-  EXPECT_NE(pelvis.find("ocp.terminal_pelvis_height: removed: the relaxed landing height is "
-                        "kinematic_feasibility.pelvis_height"),
-            std::string::npos)
-      << pelvis;
+  expectSectionError<TransitionOcpConfig>(
+      "ocp: {terminal_pelvis_height: 1.0}", "o.yaml", "ocp",
+      "ocp.terminal_pelvis_height: removed: the relaxed landing height is "
+      "kinematic_feasibility.pelvis_height");
   const FootstepPlannerConfig shipped =
       FootstepPlannerConfig::fromYaml(YamlSection::loadFile(kRepo + "/config/biped.yaml"));
   EXPECT_EQ(shipped.ocp.terminal_pelvis_height, shipped.kinematics.pelvis_height);

@@ -30,22 +30,14 @@ constexpr double kForce = 10.0;  // [N]
 constexpr double kA = kForce / kMass;
 constexpr double kDt = 1e-3;
 
-const char* kUrdf = R"(<robot name="double_integrator">
-  <link name="world"/>
-  <link name="slider">
-    <inertial><origin xyz="0 0 0"/><mass value="2.0"/>
-      <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
-  <joint name="x" type="prismatic">
-    <parent link="world"/><child link="slider"/><axis xyz="1 0 0"/>
-    <limit lower="-50" upper="50" effort="10" velocity="50"/>
-  </joint>
-</robot>)";
+/// A 2 kg slider on a prismatic joint, |u| <= 10 N (shared with test/oracle/test_reach_check.py).
+const std::string kUrdf =
+    std::string(REACH_TRAJOPT_SOURCE_DIR) + "/test/fixtures/double_integrator.urdf";
 
 std::shared_ptr<const RobotModel> slider() {
   ModelOptions o;
   o.base = ModelOptions::Base::kFixed;
-  static const auto m = RobotModel::fromUrdfString(kUrdf, o, "double_integrator");
+  static const auto m = RobotModel::fromUrdfFile(kUrdf, o);
   return m;
 }
 

@@ -37,6 +37,20 @@ Eigen::VectorXd randomState(const RobotModel& model, std::mt19937& rng, bool vel
   return x;
 }
 
+/// Runs `check(q, qd)` for `trials` random states (q then qd drawn by randomState from a
+/// generator seeded `seed`), each after model.update(ws, q, qd).
+template <typename Check>
+void forRandomStates(const RobotModel& model, Workspace& ws, unsigned seed, int trials,
+                     Check&& check) {
+  std::mt19937 rng(seed);
+  for (int trial = 0; trial < trials; ++trial) {
+    const Eigen::VectorXd q = randomState(model, rng, false);
+    const Eigen::VectorXd qd = randomState(model, rng, true);
+    model.update(ws, q, qd);
+    check(q, qd);
+  }
+}
+
 /// Log map of a rotation as a 3-vector (small angles), for finite differences of orientation.
 Eigen::Vector3d rotationDelta(const Eigen::Matrix3d& R1, const Eigen::Matrix3d& R0) {
   const Eigen::AngleAxisd aa(R1 * R0.transpose());
@@ -141,12 +155,8 @@ TEST(RobotModel, ClearErrors) {
 TEST(RobotModel, MassMatrixAndBiasMatchInverseDynamics) {
   const auto model = RobotModel::fromUrdfFile(kUrdf);
   Workspace ws(*model);
-  std::mt19937 rng(7);
   const int n = model->nq();
-  for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::VectorXd q = randomState(*model, rng, false);
-    const Eigen::VectorXd qd = randomState(*model, rng, true);
-    model->update(ws, q, qd);
+  forRandomStates(*model, ws, 7, 20, [&](const Eigen::VectorXd&, const Eigen::VectorXd&) {
     Eigen::MatrixXd M(n, n);
     Eigen::VectorXd b(n), tau(n), tau0(n);
     model->massMatrix(ws, M);
@@ -160,7 +170,7 @@ TEST(RobotModel, MassMatrixAndBiasMatchInverseDynamics) {
     EXPECT_LT((M - M.transpose()).norm(), 1e-12 * M.norm());
     Eigen::LLT<Eigen::MatrixXd> llt(M);
     EXPECT_EQ(llt.info(), Eigen::Success) << "M not positive definite";
-  }
+  });
 }
 
 TEST(RobotModel, VelocityOnlyUpdateGivesTheBitsOfAFullUpdate) {
@@ -274,12 +284,8 @@ TEST(RobotModel, SimplePendulumIsExact) {
 TEST(RobotModel, CoMJdotQdMatchesFiniteDifferences) {
   const auto model = RobotModel::fromUrdfFile(kUrdf);
   Workspace ws(*model);
-  std::mt19937 rng(5);
   const int n = model->nq();
-  for (int trial = 0; trial < 10; ++trial) {
-    const Eigen::VectorXd q = randomState(*model, rng, false);
-    const Eigen::VectorXd qd = randomState(*model, rng, true);
-    model->update(ws, q, qd);
+  forRandomStates(*model, ws, 5, 10, [&](const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
     const Eigen::Vector3d drift = model->centerOfMassJdotQd(ws);
     Eigen::Matrix3Xd Jp(3, n), Jm(3, n);
     const double h = 1e-6;
@@ -289,5 +295,5 @@ TEST(RobotModel, CoMJdotQdMatchesFiniteDifferences) {
     model->centerOfMassJacobian(ws, Jm);
     const Eigen::Vector3d fd = (Jp - Jm) * qd / (2 * h);
     EXPECT_LT((drift - fd).norm(), 1e-5 * (1 + fd.norm()));
-  }
+  });
 }

@@ -59,6 +59,22 @@ TransitionResult makeTrajectory(const RobotModel& model, int knots) {
   return t;
 }
 
+/// What toProposedStepMsgs reads of a step whose `swing` sole moves: the biped, the default
+/// contact section, the step's record and its FootstepTransition (to be filled by the test).
+struct ProposedStepInputs {
+  std::shared_ptr<const RobotModel> model;
+  ContactConfig contact;
+  StepRecord record;
+  FootstepTransition step;
+};
+
+ProposedStepInputs proposedStepInputs(Side swing) {
+  ProposedStepInputs in;
+  in.model = RobotModel::fromUrdfFile(kUrdf);
+  in.record.swing = swing;
+  return in;
+}
+
 }  // namespace
 
 TEST(RosProposedStepMsgs, CheckedFootholdIsTheTvrFootholdOnTheGround) {
@@ -69,11 +85,7 @@ TEST(RosProposedStepMsgs, CheckedFootholdIsTheTvrFootholdOnTheGround) {
 }
 
 TEST(RosProposedStepMsgs, ReachableStepGivesSetsMarkersAndTrajectory) {
-  const auto model = RobotModel::fromUrdfFile(kUrdf);
-  ContactConfig contact;
-  StepRecord record;
-  record.swing = Side::kLeft;
-  FootstepTransition step;
+  auto [model, contact, record, step] = proposedStepInputs(Side::kLeft);
   step.check.kinematically_feasible = true;
   step.check.reachable = true;
   step.check.reach = makeReach(4);
@@ -124,11 +136,7 @@ TEST(RosProposedStepMsgs, ReachableStepGivesSetsMarkersAndTrajectory) {
 }
 
 TEST(RosProposedStepMsgs, KinematicallyInfeasibleStepIsUnreachableWithoutSets) {
-  const auto model = RobotModel::fromUrdfFile(kUrdf);
-  ContactConfig contact;
-  StepRecord record;
-  record.swing = Side::kRight;
-  FootstepTransition step;
+  auto [model, contact, record, step] = proposedStepInputs(Side::kRight);
   step.verdict = StepVerdict::kKinematicallyInfeasible;
   step.check.kinematically_feasible = false;
   step.check.kinematics.reason = "knee at its limit";

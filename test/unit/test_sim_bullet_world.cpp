@@ -66,6 +66,23 @@ SimConfig defaultConfig(const Eigen::Vector3d& gravity = Eigen::Vector3d(0, 0, -
   return c;
 }
 
+/// The biped at rest at standingPosture() (q0) in a world with gravity `g` [m/s^2], the model
+/// with the same gravity.
+struct StandingRobot {
+  std::shared_ptr<const RobotModel> model;
+  std::unique_ptr<BulletWorld> world;
+  Eigen::VectorXd q0;
+};
+
+StandingRobot standingRobot(const Eigen::Vector3d& g = Eigen::Vector3d(0, 0, -9.81)) {
+  StandingRobot r;
+  r.model = loadModel(g);
+  r.world = BulletWorld::fromUrdfFile(kUrdf, *r.model, defaultConfig(g));
+  r.q0 = standingPosture(*r.model);
+  r.world->reset(r.q0, Eigen::VectorXd::Zero(r.model->nq()));
+  return r;
+}
+
 }  // namespace
 
 TEST(SimBodyTree, MergesFixedLinksAndKeepsTheMass) {
@@ -246,12 +263,8 @@ TEST(SimBulletWorld, DeterministicBitForBit) {
 }
 
 TEST(SimBulletWorld, StandingUnderPdCarriesTheWeight) {
-  const Eigen::Vector3d g(0, 0, -9.81);
-  const auto model = loadModel(g);
-  auto world = BulletWorld::fromUrdfFile(kUrdf, *model, defaultConfig(g));
+  auto [model, world, q0] = standingRobot();
   const JointPd pd;
-  const Eigen::VectorXd q0 = standingPosture(*model);
-  world->reset(q0, Eigen::VectorXd::Zero(model->nq()));
   const double weight = model->totalMass() * 9.81;
   Vector6d mean = Vector6d::Zero();
   const int n_steps = 3000, n_avg = 200;
@@ -295,11 +308,8 @@ TEST(SimBulletWorld, TiltedGravityFrictionAndMomentsBalance) {
   // cm behind the sole centres, so a larger backward tilt tips it over): static friction must
   // hold the robot, so the sole forces equal -m g and their moments about the CoM cancel.
   const Eigen::Vector3d g(0.4, 0.3, -9.80);
-  const auto model = loadModel(g);
-  auto world = BulletWorld::fromUrdfFile(kUrdf, *model, defaultConfig(g));
+  auto [model, world, q0] = standingRobot(g);
   const JointPd pd;
-  const Eigen::VectorXd q0 = standingPosture(*model);
-  world->reset(q0, Eigen::VectorXd::Zero(model->nq()));
   const int n_steps = 3000, n_avg = 200;
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
   Workspace ws(*model);
@@ -343,10 +353,7 @@ TEST(SimBulletWorld, LimpRobotFallsOntoPelvisOrTorso) {
 }
 
 TEST(SimBulletWorld, ContactsAndGravitySwitches) {
-  const auto model = loadModel(Eigen::Vector3d(0, 0, -9.81));
-  auto world = BulletWorld::fromUrdfFile(kUrdf, *model, defaultConfig());
-  const Eigen::VectorXd q0 = standingPosture(*model);
-  world->reset(q0, Eigen::VectorXd::Zero(model->nq()));
+  auto [model, world, q0] = standingRobot();
   world->setContactsEnabled(false);
   for (int k = 0; k < 100; ++k) world->step(Eigen::VectorXd::Zero(model->nu()));
   // 0.1 s of free fall through the missing ground: z drops by g t^2 / 2 (no contact at all).
@@ -383,11 +390,8 @@ TEST(SimBulletWorld, RejectsBadInput) {
 
 TEST(SimBulletWorld, RealTimeFactorOfStandingTenSeconds) {
   // Reported, not asserted (speed belongs in benchmarks).
-  const auto model = loadModel(Eigen::Vector3d(0, 0, -9.81));
-  auto world = BulletWorld::fromUrdfFile(kUrdf, *model, defaultConfig());
+  auto [model, world, q0] = standingRobot();
   const JointPd pd;
-  const Eigen::VectorXd q0 = standingPosture(*model);
-  world->reset(q0, Eigen::VectorXd::Zero(model->nq()));
   const int n_steps = static_cast<int>(std::lround(10.0 / world->timeStep()));
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < n_steps; ++k) world->step(pd.torque(*model, q0, world->q(), world->qd()));

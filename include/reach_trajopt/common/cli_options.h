@@ -88,6 +88,10 @@ class CliTool {
   /// `body` and returns its exit status; an exception (a bad option or input) is printed as
   /// "<tool>: <what>" on stderr and gives 2.
   int run(int argc, char** argv, const std::function<int(const CliArgs&)>& body) const;
+  /// The same with the exception reported by `reportError` (e.g. as a JSON answer on stdout)
+  /// instead of on stderr; still exit status 2.
+  int run(int argc, char** argv, const std::function<int(const CliArgs&)>& body,
+          const std::function<void(const std::exception&)>& reportError) const;
   const std::string& name() const { return name_; }
   const std::vector<CliOption>& options() const { return options_; }
 

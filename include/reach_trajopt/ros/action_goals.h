@@ -8,15 +8,35 @@
 #include <cstdint>
 #include <string>
 
+#include "reach_trajopt/CheckReachability.h"
+#include "reach_trajopt/CheckReachabilityGoal.h"
+#include "reach_trajopt/PlanTransition.h"
+#include "reach_trajopt/PlanTransitionGoal.h"
 #include "reach_trajopt/reach/reach_progress.h"
 
 namespace reach_trajopt {
 namespace ros_bridge {
 
-/// The service request of an action goal: the fields both actions share with their service
-/// (header, contact_mode, q, qd, foothold, swing_duration); the caller copies the rest.
+/// The options only a check_reachability_action goal has, copied into its service request.
+inline void copyGoalOptions(const reach_trajopt::CheckReachabilityGoal& goal,
+                            reach_trajopt::CheckReachability::Request& req) {
+  req.forward_samples = goal.forward_samples;
+  req.backward_samples = goal.backward_samples;
+  req.seed = goal.seed;
+  req.return_samples = goal.return_samples;
+}
+
+/// The options only a plan_transition_action goal has, copied into its service request.
+inline void copyGoalOptions(const reach_trajopt::PlanTransitionGoal& goal,
+                            reach_trajopt::PlanTransition::Request& req) {
+  req.check_reachability = goal.check_reachability;
+  req.allow_relaxation = goal.allow_relaxation;
+}
+
+/// The service request an action goal asks (every field): those both actions share with their
+/// service (header, contact_mode, q, qd, foothold, swing_duration), then copyGoalOptions.
 template <class Request, class Goal>
-Request footholdRequestOf(const Goal& goal) {
+Request serviceRequestOf(const Goal& goal) {
   Request req;
   req.header = goal.header;
   req.contact_mode = goal.contact_mode;
@@ -24,6 +44,7 @@ Request footholdRequestOf(const Goal& goal) {
   req.qd = goal.qd;
   req.foothold = goal.foothold;
   req.swing_duration = goal.swing_duration;
+  copyGoalOptions(goal, req);
   return req;
 }
 
@@ -49,6 +70,22 @@ void finishGoal(Server& server, const Result& result, bool cancelled, bool succe
     server.setSucceeded(result, message);
   else
     server.setAborted(result, message);
+}
+
+/// @brief Answers the current goal of `server` as its service would: `answer(response)` fills a
+/// service Response (reading `cancelled`, which the goal's progress callback sets); the
+/// action's Result takes its success and message, and `copyRest(response, result)` copies
+/// the rest; then finishGoal.
+template <class Response, class Result, class Server, class Answer, class CopyRest>
+void finishGoalWithAnswer(Server& server, const bool& cancelled, Answer&& answer,
+                          CopyRest&& copyRest) {
+  Response res;
+  answer(res);
+  Result result;
+  result.success = res.success;
+  result.message = res.message;
+  copyRest(res, result);
+  finishGoal(server, result, cancelled, res.success, res.message);
 }
 
 }  // namespace ros_bridge

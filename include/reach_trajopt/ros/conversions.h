@@ -33,6 +33,9 @@ namespace ros_bridge {
 
 /// The world frame of every message of this package (REP 105 "world", z up).
 inline constexpr char kWorldFrame[] = "world";
+/// Throws RequestError "<field>unknown frame '<frame_id>': positions must be in 'world'" unless
+/// `frame_id` (a request's header.frame_id) is empty or kWorldFrame.
+void requireWorldFrame(const std::string& frame_id, const std::string& field = "");
 
 // ---- Geometry -------------------------------------------------------------------------------
 geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p);

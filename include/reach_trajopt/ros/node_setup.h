@@ -87,6 +87,16 @@ bool answerOrReject(const char* service, Body&& body, Reject&& reject) {
   return true;
 }
 
+/// The answer to a rejected request: success = false, `reason` as the message, every other
+/// field its message default (a reject of answerOrReject starts from it).
+template <typename Response>
+Response rejectedResponse(const std::string& reason) {
+  Response res;
+  res.success = false;
+  res.message = reason;
+  return res;
+}
+
 /// @brief The main() of a service node: ros::init as `name`, `Node node(nh, pnh)` with the
 /// public and private node handles, ros::spin(). An error while building the node is logged
 /// (ROS_FATAL) and gives exit status 2.

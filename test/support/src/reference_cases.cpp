@@ -22,6 +22,11 @@ ShippedBiped::ShippedBiped(const std::string& repo) {
   model = RobotModel::fromUrdfFile(repo + "/urdf/biped.urdf");
 }
 
+std::shared_ptr<const RobotModel> shippedBipedModel(const std::string& repo) {
+  static const auto model = RobotModel::fromUrdfFile(repo + "/urdf/biped.urdf");
+  return model;
+}
+
 std::unique_ptr<FootstepTransitionPlanner> ShippedBiped::makePlanner() const {
   return std::make_unique<FootstepTransitionPlanner>(model, contact, config);
 }

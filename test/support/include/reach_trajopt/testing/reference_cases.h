@@ -24,6 +24,10 @@ struct ShippedBiped {
   std::unique_ptr<FootstepTransitionPlanner> makePlanner() const;
 };
 
+/// urdf/biped.urdf below the repository root `repo`, loaded once per process (by the first
+/// call; the tests' shared read-only model).
+std::shared_ptr<const RobotModel> shippedBipedModel(const std::string& repo);
+
 /// The footstep requests of a JSON-lines file (`walk_experiment --plan-requests`, e.g.
 /// test/fixtures/pushed_walk_requests.jsonl) for a model with `nq` coordinates, their
 /// reach_horizon over `reach`. \throws RequestError naming the file on a bad line.
