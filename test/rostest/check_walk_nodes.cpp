@@ -204,7 +204,9 @@ TEST(WalkNodes, NodeWiredWalkEqualsInProcessWalk) {
     }
     // The checks were answered by reachability_node, the proposals by tvr_planner_node.
     std::lock_guard<std::mutex> lock(g_mutex);
-    EXPECT_EQ(g_footsteps_checked.value, checked) << "checks answered by reachability_node";
+    // At least one per checked step; more where a ring point stood in for the target
+    // (on_fail=nearest_reachable checks candidates).
+    EXPECT_GE(g_footsteps_checked.value, checked) << "checks answered by reachability_node";
     EXPECT_EQ(publishersOf("/footsteps_checked"), std::vector<std::string>{"/reachability_node"});
     EXPECT_GE(g_footsteps_proposed.value, in_process.records.size())
         << "proposals answered by tvr_planner_node";
