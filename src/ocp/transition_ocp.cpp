@@ -471,7 +471,8 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
     if (remaining <= reserve_s) {
       res.status = OcpStatus::kFailed;
-      res.reason = "time limit of " + std::to_string(config_.time_limit) + " s reached";
+      res.reason = "time limit reached (the earlier of the caller's deadline and time_limit, " +
+                   std::to_string(config_.time_limit) + " s)";
       if (res.time.size() == 0) nlp.sampleSolution(x, config_.output_dt, res);
       break;
     }

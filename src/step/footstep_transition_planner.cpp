@@ -107,12 +107,14 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   std::optional<FootstepTransition> nearest_feasible;  // the first feasible candidate's plan
   int checked = 0;
   const NearestFootholdConfig& rings = nearest_.config();
-  for (int ring = 1; ring <= rings.rings && checked < rings.max_checked; ++ring) {
+  for (int ring = 1; ring <= rings.rings && checked < rings.max_checked && !r.pastDeadline();
+       ++ring) {
     batch.candidates = nearest_.ringCandidates(r.target, ring);
     const std::vector<CandidateOutcome> outcomes =
         candidate_check_ ? candidate_check_(batch)
                          : checkFootholdCandidates(*kinematics_, batch, false);
-    for (std::size_t i = 0; i < outcomes.size() && checked < rings.max_checked; ++i) {
+    for (std::size_t i = 0; i < outcomes.size() && checked < rings.max_checked && !r.pastDeadline();
+         ++i) {
       if (!outcomes[i].error.empty() || !outcomes[i].kinematics.feasible) continue;
       FootstepPlanRequest candidate = at;
       candidate.target = batch.candidates[i];
@@ -147,7 +149,8 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
       kept.foothold_source = FootholdSource::kNearestFeasible;
   }
   kept.reason = "no reachable foothold among the " + std::to_string(checked) +
-                " nearest feasible candidates checked: " + kept.reason;
+                " nearest feasible candidates checked" +
+                (r.pastDeadline() ? " (deadline reached)" : "") + ": " + kept.reason;
   return kept;
 }
 
@@ -182,11 +185,22 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
                keep_slices ? &quick_slices : nullptr);
   if (!quick.kinematically_feasible || (quick.reachable && hasStrictTrajectory(r, quick)))
     return quick;
+  if (r.pastDeadline()) {
+    quick.reason = "deadline reached after the quick pass: " + quick.reason;
+    return quick;
+  }
   PassTotals totals{1, quick.check_time_s, quick.ocp_time_s};
   for (std::size_t i = 1; i + 1 < schedule.passes.size(); ++i) {
     std::optional<FootstepTransition> retried = retryQuickOcp(
         r, reach, schedule.passes[i], first.check, quick, quick_slices, progress, totals);
     if (retried) return std::move(*retried);
+    if (r.pastDeadline()) {
+      quick.check_passes = totals.passes;
+      quick.check_time_s = totals.check_time_s;
+      quick.ocp_time_s = totals.ocp_time_s;
+      quick.reason = "deadline reached before the full pass: " + quick.reason;
+      return quick;
+    }
   }
   ++totals.passes;
   if (progress.pass) progress.pass(totals.passes);
@@ -455,7 +469,8 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
   }
   seedFromWitness(check.reach, ocp);
   const auto ocp_start = std::chrono::steady_clock::now();
-  out.trajectory = ocp_.solve(ocp, progress);
+  out.trajectory =
+      ocp_.solve(ocp, progress, r.deadline.value_or(std::chrono::steady_clock::time_point::max()));
   out.ocp_time_s = secondsSince(ocp_start);
   // Without a usable trajectory the swing still goes to the nearest kinematically feasible
   // foothold (the target itself when it is feasible).

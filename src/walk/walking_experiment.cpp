@@ -636,7 +636,14 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
   checked_ = true;
   try {
     const auto wall_start = std::chrono::steady_clock::now();
-    const FootstepPlanRequest request = footstepRequest(ts);
+    FootstepPlanRequest request = footstepRequest(ts);
+    // Paying for the plan's wall time, the planner knows its deadline: the nominal touchdown,
+    // as far away in wall time as it is in sim time (a later plan would be dropped).
+    if (wc_.plan_latency == WalkConfig::PlanLatency::kMeasured)
+      request.deadline =
+          wall_start +
+          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+              std::chrono::duration<double>(std::max(0.0, phase_start_ + swing_duration_ - t)));
     const FootstepTransition step =
         impl_.plan_footstep ? impl_.plan_footstep(request) : impl_.footsteps->plan(request);
     const double wall_s =

@@ -8,6 +8,7 @@
 // alone; when none of the candidates is certified the answer says so and carries no certificate.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -157,4 +158,28 @@ TEST(NearestReachable, WithoutAReachabilityCheckItIsTheKinematicSearch) {
   EXPECT_EQ(step.verdict, StepVerdict::kKinematicallyInfeasible);
   EXPECT_EQ(step.foothold_source, FootholdSource::kNearestFeasible);
   EXPECT_EQ(step.certificate, Certificate::kNone);
+}
+
+TEST(NearestReachable, APastDeadlineEndsThePlanAfterItsFirstPass) {
+  // The walk's step 1 (its target through the stance sole) with the deadline already past: the
+  // target's quick pass runs whole, no candidate is checked and the OCP stops at once.
+  FootstepPlanRequest r = walkRequests()[0];
+  r.deadline = std::chrono::steady_clock::now();
+  const FootstepTransition step = planNearestReachable(r);
+  std::cout << step.reason << "\n";
+  EXPECT_EQ(step.candidates_checked, 0);
+  EXPECT_EQ(step.check_passes, 1);
+  EXPECT_NE(step.foothold_source, FootholdSource::kNearestReachable);
+  EXPECT_EQ(step.certificate, Certificate::kNone);
+  EXPECT_NE(step.reason.find("deadline reached"), std::string::npos) << step.reason;
+  // A kinematically feasible target (step 5) keeps what its quick pass showed; its OCP, stopped
+  // at the deadline, gives no trajectory that was not re-checked.
+  FootstepPlanRequest feasible = walkRequests()[2];
+  feasible.deadline = std::chrono::steady_clock::now();
+  const FootstepTransition s5 = planNearestReachable(feasible);
+  std::cout << s5.reason << "\n";
+  EXPECT_EQ(s5.check_passes, 1);
+  EXPECT_NE(s5.trajectory.status, OcpStatus::kConverged);
+  if (s5.certificate == Certificate::kLocalSolve)
+    ADD_FAILURE() << "a local solve past its deadline";
 }

@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -114,6 +115,14 @@ struct FootstepPlanRequest : ContactTransition {
   std::optional<ReachConfig> reach;
   OcpPolicy ocp_policy = OcpPolicy::kByVerdict;
   InfeasibleFootholdPolicy on_infeasible = InfeasibleFootholdPolicy::kNearestFeasible;
+  /// Wall-clock time by which plan() should answer (e.g. the step's: the plan is needed before
+  /// the foot lands); none: no limit. The passes after the first and kNearestReachable's
+  /// candidates start only before it, and the OCP stops there (TransitionOcp's anytime solve:
+  /// its best feasible iterate, or failed). A check already running is not cut short: it
+  /// certifies or not as without a deadline. Not carried by the messages.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  /// The deadline has passed.
+  bool pastDeadline() const { return deadline && std::chrono::steady_clock::now() >= *deadline; }
 };
 
 /// What one footstep decided.
