@@ -17,6 +17,7 @@
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/testing/reference_cases.h"
+#include "reach_trajopt/testing/transition_recheck.h"
 
 using namespace reach_trajopt;
 
@@ -24,19 +25,10 @@ namespace {
 
 const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
 
-struct Pipeline : ShippedBiped {
-  Pipeline() : ShippedBiped(kRepo) {}
-  std::unique_ptr<FootstepTransitionPlanner> planner = makePlanner();
-};
-
-const Pipeline& pipeline() {
-  static const Pipeline p;
-  return p;
-}
+const ShippedPipeline& pipeline() { return shippedPipeline(kRepo); }
 
 std::vector<FootstepPlanRequest> requestsOf(const std::string& fixture) {
-  const Pipeline& p = pipeline();
-  return readPlanRequests(kRepo + "/test/fixtures/" + fixture, p.model->nq(), p.config.reach);
+  return pipeline().requests(fixture);
 }
 
 std::vector<FootstepPlanRequest> walkRequests() { return requestsOf("pushed_walk_requests.jsonl"); }
@@ -84,38 +76,6 @@ WitnessRecheck recheck(const FootstepTransition& step) {
   }
   r.end_q = (w.q.col(w.q.cols() - 1) - step.check.kinematics.q_f).cwiseAbs().maxCoeff();
   r.end_qd = (w.qd.col(w.qd.cols() - 1) - step.check.qdf).cwiseAbs().maxCoeff();
-  return r;
-}
-
-/// Largest |M qdd + b - S^T u - J_l^T lambda_l - J_r^T lambda_r| [N, Nm] along an OCP
-/// trajectory (1 ms samples), its stance sole's largest displacement [m] and |q(t_f) - q_f|.
-WitnessRecheck recheckTrajectory(const FootstepTransition& step) {
-  const Pipeline& p = pipeline();
-  const RobotModel& m = *p.model;
-  const TransitionResult& t = step.trajectory;
-  const FrameId left = m.frameId(p.contact.left_sole_frame);
-  const FrameId right = m.frameId(p.contact.right_sole_frame);
-  const FrameId stance = step.transition.stance == Side::kLeft ? left : right;
-  Workspace ws(m);
-  Eigen::MatrixXd M(m.nq(), m.nq()), J_left(6, m.nq()), J_right(6, m.nq());
-  Eigen::VectorXd b(m.nq());
-  WitnessRecheck r;
-  for (int k = 0; k < t.q.cols(); ++k) {
-    m.update(ws, t.q.col(k), t.qd.col(k));
-    r.sole = std::max(
-        r.sole,
-        (m.framePose(ws, stance).translation() - step.transition.stance_contact.position).norm());
-    m.massMatrix(ws, M);
-    m.bias(ws, b);
-    m.frameJacobian(ws, left, J_left);
-    m.frameJacobian(ws, right, J_right);
-    Eigen::VectorXd res = M * t.qdd.col(k) + b - J_left.transpose() * t.lambda.col(k).head<6>() -
-                          J_right.transpose() * t.lambda.col(k).tail<6>();
-    res.tail(m.nu()) -= t.u.col(k);
-    r.dynamics = std::max(r.dynamics, res.cwiseAbs().maxCoeff());
-  }
-  r.end_q = (t.q.col(t.q.cols() - 1) - step.check.kinematics.q_f).cwiseAbs().maxCoeff();
-  r.end_qd = (t.qd.col(t.qd.cols() - 1) - step.check.qdf).cwiseAbs().maxCoeff();
   return r;
 }
 
@@ -204,7 +164,7 @@ TEST(FootstepVerdict, BenchCaseSoleCannotStopInTime) {
   // bench/reach's case: the right sole 3 cm short of its target and 2 cm up at 0.75 m/s,
   // 80 ms before touchdown with x_f at rest. Neither the bridge nor the strict OCP finds a
   // path (the OCP converged on none of an 11 x 11 grid around it): not shown reachable.
-  const Pipeline& p = pipeline();
+  const ShippedPipeline& p = pipeline();
   const FootstepPlanRequest r = benchSwingCase(p.model, p.config, p.contact);
   const FootstepTransition step = planStrict(r);
   std::cout << step.reason << "\n";
@@ -219,7 +179,7 @@ TEST(FootstepVerdict, QuickPassKeepsTheFullBudgetsVerdictWhereItCertifiesNothing
   // planned again with the full budget, and that pass is the planner without the quick pass:
   // the same verdict, witness attempt and OCP outcome. Where the quick pass certifies (the
   // walk's step 5), its certificate passes the same re-check as the full budget's.
-  const Pipeline& p = pipeline();
+  const ShippedPipeline& p = pipeline();
   auto withQuickPass = [&](FootstepPlanRequest r, bool quick) {
     ReachConfig c = r.reach ? *r.reach : p.config.reach;
     c.quick_pass = quick;
@@ -319,11 +279,11 @@ TEST(FootstepVerdict, WideHullRetrySolvesTheQuickPassesOcpInItsGrownHulls) {
     // No sample drawn after the quick pass: its check, its time.
     EXPECT_EQ(step.check.reach.counts.forward_qps, quick.check.reach.counts.forward_qps);
     EXPECT_EQ(step.check.reach.witness.valid, quick.check.reach.witness.valid);
-    const WitnessRecheck r = recheckTrajectory(step);
-    std::cout << "trajectory: eq. (1) " << r.dynamics << " N, stance sole " << r.sole
+    const TransitionRecheck r = recheckTransition(*pipeline().model, pipeline().contact, step);
+    std::cout << "trajectory: eq. (1) " << r.dynamics << " N, stance sole " << r.held_sole
               << " m, x(t_f) - x_f " << r.end_q << " / " << r.end_qd << "\n";
     EXPECT_LE(r.dynamics, 1e-3);
-    EXPECT_LE(r.sole, 1e-3);
+    EXPECT_LE(r.held_sole, 1e-3);
     EXPECT_LE(r.end_q, 1e-3);
     EXPECT_LE(r.end_qd, 1e-2);
   }

@@ -15,6 +15,7 @@
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/testing/reference_cases.h"
+#include "reach_trajopt/testing/transition_recheck.h"
 
 using namespace reach_trajopt;
 
@@ -22,66 +23,16 @@ namespace {
 
 const std::string kRepo = REACH_TRAJOPT_SOURCE_DIR;
 
-struct Pipeline : ShippedBiped {
-  Pipeline() : ShippedBiped(kRepo) {}
-  std::unique_ptr<FootstepTransitionPlanner> planner = makePlanner();
-};
-
-const Pipeline& pipeline() {
-  static const Pipeline p;
-  return p;
-}
+const ShippedPipeline& pipeline() { return shippedPipeline(kRepo); }
 
 std::vector<FootstepPlanRequest> walkRequests() {
-  const Pipeline& p = pipeline();
-  return readPlanRequests(kRepo + "/test/fixtures/pushed_walk_requests.jsonl", p.model->nq(),
-                          p.config.reach);
+  return pipeline().requests("pushed_walk_requests.jsonl");
 }
 
 FootstepTransition planNearestReachable(FootstepPlanRequest r) {
   r.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
   r.ocp_policy = OcpPolicy::kByVerdict;
   return pipeline().planner->plan(r);
-}
-
-/// Largest residual of eq. (1) with both soles' wrenches [N, Nm] along the trajectory (1 ms
-/// samples), the held sole's largest displacement [m], |q(t_f) - q_f| and the swing sole's
-/// distance at t_f from the foothold the step reports [m].
-struct TrajectoryRecheck {
-  double dynamics = 0.0, held_sole = 0.0, end_q = 0.0, landing = 0.0;
-};
-
-TrajectoryRecheck recheck(const FootstepTransition& step) {
-  const Pipeline& p = pipeline();
-  const RobotModel& m = *p.model;
-  const TransitionResult& t = step.trajectory;
-  const FrameId left = m.frameId(p.contact.left_sole_frame);
-  const FrameId right = m.frameId(p.contact.right_sole_frame);
-  const Side stance_side = step.transition.stance;
-  const FrameId stance = stance_side == Side::kLeft ? left : right;
-  const FrameId swing = stance_side == Side::kLeft ? right : left;
-  Workspace ws(m);
-  Eigen::MatrixXd M(m.nq(), m.nq()), J_left(6, m.nq()), J_right(6, m.nq());
-  Eigen::VectorXd b(m.nq());
-  TrajectoryRecheck r;
-  for (int k = 0; k < t.q.cols(); ++k) {
-    m.update(ws, t.q.col(k), t.qd.col(k));
-    r.held_sole = std::max(
-        r.held_sole,
-        (m.framePose(ws, stance).translation() - step.transition.stance_contact.position).norm());
-    m.massMatrix(ws, M);
-    m.bias(ws, b);
-    m.frameJacobian(ws, left, J_left);
-    m.frameJacobian(ws, right, J_right);
-    Eigen::VectorXd res = M * t.qdd.col(k) + b - J_left.transpose() * t.lambda.col(k).head<6>() -
-                          J_right.transpose() * t.lambda.col(k).tail<6>();
-    res.tail(m.nu()) -= t.u.col(k);
-    r.dynamics = std::max(r.dynamics, res.cwiseAbs().maxCoeff());
-    if (k + 1 == t.q.cols())
-      r.landing = (m.framePose(ws, swing).translation() - step.foothold).head<2>().norm();
-  }
-  r.end_q = (t.q.col(t.q.cols() - 1) - step.check.kinematics.q_f).cwiseAbs().maxCoeff();
-  return r;
 }
 
 }  // namespace
@@ -96,7 +47,7 @@ TEST(NearestReachable, ACertifiedTargetIsKept) {
 }
 
 TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
-  const Pipeline& p = pipeline();
+  const ShippedPipeline& p = pipeline();
   const FootstepPlanRequest r = walkRequests()[0];  // step 1: TVR's step through the stance sole
   const FootstepTransition step = planNearestReachable(r);
   std::cout << step.reason << "\n";
@@ -110,7 +61,7 @@ TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
   ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
   EXPECT_FALSE(step.trajectory.relaxed);
   // The trajectory, re-checked here at every 1 ms sample.
-  const TrajectoryRecheck c = recheck(step);
+  const TransitionRecheck c = recheckTransition(*p.model, p.contact, step);
   std::cout << "eq. (1) " << c.dynamics << " N, held sole " << c.held_sole << " m, q(t_f) - q_f "
             << c.end_q << ", landing " << c.landing << " m\n";
   EXPECT_LE(c.dynamics, 1e-6);
@@ -136,7 +87,7 @@ TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
 TEST(NearestReachable, NoCertifiedCandidateSaysSoAndCertifiesNothing) {
   // bench/reach's case: the sole 80 ms before touchdown, too fast to stop on its target.
   // One candidate checked (each costs the target's passes again).
-  const Pipeline& p = pipeline();
+  const ShippedPipeline& p = pipeline();
   FootstepPlannerConfig one_candidate = p.config;
   one_candidate.nearest_foothold.max_checked = 1;
   const FootstepTransitionPlanner planner(p.model, p.contact, one_candidate);

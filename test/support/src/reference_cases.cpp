@@ -31,6 +31,18 @@ std::unique_ptr<FootstepTransitionPlanner> ShippedBiped::makePlanner() const {
   return std::make_unique<FootstepTransitionPlanner>(model, contact, config);
 }
 
+ShippedPipeline::ShippedPipeline(const std::string& repo_dir)
+    : ShippedBiped(repo_dir), repo(repo_dir), planner(makePlanner()) {}
+
+std::vector<FootstepPlanRequest> ShippedPipeline::requests(const std::string& fixture) const {
+  return readPlanRequests(repo + "/test/fixtures/" + fixture, model->nq(), config.reach);
+}
+
+const ShippedPipeline& shippedPipeline(const std::string& repo) {
+  static const ShippedPipeline p(repo);
+  return p;
+}
+
 std::vector<FootstepPlanRequest> readPlanRequests(const std::string& path, int nq,
                                                   const ReachConfig& reach) {
   std::ifstream in(path);

@@ -28,6 +28,17 @@ struct ShippedBiped {
 /// call; the tests' shared read-only model).
 std::shared_ptr<const RobotModel> shippedBipedModel(const std::string& repo);
 
+/// The shipped biped with its footstep planner, built once per test binary (shippedPipeline()).
+struct ShippedPipeline : ShippedBiped {
+  explicit ShippedPipeline(const std::string& repo);
+  std::string repo;
+  std::unique_ptr<FootstepTransitionPlanner> planner;
+  /// The requests of test/fixtures/`fixture` (readPlanRequests with this config's reach).
+  std::vector<FootstepPlanRequest> requests(const std::string& fixture) const;
+};
+/// One ShippedPipeline of `repo` for the whole test binary.
+const ShippedPipeline& shippedPipeline(const std::string& repo);
+
 /// The footstep requests of a JSON-lines file (`walk_experiment --plan-requests`, e.g.
 /// test/fixtures/pushed_walk_requests.jsonl) for a model with `nq` coordinates, their
 /// reach_horizon over `reach`. \throws RequestError naming the file on a bad line.
