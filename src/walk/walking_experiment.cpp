@@ -38,108 +38,127 @@ void WalkConfig::validate() const {
   policy.validate();
 }
 
+namespace {
+
+using C = WalkConfig;
+
+/// WalkConfig::fields(): the step's timing and the lift-off.
+void addTimingFields(ConfigFields<C>& t) {
+  t.add("steps", &C::steps, "", Range::nonNegative(), "footsteps to walk (touchdowns)")
+      .add("single_support_duration", &C::single_support_duration, "s", Range::positive(),
+           "nominal swing time")
+      .add("double_support_duration", &C::double_support_duration, "s", Range::positive(),
+           "weight transfer between steps")
+      .choice("step_timing", &C::step_timing,
+              {{"fixed", WalkConfig::StepTiming::kFixed},
+               {"tvr_bounds", WalkConfig::StepTiming::kTvrBounds}},
+              "swing duration: fixed (single_support_duration) or tvr_bounds (chosen at "
+              "lift-off in [min_, max_single_support_duration] so that the TVR step fits "
+              "the foot offset bounds; planner/step_timing.h)")
+      .add("min_single_support_duration", &C::min_single_support_duration, "s", Range::positive(),
+           "step_timing tvr_bounds: shortest swing (policies with a check: at least "
+           "check_horizon + one tick)")
+      .add("max_single_support_duration", &C::max_single_support_duration, "s", Range::positive(),
+           "step_timing tvr_bounds: longest swing, >= min_single_support_duration")
+      .choice("lift_off", &C::lift_off,
+              {{"timed", WalkConfig::LiftOff::kTimed},
+               {"capture_point", WalkConfig::LiftOff::kCapturePoint}},
+              "when a double support ends: timed (double_support_duration) or "
+              "capture_point (the double support steers the capture point to the periodic "
+              "gait's lift-off point and lifts off there, or at once when it leaves the "
+              "soles; between double_support_duration and max_double_support_duration)")
+      .add("max_double_support_duration", &C::max_double_support_duration, "s", Range::positive(),
+           "lift_off capture_point: longest double support, >= double_support_duration")
+      .add("lift_off_capture_tolerance", &C::lift_off_capture_tolerance, "m", Range::positive(),
+           "lift_off capture_point: the capture point this close to its lift-off point "
+           "lets the swing sole lift off")
+      .add("lift_off_capture_gain", &C::lift_off_capture_gain, "1/s", Range::positive(),
+           "lift_off capture_point: the rate at which the double support steers the "
+           "capture point");
+}
+
+/// WalkConfig::fields(): the swing, touchdown and standing posture before the walk.
+void addSwingFields(ConfigFields<C>& t) {
+  t.add("settle_duration", &C::settle_duration, "s", Range::nonNegative(),
+        "initial standing before the first lift-off")
+      .add("swing_height", &C::swing_height, "m", Range::nonNegative(),
+           "swing apex above the ground")
+      .add("touchdown_depth", &C::touchdown_depth, "m", Range::nonNegative(),
+           "nominal swing end below the ground (touchdown by contact)")
+      .add("touchdown_force", &C::touchdown_force, "N", Range::positive(),
+           "sole normal force that counts as touchdown")
+      .add("late_touchdown", &C::late_touchdown, "s", Range::nonNegative(),
+           "time past the nominal swing end before a fall is declared");
+}
+
+/// WalkConfig::fields(): the planning, the pushes, the end of a run.
+void addExperimentFields(ConfigFields<C>& t) {
+  t.add("check_horizon", &C::check_horizon, "s", Range::positive(),
+        "policies with a check: the check and the OCP start this long before the nominal "
+        "touchdown (replaces reach.horizon), < single_support_duration")
+      .add("replan_fraction", &C::replan_fraction, "", Range::between(0.0, 1.0),
+           "eq. (11) re-evaluated from the measured CoM during this fraction of the swing")
+      .choice("plan_latency", &C::plan_latency,
+              {{"pause", WalkConfig::PlanLatency::kPause},
+               {"measured", WalkConfig::PlanLatency::kMeasured},
+               {"fixed", WalkConfig::PlanLatency::kFixed}},
+              "when a step's plan takes effect: pause (the simulation waits), measured (after "
+              "its wall time in sim time), fixed (after fixed_plan_latency)")
+      .add("fixed_plan_latency", &C::fixed_plan_latency, "s", Range::nonNegative(),
+           "plan_latency fixed: the plan takes effect this long after its check starts")
+      .add("knee_bend", &C::knee_bend, "rad", Range::nonNegative(), "standing posture")
+      .add("forward_speed", &C::forward_speed, "m/s", Range{},
+           "desired CoM speed along x (drives p_des of eq. 11)")
+      .add("initial_com_velocity", &C::initial_com_velocity, "m/s", "push at t = 0, feet still")
+      .add("midswing_push", &C::midswing_push, "m/s",
+           "push while walking: a change of the base's horizontal velocity at half swing of "
+           "step midswing_push_step (a standing run: 1 s into its settle phase)")
+      .add("midswing_push_step", &C::midswing_push_step, "", Range::atLeast(1),
+           "the step midswing_push is applied in")
+      .choice("first_swing", &C::first_swing,
+              {{"capture_point", WalkConfig::FirstSwing::kFromCapturePoint},
+               {"left", WalkConfig::FirstSwing::kLeft},
+               {"right", WalkConfig::FirstSwing::kRight}},
+              "the sole that swings first (right: SS-L comes first; capture_point: the side "
+              "the capture point lies toward at lift-off)")
+      .add("fall_pelvis_height", &C::fall_pelvis_height, "m", Range::positive(),
+           "pelvis origin below this height = fall")
+      .add("seed", &C::seed, "",
+           "seed of every random draw of the run (replaces reach.seed in the walk)")
+      .add("max_sim_time", &C::max_sim_time, "s", Range::positive(), "hard stop");
+}
+
+}  // namespace
+
 const ConfigFields<WalkConfig>& WalkConfig::fields() {
-  using C = WalkConfig;
-  static const ConfigFields<C> f =
-      ConfigFields<C>("WalkConfig", "walk", "include/reach_trajopt/walk/walking_experiment.h",
+  static const ConfigFields<C> f = [] {
+    ConfigFields<C> t("WalkConfig", "walk", "include/reach_trajopt/walk/walking_experiment.h",
                       "The walking experiment of Sec. IV. Step period T = "
                       "single_support_duration + double_support_duration (0.26 s < 2 t_s, as "
-                      "the step map (12) needs).")
-          .custom(
-              "policy", "string",
-              [](const YamlSection& s, const std::string& k, C& c) {
-                std::string spec;
-                s.read(k, spec);
-                try {
-                  c.policy = WalkingPolicy::parse(spec);
-                } catch (const ReachError& e) {
-                  throw ConfigError(s.where(k) + ": " + e.what());
-                }
-              },
-              [](const C& c) { return c.policy.name; }, "",
-              "<preset>[,part=value...]: baseline (Sec. IV-A), unbounded, kinematic, proposed "
-              "(Sec. IV-B); parts bounds, check, on_fail, swing (walk/walking_policy.h); it "
-              "sets TvrConfig::heuristic_bounds")
-          .add("steps", &C::steps, "", Range::nonNegative(), "footsteps to walk (touchdowns)")
-          .add("single_support_duration", &C::single_support_duration, "s", Range::positive(),
-               "nominal swing time")
-          .add("double_support_duration", &C::double_support_duration, "s", Range::positive(),
-               "weight transfer between steps")
-          .choice("step_timing", &C::step_timing,
-                  {{"fixed", WalkConfig::StepTiming::kFixed},
-                   {"tvr_bounds", WalkConfig::StepTiming::kTvrBounds}},
-                  "swing duration: fixed (single_support_duration) or tvr_bounds (chosen at "
-                  "lift-off in [min_, max_single_support_duration] so that the TVR step fits "
-                  "the foot offset bounds; planner/step_timing.h)")
-          .add("min_single_support_duration", &C::min_single_support_duration, "s",
-               Range::positive(),
-               "step_timing tvr_bounds: shortest swing (policies with a check: at least "
-               "check_horizon + one tick)")
-          .add("max_single_support_duration", &C::max_single_support_duration, "s",
-               Range::positive(),
-               "step_timing tvr_bounds: longest swing, >= min_single_support_duration")
-          .choice("lift_off", &C::lift_off,
-                  {{"timed", WalkConfig::LiftOff::kTimed},
-                   {"capture_point", WalkConfig::LiftOff::kCapturePoint}},
-                  "when a double support ends: timed (double_support_duration) or "
-                  "capture_point (the double support steers the capture point to the periodic "
-                  "gait's lift-off point and lifts off there, or at once when it leaves the "
-                  "soles; between double_support_duration and max_double_support_duration)")
-          .add("max_double_support_duration", &C::max_double_support_duration, "s",
-               Range::positive(),
-               "lift_off capture_point: longest double support, >= double_support_duration")
-          .add("lift_off_capture_tolerance", &C::lift_off_capture_tolerance, "m", Range::positive(),
-               "lift_off capture_point: the capture point this close to its lift-off point "
-               "lets the swing sole lift off")
-          .add("lift_off_capture_gain", &C::lift_off_capture_gain, "1/s", Range::positive(),
-               "lift_off capture_point: the rate at which the double support steers the "
-               "capture point")
-          .add("settle_duration", &C::settle_duration, "s", Range::nonNegative(),
-               "initial standing before the first lift-off")
-          .add("swing_height", &C::swing_height, "m", Range::nonNegative(),
-               "swing apex above the ground")
-          .add("touchdown_depth", &C::touchdown_depth, "m", Range::nonNegative(),
-               "nominal swing end below the ground (touchdown by contact)")
-          .add("touchdown_force", &C::touchdown_force, "N", Range::positive(),
-               "sole normal force that counts as touchdown")
-          .add("late_touchdown", &C::late_touchdown, "s", Range::nonNegative(),
-               "time past the nominal swing end before a fall is declared")
-          .add("check_horizon", &C::check_horizon, "s", Range::positive(),
-               "policies with a check: the check and the OCP start this long before the nominal "
-               "touchdown (replaces reach.horizon), < single_support_duration")
-          .add("replan_fraction", &C::replan_fraction, "", Range::between(0.0, 1.0),
-               "eq. (11) re-evaluated from the measured CoM during this fraction of the swing")
-          .choice("plan_latency", &C::plan_latency,
-                  {{"pause", WalkConfig::PlanLatency::kPause},
-                   {"measured", WalkConfig::PlanLatency::kMeasured},
-                   {"fixed", WalkConfig::PlanLatency::kFixed}},
-                  "when a step's plan takes effect: pause (the simulation waits), measured (after "
-                  "its wall time in sim time), fixed (after fixed_plan_latency)")
-          .add("fixed_plan_latency", &C::fixed_plan_latency, "s", Range::nonNegative(),
-               "plan_latency fixed: the plan takes effect this long after its check starts")
-          .add("knee_bend", &C::knee_bend, "rad", Range::nonNegative(), "standing posture")
-          .add("forward_speed", &C::forward_speed, "m/s", Range{},
-               "desired CoM speed along x (drives p_des of eq. 11)")
-          .add("initial_com_velocity", &C::initial_com_velocity, "m/s", "push at t = 0, feet still")
-          .add("midswing_push", &C::midswing_push, "m/s",
-               "push while walking: a change of the base's horizontal velocity at half swing of "
-               "step midswing_push_step (a standing run: 1 s into its settle phase)")
-          .add("midswing_push_step", &C::midswing_push_step, "", Range::atLeast(1),
-               "the step midswing_push is applied in")
-          .choice("first_swing", &C::first_swing,
-                  {{"capture_point", WalkConfig::FirstSwing::kFromCapturePoint},
-                   {"left", WalkConfig::FirstSwing::kLeft},
-                   {"right", WalkConfig::FirstSwing::kRight}},
-                  "the sole that swings first (right: SS-L comes first; capture_point: the side "
-                  "the capture point lies toward at lift-off)")
-          .add("fall_pelvis_height", &C::fall_pelvis_height, "m", Range::positive(),
-               "pelvis origin below this height = fall")
-          .add("seed", &C::seed, "",
-               "seed of every random draw of the run (replaces reach.seed in the walk)")
-          .add("max_sim_time", &C::max_sim_time, "s", Range::positive(), "hard stop")
-          .removed("mode",
-                   "walk.mode was replaced by walk.policy (a preset: baseline, "
-                   "unbounded, kinematic, proposed)");
+                      "the step map (12) needs).");
+    t.custom(
+        "policy", "string",
+        [](const YamlSection& s, const std::string& k, C& c) {
+          std::string spec;
+          s.read(k, spec);
+          try {
+            c.policy = WalkingPolicy::parse(spec);
+          } catch (const ReachError& e) {
+            throw ConfigError(s.where(k) + ": " + e.what());
+          }
+        },
+        [](const C& c) { return c.policy.name; }, "",
+        "<preset>[,part=value...]: baseline (Sec. IV-A), unbounded, kinematic, proposed "
+        "(Sec. IV-B); parts bounds, check, on_fail, swing (walk/walking_policy.h); it "
+        "sets TvrConfig::heuristic_bounds");
+    addTimingFields(t);
+    addSwingFields(t);
+    addExperimentFields(t);
+    t.removed("mode",
+              "walk.mode was replaced by walk.policy (a preset: baseline, "
+              "unbounded, kinematic, proposed)");
+    return t;
+  }();
   return f;
 }
 
