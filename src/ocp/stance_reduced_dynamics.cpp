@@ -218,48 +218,59 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
 
   // The unperturbed state and the analytic RNEA derivatives there (model_->update() of the
   // sample is current: evaluate() ended with velocityTerms at (q, qd)).
-  const Eigen::Ref<const Eigen::VectorXd> qa = input.head(nu_);
-  const Eigen::Ref<const Eigen::VectorXd> qda = input.segment(nu_, nu_);
   const Eigen::Ref<const Eigen::VectorXd> qdda = input.segment(2 * nu_, nu_);
   saveKinematic(s, qdda, s.k0);
   s.r0 = s.tau_ext;  // tau - J_2^T lambda_2
   rnea_.compute(s.rd, s.q, s.qd, s.qdd, s.tau_rd, s.dtau_dq, s.dtau_dqd);
+  velocityColumns(s, qdda, lambda2, jac);
+  positionColumns(s, input, fd_step, central, jac);
+}
+
+// One column c of the Jacobian from the changes of the full state (dq, dqd, dqdd) and of the
+// kinematic terms (d = (k_plus - k_minus) / span) about s.k0: u and lambda_s by the chain rule,
+// the rest directly.
+void StanceReducedDynamics::chainRuleColumn(Scratch& s, int c, const Scratch::Kinematic& kp,
+                                            const Scratch::Kinematic& km, double span,
+                                            bool kinematic_terms_move,
+                                            const Eigen::Ref<const Vector6d>& lambda2,
+                                            Eigen::Ref<Eigen::MatrixXd> jac) const {
   const Scratch::Kinematic& k0 = s.k0;
+  const double inv = 1.0 / span;
+  s.dq = (kp.q - km.q) * inv;
+  s.dqd = (kp.qd - km.qd) * inv;
+  s.dqdd = (kp.qdd - km.qdd) * inv;
+  s.dtau.noalias() = s.dtau_dq * s.dq;
+  s.dtau.noalias() += s.dtau_dqd * s.dqd;
+  s.dtau.noalias() += s.M * s.dqdd;
+  s.dr = s.dtau;
+  auto out = jac.col(c);
+  out.segment(uOffset(), nu_) = s.dr.tail(nu_);
+  out.segment(uOffset(), nu_).noalias() += k0.G.transpose() * s.dr.head<6>();
+  out.segment<6>(lambdaOffset()).noalias() = k0.Jb_inv.transpose() * s.dr.head<6>();
+  if (kinematic_terms_move) {
+    // d(J_2^T lambda_2), d(G^T) r_b, d(J_sb^-T) r_b.
+    s.dr.noalias() = ((kp.J2 - km.J2) * inv).transpose() * lambda2;
+    out.segment(uOffset(), nu_) -= s.dr.tail(nu_);
+    out.segment(uOffset(), nu_).noalias() -= k0.G.transpose() * s.dr.head<6>();
+    out.segment<6>(lambdaOffset()).noalias() -= k0.Jb_inv.transpose() * s.dr.head<6>();
+    out.segment(uOffset(), nu_).noalias() += ((kp.G - km.G) * inv).transpose() * s.r0.head<6>();
+    out.segment<6>(lambdaOffset()).noalias() +=
+        ((kp.Jb_inv - km.Jb_inv) * inv).transpose() * s.r0.head<6>();
+  }
+  out.segment<3>(swingPositionOffset()) = (kp.swing_position - km.swing_position) * inv;
+  out.segment<6>(phi2Offset()) = (kp.phi2 - km.phi2) * inv;
+  out.segment<6>(phidot2Offset()) = (kp.phidot2 - km.phidot2) * inv;
+  out.segment<6>(phiddot2Offset()) = (kp.phiddot2 - km.phiddot2) * inv;
+  out.segment(qOffset(), nq_) = s.dq;
+  out.segment(qdOffset(), nq_) = s.dqd;
+}
 
-  // One column from the changes of the full state (dq, dqd, dqdd) and of the kinematic terms
-  // (d = (k_plus - k_minus) / span): u and lambda_s by the chain rule, the rest directly.
-  auto column = [&](int c, const Scratch::Kinematic& kp, const Scratch::Kinematic& km, double span,
-                    bool kinematic_terms_move) {
-    const double inv = 1.0 / span;
-    s.dq = (kp.q - km.q) * inv;
-    s.dqd = (kp.qd - km.qd) * inv;
-    s.dqdd = (kp.qdd - km.qdd) * inv;
-    s.dtau.noalias() = s.dtau_dq * s.dq;
-    s.dtau.noalias() += s.dtau_dqd * s.dqd;
-    s.dtau.noalias() += s.M * s.dqdd;
-    s.dr = s.dtau;
-    auto out = jac.col(c);
-    out.segment(uOffset(), nu_) = s.dr.tail(nu_);
-    out.segment(uOffset(), nu_).noalias() += k0.G.transpose() * s.dr.head<6>();
-    out.segment<6>(lambdaOffset()).noalias() = k0.Jb_inv.transpose() * s.dr.head<6>();
-    if (kinematic_terms_move) {
-      // d(J_2^T lambda_2), d(G^T) r_b, d(J_sb^-T) r_b.
-      s.dr.noalias() = ((kp.J2 - km.J2) * inv).transpose() * lambda2;
-      out.segment(uOffset(), nu_) -= s.dr.tail(nu_);
-      out.segment(uOffset(), nu_).noalias() -= k0.G.transpose() * s.dr.head<6>();
-      out.segment<6>(lambdaOffset()).noalias() -= k0.Jb_inv.transpose() * s.dr.head<6>();
-      out.segment(uOffset(), nu_).noalias() += ((kp.G - km.G) * inv).transpose() * s.r0.head<6>();
-      out.segment<6>(lambdaOffset()).noalias() +=
-          ((kp.Jb_inv - km.Jb_inv) * inv).transpose() * s.r0.head<6>();
-    }
-    out.segment<3>(swingPositionOffset()) = (kp.swing_position - km.swing_position) * inv;
-    out.segment<6>(phi2Offset()) = (kp.phi2 - km.phi2) * inv;
-    out.segment<6>(phidot2Offset()) = (kp.phidot2 - km.phidot2) * inv;
-    out.segment<6>(phiddot2Offset()) = (kp.phiddot2 - km.phiddot2) * inv;
-    out.segment(qOffset(), nq_) = s.dq;
-    out.segment(qdOffset(), nq_) = s.dqd;
-  };
-
+// The qd_a columns (nu_ .. 2 nu_ - 1) about s.k0.
+void StanceReducedDynamics::velocityColumns(Scratch& s,
+                                            const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                                            const Eigen::Ref<const Vector6d>& lambda2,
+                                            Eigen::Ref<Eigen::MatrixXd> jac) const {
+  const Scratch::Kinematic& k0 = s.k0;
   // qd_a: quadratic at fixed q, so central differences are exact (the step only sets roundoff).
   // Only the velocity pass runs: q, G, J_sb^-1, J_2 stay those of k0.
   constexpr double kVelocityStep = 1.0;  // [rad/s]
@@ -277,9 +288,20 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
       k.qd = s.qd;
       accelerationTerms(k0.G, k0.Jb_inv, s.drift_s, s.swing, qdda, k);
     }
-    column(nu_ + i, s.kp, s.km, 2.0 * kVelocityStep, false);
+    chainRuleColumn(s, nu_ + i, s.kp, s.km, 2.0 * kVelocityStep, false, lambda2, jac);
   }
+}
 
+// The q_a columns (0 .. nu_ - 1) about s.k0, by differences of the kinematic chain.
+void StanceReducedDynamics::positionColumns(Scratch& s,
+                                            const Eigen::Ref<const Eigen::VectorXd>& input,
+                                            double fd_step, bool central,
+                                            Eigen::Ref<Eigen::MatrixXd> jac) const {
+  const Scratch::Kinematic& k0 = s.k0;
+  const Eigen::Ref<const Eigen::VectorXd> qa = input.head(nu_);
+  const Eigen::Ref<const Eigen::VectorXd> qda = input.segment(nu_, nu_);
+  const Eigen::Ref<const Eigen::VectorXd> qdda = input.segment(2 * nu_, nu_);
+  const Eigen::Ref<const Vector6d> lambda2 = input.tail<6>();
   // q_a: differences of the kinematic chain (base reconstruction included).
   s.input_pert.head(nu_) = qa;
   for (int i = 0; i < nu_; ++i) {
@@ -320,9 +342,9 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
       s.km.G = k0.G;
       s.kp.Jb_inv = k0.Jb_inv;
       s.km.Jb_inv = k0.Jb_inv;
-      column(i, s.kp, s.km, span, true);
+      chainRuleColumn(s, i, s.kp, s.km, span, true, lambda2, jac);
     } else {
-      column(i, s.kp, central ? s.km : k0, span, true);
+      chainRuleColumn(s, i, s.kp, central ? s.km : k0, span, true, lambda2, jac);
     }
   }
 }

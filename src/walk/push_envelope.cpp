@@ -20,6 +20,30 @@
 namespace reach_trajopt {
 namespace {
 constexpr double kStandingDuration = 3.0;  ///< how long the standing reference stands [s]
+
+/// One walk of the sweep: `w`'s push (by the grid's protocol) and seed; its outcome into `w`.
+void runPushWalk(const WalkSetup& setup, const std::string& urdf_path, const WalkingPolicy& policy,
+                 const PushGrid& grid, PushWalk& w) {
+  WalkSetup run = setup;
+  run.walk.policy = policy;
+  run.walk.steps = grid.steps;
+  run.walk.forward_speed = grid.forward_speed;
+  if (grid.protocol == PushGrid::Protocol::kStanding)
+    run.walk.initial_com_velocity = w.push;
+  else
+    run.walk.midswing_push = w.push;
+  run.walk.seed = grid.seeds[w.seed];
+  if (grid.standing) {
+    run.walk.steps = 0;
+    run.walk.settle_duration = kStandingDuration;
+  }
+  const WalkResult r = run.experiment(urdf_path)->run();
+  w.fell = r.fell || r.steps < run.walk.steps;
+  w.steps = r.steps;
+  w.end_reason = r.end_reason;
+  w.wall_s = r.wall_time;
+}
+
 }  // namespace
 
 void PushGrid::validate() const {
@@ -148,24 +172,7 @@ PushEnvelope sweepPushes(const WalkSetup& setup, const std::string& urdf_path,
     for (int k = next++; k < static_cast<int>(to_run.size()); k = next++) {
       PushWalk& w = env.walks[to_run[k]];
       try {
-        WalkSetup run = setup;
-        run.walk.policy = policy;
-        run.walk.steps = grid.steps;
-        run.walk.forward_speed = grid.forward_speed;
-        if (grid.protocol == PushGrid::Protocol::kStanding)
-          run.walk.initial_com_velocity = w.push;
-        else
-          run.walk.midswing_push = w.push;
-        run.walk.seed = grid.seeds[w.seed];
-        if (grid.standing) {
-          run.walk.steps = 0;
-          run.walk.settle_duration = kStandingDuration;
-        }
-        const WalkResult r = run.experiment(urdf_path)->run();
-        w.fell = r.fell || r.steps < run.walk.steps;
-        w.steps = r.steps;
-        w.end_reason = r.end_reason;
-        w.wall_s = r.wall_time;
+        runPushWalk(setup, urdf_path, policy, grid, w);
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(report);
         errors.push_back(e.what());

@@ -136,6 +136,18 @@ class StanceReducedDynamics {
                 const Eigen::Ref<const Vector6d>& lambda2, Eigen::Ref<Eigen::VectorXd> out) const;
   /// The kinematic state of the Scratch (after kinematics() or a swing-only update) into `k`,
   /// qdd = T qdd_a + k and phiddot_2 included.
+  /// evaluate()'s Jacobian, column c from the changes kp - km over `span` about s.k0.
+  void chainRuleColumn(Scratch& s, int c, const Scratch::Kinematic& kp,
+                       const Scratch::Kinematic& km, double span, bool kinematic_terms_move,
+                       const Eigen::Ref<const Vector6d>& lambda2,
+                       Eigen::Ref<Eigen::MatrixXd> jac) const;
+  /// evaluate()'s Jacobian: the qd_a columns (central differences of the velocity pass).
+  void velocityColumns(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qdda,
+                       const Eigen::Ref<const Vector6d>& lambda2,
+                       Eigen::Ref<Eigen::MatrixXd> jac) const;
+  /// evaluate()'s Jacobian: the q_a columns (differences of the kinematic chain).
+  void positionColumns(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input, double fd_step,
+                       bool central, Eigen::Ref<Eigen::MatrixXd> jac) const;
   void saveKinematic(const Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qdda,
                      Scratch::Kinematic& k) const;
   /// qdd = [G qdd_a - J_sb^-1 drift_s; qdd_a] and the swing terms phi_2, phidot_2,
