@@ -42,12 +42,12 @@ using reach_trajopt::test::fillReferenceStep;
 constexpr int kNq = 18;      // urdf/biped.urdf: 6 virtual + 12 leg joints
 constexpr int kRounds = 12;  // rounds over all malformed kinds, per service and pass
 /// The bound on the resident memory's growth per pass after the warm-up (the smaller of the
-/// median increment and the floor's rise, see below) [KiB per pass of 432 requests]: a leak of 0.5
-/// KiB per request fails it. Measured on the 2-core test machine, bad_requests.test run alone 10
-/// times in a row (both nodes' VmRSS summed, 10 passes after the warm-up): 0.0 KiB per pass in 9
-/// runs, 2.0 in one; the end-to-end growth was 0.0-3.1 MiB (a one-time 3 MiB step of the allocator
-/// in 4 of the 10 runs, the same pass to pass back and forth: the 3 MB requests), which the median
-/// ignores.
+/// median increment and the floor's rise, see below) [KiB per pass of 432 requests]: a leak of
+/// 0.5 KiB per request fails it. Measured on the 2-core test machine, bad_requests.test run
+/// alone 10 times in a row (both nodes' VmRSS summed, 10 passes after the warm-up), with the
+/// launch file's fixed mmap threshold: 0.0 KiB per pass in 9 runs, 1.6 in one, 0.01-0.03 MiB
+/// end to end. Without it glibc's heap stepped by 3-5 MiB up and back between passes (2 of 20
+/// runs failed the bound).
 constexpr double kMaxSlopeKiB = 200.0;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
