@@ -90,6 +90,12 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   at.on_infeasible = InfeasibleFootholdPolicy::kNoFallback;
   FootstepTransition target = planTarget(at, progress);
   if (target.reachable && hasStrictTrajectory(r, target)) return target;
+  // The candidates together keep one OCP's time limit (or the request's earlier deadline):
+  // each one's OCP would otherwise have its own (TALOS: 18 s for a step's candidates).
+  const auto search_deadline = std::chrono::steady_clock::now() +
+                               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(config_.ocp.time_limit));
+  if (!at.deadline || search_deadline < *at.deadline) at.deadline = search_deadline;
   PassTotals totals{target.check_passes, target.check_time_s, target.ocp_time_s};
   auto carryTotals = [&](FootstepTransition& step, int checked) {
     step.check_passes = totals.passes;
@@ -107,14 +113,14 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   std::optional<FootstepTransition> nearest_feasible;  // the first feasible candidate's plan
   int checked = 0;
   const NearestFootholdConfig& rings = nearest_.config();
-  for (int ring = 1; ring <= rings.rings && checked < rings.max_checked && !r.pastDeadline();
+  for (int ring = 1; ring <= rings.rings && checked < rings.max_checked && !at.pastDeadline();
        ++ring) {
     batch.candidates = nearest_.ringCandidates(r.target, ring);
     const std::vector<CandidateOutcome> outcomes =
         candidate_check_ ? candidate_check_(batch)
                          : checkFootholdCandidates(*kinematics_, batch, false);
-    for (std::size_t i = 0; i < outcomes.size() && checked < rings.max_checked && !r.pastDeadline();
-         ++i) {
+    for (std::size_t i = 0;
+         i < outcomes.size() && checked < rings.max_checked && !at.pastDeadline(); ++i) {
       if (!outcomes[i].error.empty() || !outcomes[i].kinematics.feasible) continue;
       FootstepPlanRequest candidate = at;
       candidate.target = batch.candidates[i];
@@ -150,7 +156,7 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   }
   kept.reason = "no reachable foothold among the " + std::to_string(checked) +
                 " nearest feasible candidates checked" +
-                (r.pastDeadline() ? " (deadline reached)" : "") + ": " + kept.reason;
+                (at.pastDeadline() ? " (deadline reached)" : "") + ": " + kept.reason;
   return kept;
 }
 

@@ -74,7 +74,8 @@ enum class InfeasibleFootholdPolicy {
   /// trajectory, the nearest point of the rings of planner/nearest_feasible_foothold.h that is
   /// kinematically feasible and that the reachability check (steps 2-4, every pass) certifies
   /// with a strict trajectory, nearest first, at most NearestFootholdConfig::max_checked
-  /// candidates checked. None certified: the target's own plan when it is kinematically
+  /// candidates checked, all of them within one ocp.time_limit (or the request's earlier
+  /// deadline). None certified: the target's own plan when it is kinematically
   /// feasible (its relaxed OCP), else the nearest feasible candidate's (uncertified, its OCP
   /// strict then relaxed). Without a reachability check: kNearestFeasible.
   kNearestReachable,
