@@ -199,7 +199,8 @@ json violationJson(const PathViolation& v) {
           {"contact", v.contact},
           {"contact_velocity", v.contact_velocity},
           {"integration", v.integration},
-          {"ground", v.ground}};
+          {"ground", v.ground},
+          {"leg_clearance", v.leg_clearance}};
 }
 
 json witnessJson(const WitnessPath& w) {

@@ -1,5 +1,6 @@
 #include "reach_trajopt/contact/contact_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -33,8 +34,20 @@ const ConfigFields<ContactConfig>& ContactConfig::fields() {
           .add("left_sole_frame", &C::left_sole_frame, "",
                "frame at the left sole centre, z out of the sole")
           .add("right_sole_frame", &C::right_sole_frame, "",
-               "frame at the right sole centre (not the left one)");
+               "frame at the right sole centre (not the left one)")
+          .add("leg_clearance", &C::leg_clearance, "",
+               "a swing keeps the legs' collision capsules (model/leg_clearance.h) "
+               "leg_clearance_margin apart: in the reachable sets' samples, the certificates' "
+               "and the OCP's 1 ms re-checks and the OCP's constraint grid (eq. 4's h_state)")
+          .add("leg_clearance_margin", &C::leg_clearance_margin, "m", Range::nonNegative(),
+               "smallest distance between a left-leg and a right-leg capsule along a swing "
+               "(or the distance at x_0 when smaller)");
   return f;
+}
+
+double ContactConfig::legMarginFrom(double distance_at_start) const {
+  if (!leg_clearance) return -HUGE_VAL;
+  return std::min(leg_clearance_margin, distance_at_start);
 }
 
 ContactConfig ContactConfig::fromYaml(const YamlSection& s) { return fields().read(s); }

@@ -9,8 +9,10 @@
 #include <kdl_parser/kdl_parser.hpp>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
+#include "reach_trajopt/model/collision_shape.h"
 #include "reach_trajopt/model/model_tree.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/model/urdf_validation.h"
@@ -98,6 +100,8 @@ class ModelBuilder {
   void visit(const KDL::SegmentMap::const_iterator& element, int body,
              const Eigen::Isometry3d& in_body);
   JointInfo jointInfo(const urdf::Joint& joint) const;
+  /// The link's collision primitives (collision_shape.h) into the model.
+  void addCollisionShapes(const urdf::Link& link);
   void finish();
 
   const urdf::ModelInterface& urdf_;
@@ -143,6 +147,7 @@ std::shared_ptr<const RobotModel> ModelBuilder::build(urdf::ModelInterface& urdf
   b.tree_->frames.push_back({root->name, root_body, Eigen::Isometry3d::Identity()});
   model.link_names_.push_back(root->name);
   model.link_parents_.push_back("");
+  b.addCollisionShapes(*root);
   b.visit(kdl_tree.getRootSegment(), root_body, Eigen::Isometry3d::Identity());
   b.finish();
   return b.model_;
@@ -249,7 +254,16 @@ void ModelBuilder::visit(const KDL::SegmentMap::const_iterator& element, int bod
     tree_->frames.push_back({link_name, child_body, child_in_body});
     model_->link_names_.push_back(link_name);
     model_->link_parents_.push_back(uj->parent_link_name);
+    addCollisionShapes(*link);
     visit(child, child_body, child_in_body);
+  }
+}
+
+void ModelBuilder::addCollisionShapes(const urdf::Link& link) {
+  for (const urdf::CollisionSharedPtr& c : link.collision_array) {
+    if (!c) continue;
+    if (std::optional<CollisionShape> shape = readCollisionShape(*c, link.name, source_))
+      model_->collision_shapes_.push_back(std::move(*shape));
   }
 }
 

@@ -7,6 +7,7 @@
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/leg_clearance.h"
 
 namespace reach_trajopt {
 
@@ -40,6 +41,9 @@ class SampleCheck {
         C_s_(ContactWrenchCone(contact).worldMatrix(request.heldPose().linear())),
         C_n_(ContactWrenchCone(contact).worldMatrix(request.targetPose().linear())),
         W_(model.totalMass() * model.gravity().norm()),
+        legs_(contact.leg_clearance
+                  ? LegClearance(model, contact.left_sole_frame, contact.right_sole_frame)
+                  : LegClearance()),
         u_max_(model.effortLimits()),
         qd_max_(model.velocityLimits()),
         q_lo_(model.positionLowerLimits()),
@@ -56,7 +60,14 @@ class SampleCheck {
 
   FrameId swingFrame() const { return f_swing_; }
 
-  /// Checks sample k into `v`; returns its worst cone / torque violation.
+  /// The legs' margin for a path from q0 (ContactConfig::legMarginFrom).
+  void startAt(const ContactConfig& contact, const Eigen::VectorXd& q0) {
+    if (legs_.empty() || !contact.leg_clearance) return;
+    model_.update(ws_, q0, Eigen::VectorXd::Zero(model_.nq()));
+    leg_margin_ = contact.legMarginFrom(legs_.closest(model_, ws_).distance);
+  }
+
+  /// Checks sample k into `v`; returns its worst cone / torque / leg clearance violation.
   double check(int k, ConstraintViolations& v) {
     const int nq = model_.nq(), nu = model_.nu();
     const int n = static_cast<int>(traj_.time.size());
@@ -103,7 +114,13 @@ class SampleCheck {
                     terms_.phiddot(qdd).cwiseAbs().maxCoeff()});
       v.new_cone = std::max(v.new_cone, std::max(0.0, -(C_n_ * ln).minCoeff() / W_));
     }
-    return std::max(cone_v, tq);
+    // The legs' clearance (eq. 4's h_state), every sample.
+    double leg_v = 0.0;
+    if (leg_margin_ > -HUGE_VAL) {
+      leg_v = std::max(0.0, leg_margin_ - legs_.closest(model_, ws_).distance);
+      v.leg_clearance = std::max(v.leg_clearance, leg_v);
+    }
+    return std::max({cone_v, tq, leg_v});
   }
 
   /// Largest distance outside the slice's hull (A y <= b) of the swing sole at the sample
@@ -137,6 +154,8 @@ class SampleCheck {
   const ContactConstraint c_stance_, c_new_;
   const ContactWrenchCone::Matrix C_s_, C_n_;
   const double W_;
+  const LegClearance legs_;
+  double leg_margin_ = -HUGE_VAL;  ///< set by startAt() [m]
   const Eigen::VectorXd u_max_, qd_max_, q_lo_, q_hi_;
   const int is_, in_;
   Workspace ws_;
@@ -174,9 +193,10 @@ TransitionCheck checkTransition(const RobotModel& model, const ContactConfig& co
   requireTrajectorySizes(model, traj);
   const int n = static_cast<int>(traj.time.size());
   SampleCheck samples(model, contact, request, traj);
+  samples.startAt(contact, request.q0);
   TransitionCheck out;
   ConstraintViolations& v = out.violation;
-  std::vector<double> ineq(n, 0.0);  // worst cone / torque violation per sample
+  std::vector<double> ineq(n, 0.0);  // worst cone / torque / leg violation per sample
   for (int k = 0; k < n; ++k) ineq[k] = samples.check(k, v);
   v.initial_state = std::max((traj.q.col(0) - request.q0).cwiseAbs().maxCoeff(),
                              (traj.qd.col(0) - request.qd0).cwiseAbs().maxCoeff());

@@ -12,7 +12,15 @@
 
 namespace reach_trajopt {
 
-namespace {}  // namespace
+namespace {
+
+/// The NLP's leg clearance rows ask this much more than the margin [m] (but never more than
+/// the distance at x_0), so that the legs' distance between two samples, which the 1 ms
+/// re-check sees, rarely dips below the margin (each dip costs a refinement round,
+/// transition_ocp.h).
+constexpr double kLegRowPad = 1e-3;
+
+}  // namespace
 
 TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
                              const TransitionOcpConfig& config, const ContactConfig& contact,
@@ -47,6 +55,18 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   dyn_->configuration(*scratch_, request.q0.tail(nu_), q_start);
   ground_clearance_ = config.ground_clearance;
   ground_floor_ = std::min(request.targetPose().translation().z(), scratch_->swing_position.z());
+
+  // Leg clearance (eq. 4's h_state): the margin, or the legs' distance at x_0 when smaller.
+  if (contact.leg_clearance) {
+    legs_ = LegClearance(m, contact.left_sole_frame, contact.right_sole_frame);
+    if (!legs_.empty()) {
+      Workspace ws(m);
+      m.update(ws, request.q0, Eigen::VectorXd::Zero(nq_));
+      const double start = legs_.closest(m, ws).distance;
+      leg_margin_ = contact.legMarginFrom(start);
+      leg_row_bound_ = std::min(leg_margin_ + kLegRowPad, start);
+    }
+  }
 
   prepareSlices();
   rebuildSamples();
@@ -164,6 +184,7 @@ void TransitionNlp::rebuildSamples() {
   for (int i = 0; i < n; ++i) {
     inequality_count_ += ContactWrenchCone::kRows + 2 * nu_;
     if (ground_clearance_ && i > 0 && samples_[i].t < T) inequality_count_ += 1;
+    if (hasLegRow(samples_[i], i)) inequality_count_ += 1;
     for (int s : samples_[i].slices) inequality_count_ += static_cast<int>(slice_b_[s].size());
   }
   inequality_count_ += ContactWrenchCone::kRows;  // new contact's cone at t_f
@@ -211,6 +232,18 @@ Eigen::Vector2d TransitionNlp::eps(const Eigen::VectorXd& x) const {
 
 Vector6d TransitionNlp::lambdaNew(const Eigen::VectorXd& x) const {
   return weight_ * x.segment<6>(lambda_index_);
+}
+
+double TransitionNlp::legClearanceViolation(const Eigen::VectorXd& q) const {
+  if (!(leg_margin_ > -HUGE_VAL)) return 0.0;
+  Workspace ws(*model_);
+  model_->update(ws, q, Eigen::VectorXd::Zero(nq_));
+  return std::max(0.0, leg_margin_ - legs_.closest(*model_, ws).distance);
+}
+
+bool TransitionNlp::hasLegRow(const Sample& smp, int i) const {
+  // Not at t_0 (fixed), nor at t_f in the strict problem (x_f fixed, checked by the caller).
+  return leg_margin_ > -HUGE_VAL && i > 0 && !smp.final && (relaxed_ || smp.t < basis_.duration());
 }
 
 double TransitionNlp::groundFloor(double t) const {
@@ -358,6 +391,7 @@ int TransitionNlp::resolvedThreads() const {
 
 TransitionNlp::Worker::Worker(const StanceReducedDynamics& d, int local_columns)
     : scratch(std::make_unique<StanceReducedDynamics::Scratch>(d)),
+      kinematics(d.model()),
       input(d.inputCount()),
       jin(d.signalCount(), d.inputCount()) {
   (void)local_columns;
@@ -383,6 +417,14 @@ void TransitionNlp::sampleSignals(const Sample& smp, const Eigen::VectorXd& x, b
     se.jloc.rightCols<6>() = weight_ * w.jin.rightCols<6>();  // variables are lambda_2 / (m g)
   } else {
     d.evaluate(*w.scratch, w.input, se.signals);
+  }
+  if (leg_margin_ > -HUGE_VAL) {  // the legs' distance at q and d/dq (leg_clearance.h)
+    const RobotModel& m = *model_;
+    m.update(w.kinematics, se.signals.segment(d.qOffset(), nq_), Eigen::VectorXd::Zero(nq_));
+    const LegClearance::Closest c = legs_.closest(m, w.kinematics);
+    se.leg_distance = c.distance;
+    se.leg_gradient.resize(nq_);
+    if (gradients) legs_.gradient(m, w.kinematics, c, se.leg_gradient);
   }
 }
 
@@ -456,6 +498,16 @@ void TransitionNlp::addPathInequalities(const Sample& smp, int i, EvalState& e) 
     out.inequality[row] = groundFloor(smp.t) - signals_[d.swingPositionOffset() + 2];
     if (e.gradients) {
       e.grow = -jloc_.row(d.swingPositionOffset() + 2);
+      scatter(e, out.inequality_jacobian.row(row), e.grow, final);
+    }
+    ++row;
+  }
+  // Leg clearance: margin - d(q) <= 0 (not at t_0, fixed; at t_f once, in single support).
+  if (hasLegRow(smp, i)) {
+    const SampleEval& se = sample_eval_[i];
+    out.inequality[row] = leg_row_bound_ - se.leg_distance;
+    if (e.gradients) {
+      e.grow.noalias() = -se.leg_gradient * jloc_.middleRows(d.qOffset(), nq_);
       scatter(e, out.inequality_jacobian.row(row), e.grow, final);
     }
     ++row;

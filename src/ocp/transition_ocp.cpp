@@ -306,7 +306,8 @@ std::string worstFamily(const ConstraintViolations& v) {
       {"stance_cone", v.stance_cone},     {"new_contact", v.new_contact},
       {"new_cone", v.new_cone},           {"torque", v.torque},
       {"joint_limits", v.joint_limits},   {"reachable_set", v.reachable_set},
-      {"initial_state", v.initial_state}, {"final_state", v.final_state}};
+      {"leg_clearance", v.leg_clearance}, {"initial_state", v.initial_state},
+      {"final_state", v.final_state}};
   const auto* w = std::max_element(
       std::begin(f), std::end(f), [](const auto& a, const auto& b) { return a.second < b.second; });
   std::ostringstream os;
@@ -456,6 +457,16 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
   TransitionNlp nlp(model_, config_, contact_, request, relaxed);
   Eigen::VectorXd x = nlp.initialGuess();
   TransitionResult res;
+  // x_f is fixed in the strict problem: legs inside their margin there cannot be solved for.
+  if (const double legs_at_xf = relaxed ? 0.0 : nlp.legClearanceViolation(request.qf);
+      legs_at_xf > 0.5 * config_.tolerance) {
+    nlp.sampleSolution(x, config_.output_dt, res);
+    res.status = OcpStatus::kFailed;
+    res.violation.leg_clearance = legs_at_xf;
+    res.reason = "leg_clearance violated by " + std::to_string(legs_at_xf) +
+                 " m at x_f (its legs are closer than contact.leg_clearance_margin)";
+    return res;
+  }
   std::string error;
   double previous = std::numeric_limits<double>::infinity();
   // Kept free for sampling and checking the answer after a run: the last such pass's wall

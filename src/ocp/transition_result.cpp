@@ -6,7 +6,7 @@ namespace reach_trajopt {
 
 double ConstraintViolations::max() const {
   return std::max({dynamics, stance_contact, stance_cone, new_contact, new_cone, torque,
-                   joint_limits, reachable_set, initial_state, final_state});
+                   joint_limits, reachable_set, leg_clearance, initial_state, final_state});
 }
 
 const EnumNames<OcpStatus>& ocpStatusNames() {

@@ -167,7 +167,7 @@ bool BackwardStep::child(const Eigen::Ref<const Eigen::VectorXd>& d,
   q_prev = q_prev_;
   if (!ctx_.withinLimits(q_prev, qd_prev)) return false;
   model.updateVelocity(ws_, qd_prev);  // q_{j-1} is the parent's: its poses are current
-  if (!ctx_.swingClear(ws_)) return false;
+  if (!ctx_.stateConstraintsHold(ws_)) return false;
   model.bias(ws_, b_);
   qdd_ = v_ / dt;
   tau_.noalias() = M_ * qdd_;

@@ -243,7 +243,7 @@ bool ForwardStep::solveChild(const Eigen::Ref<const Eigen::VectorXd>& u,
   if (!cost_.bridge && !ctx_.withinLimits(q_child, qd_child)) return false;
   const RobotModel& model = *ctx_.model;
   model.update(ws_, q_child, qd_child);
-  if (!cost_.bridge && !ctx_.swingClear(ws_)) return false;
+  if (!cost_.bridge && !ctx_.stateConstraintsHold(ws_)) return false;
   ctx_.output(ws_, y, y_rate);
   return true;
 }

@@ -3,6 +3,8 @@
 
 #include "reach_trajopt/reach/reach_context.h"
 
+#include <algorithm>
+
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
@@ -52,6 +54,10 @@ ReachContext::ReachContext(std::shared_ptr<const RobotModel> model_in, const Con
     swing_frame = md.frameId(contact.soleFrame(mode.swing()));
     ground_height = target->translation().z() - config.swing_ground_margin;
   }
+  if (mode.isSingleSupport() && contact.leg_clearance) {
+    legs = LegClearance(md, contact.left_sole_frame, contact.right_sole_frame);
+    if (!legs.empty()) leg_margin = contact.legMarginFrom(HUGE_VAL);
+  }
   q_min = md.positionLowerLimits();
   q_max = md.positionUpperLimits();
   qd_max = md.velocityLimits();
@@ -76,9 +82,17 @@ void ReachContext::output(const Workspace& ws, Eigen::Ref<Eigen::VectorXd> y,
   }
 }
 
-bool ReachContext::swingClear(const Workspace& ws) const {
-  if (swing_frame < 0) return true;
-  return model->framePose(ws, swing_frame).translation().z() >= ground_height;
+bool ReachContext::stateConstraintsHold(const Workspace& ws) const {
+  if (swing_frame >= 0 && model->framePose(ws, swing_frame).translation().z() < ground_height)
+    return false;
+  return !(leg_margin > -HUGE_VAL) || legs.closest(*model, ws).distance >= leg_margin;
+}
+
+void ReachContext::startAt(const Eigen::Ref<const Eigen::VectorXd>& q0) {
+  if (!(leg_margin > -HUGE_VAL)) return;
+  Workspace ws(*model);
+  model->update(ws, q0, Eigen::VectorXd::Zero(n));
+  leg_margin = std::min(leg_margin, legs.closest(*model, ws).distance);
 }
 
 bool ReachContext::withinLimits(const Eigen::Ref<const Eigen::VectorXd>& q,

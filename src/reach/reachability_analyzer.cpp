@@ -189,7 +189,8 @@ ReachResult ReachabilityAnalyzer::checkPass(const ReachProblem& pb, const ReachC
   config.validate();
   pass.budget.validate("budget");
   config.requireResourcesWithinLimits(model_->nq(), pass.budget);  // before any sample is drawn
-  const ReachContext ctx(model_, contact_, config, pass.budget, pb.mode, pb.footholds, pb.target);
+  ReachContext ctx(model_, contact_, config, pass.budget, pb.mode, pb.footholds, pb.target);
+  ctx.startAt(pb.q0);
   const RobotModel& model = *model_;
   // ---- input checks ---------------------------------------------------------------------
   validateState(ctx, "x_0", pb.q0, pb.qd0, ctx.contacts);

@@ -18,7 +18,8 @@ double PathViolation::max() const {
 }
 
 double PathViolation::maxWithoutContact() const {
-  return std::max({dynamics, cone, torque, position_limit, velocity_limit, integration, ground});
+  return std::max(
+      {dynamics, cone, torque, position_limit, velocity_limit, integration, ground, leg_clearance});
 }
 
 std::vector<std::pair<int, int>> chainToRoot(const std::vector<SampleSlice>& slices, int slice,
@@ -51,6 +52,9 @@ void measurePath(const ReachContext& ctx, WitnessPath& w) {
     if (ctx.swing_frame >= 0)
       v.ground = std::max(
           v.ground, ctx.ground_height - model.framePose(ws, ctx.swing_frame).translation().z());
+    if (ctx.leg_margin > -HUGE_VAL)
+      v.leg_clearance =
+          std::max(v.leg_clearance, ctx.leg_margin - ctx.legs.closest(model, ws).distance);
     for (const ContactConstraint& c : ctx.contacts) {
       c.evaluate(model, ws, t);
       v.contact = std::max(v.contact, t.phi.cwiseAbs().maxCoeff());

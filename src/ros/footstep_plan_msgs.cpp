@@ -86,16 +86,16 @@ std::vector<double> asVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
 }
 
 std::vector<double> pathViolationVector(const PathViolation& v) {
-  return {v.dynamics,         v.cone,           v.torque,
-          v.position_limit,   v.velocity_limit, v.contact,
-          v.contact_velocity, v.integration,    v.ground};
+  return {v.dynamics,       v.cone,         v.torque,           v.position_limit,
+          v.velocity_limit, v.contact,      v.contact_velocity, v.integration,
+          v.ground,         v.leg_clearance};
 }
 
 PathViolation pathViolationFromVector(const std::vector<double>& v, const std::string& service) {
-  if (v.size() != 9)
-    throw ReachError(service + " response: witness_violation: expected 9 numbers, got " +
+  if (v.size() != 10)
+    throw ReachError(service + " response: witness_violation: expected 10 numbers, got " +
                      std::to_string(v.size()));
-  return PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+  return PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9]};
 }
 
 const char* ocpPolicyName(OcpPolicy p) {

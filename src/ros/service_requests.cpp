@@ -300,6 +300,7 @@ reach_trajopt::TransitionTrajectory toTransitionTrajectoryMsg(
   m.max_cone_violation = std::max(v.stance_cone, v.new_cone);
   m.max_torque_violation = v.torque;
   m.max_reach_violation = v.reachable_set;
+  m.max_leg_clearance_violation = v.leg_clearance;
   m.relaxation = toVector3Msg(Eigen::Vector2d(r.eps), 0.0);
   m.final_foothold = toPointMsg(r.landing_position);
   m.cost = r.cost;
@@ -338,6 +339,7 @@ TransitionResult fromTransitionTrajectoryMsg(const reach_trajopt::TransitionTraj
   r.violation.stance_cone = m.max_cone_violation;
   r.violation.torque = m.max_torque_violation;
   r.violation.reachable_set = m.max_reach_violation;
+  r.violation.leg_clearance = m.max_leg_clearance_violation;
   r.cost = m.cost;
   r.iterations = m.iterations;
   r.solve_time = m.solve_time;

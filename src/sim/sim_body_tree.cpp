@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/model/collision_shape.h"
 #include "reach_trajopt/model/joint_locking.h"
 
 namespace reach_trajopt {
@@ -119,36 +120,10 @@ class Builder {
 
   void addShape(const std::string& link, int b, const Eigen::Isometry3d& T,
                 const urdf::Collision& col) {
-    if (!col.geometry) return;
-    SimShape shape;
-    shape.link = link;
-    shape.pose = T * toIsometry(col.origin);
-    switch (col.geometry->type) {
-      case urdf::Geometry::BOX: {
-        const auto& box = static_cast<const urdf::Box&>(*col.geometry);
-        shape.type = SimShape::Type::kBox;
-        shape.size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
-        break;
-      }
-      case urdf::Geometry::SPHERE: {
-        const auto& s = static_cast<const urdf::Sphere&>(*col.geometry);
-        shape.type = SimShape::Type::kSphere;
-        shape.size = Eigen::Vector3d(s.radius, 0.0, 0.0);
-        break;
-      }
-      case urdf::Geometry::CYLINDER: {
-        const auto& c = static_cast<const urdf::Cylinder&>(*col.geometry);
-        shape.type = SimShape::Type::kCylinder;
-        shape.size = Eigen::Vector3d(c.radius, c.length, 0.0);
-        break;
-      }
-      default:
-        return;  // meshes do not collide in the simulator (documented in bullet_world.h)
-    }
-    if (!(shape.size.array() >= 0.0).all() || !shape.size.allFinite()) {
-      throw ModelError(tree_.source + ": link '" + link + "' has a collision shape of bad size");
-    }
-    tree_.bodies[b].shapes.push_back(shape);
+    std::optional<SimShape> shape = readCollisionShape(col, link, tree_.source);
+    if (!shape) return;  // meshes do not collide in the simulator (documented in bullet_world.h)
+    shape->pose = T * shape->pose;  // link frame -> the body's URDF frame
+    tree_.bodies[b].shapes.push_back(*shape);
   }
 
   void finish(SimBody& body, const MassAccumulator& acc) {

@@ -79,19 +79,33 @@ WitnessRecheck recheck(const FootstepTransition& step) {
   return r;
 }
 
-FootstepTransition planStrict(FootstepPlanRequest r) {
+FootstepTransition planStrict(FootstepPlanRequest r,
+                              const FootstepTransitionPlanner& planner = *pipeline().planner) {
   r.ocp_policy = OcpPolicy::kStrict;
-  return pipeline().planner->plan(r);
+  return planner.plan(r);
+}
+
+/// The shipped pipeline without the legs' clearance (contact.leg_clearance false), for the
+/// passes' tests: their fixture steps were recorded before it, and with it the quick pass's
+/// strict OCP solves both, so that no step would need a second pass to test.
+const FootstepTransitionPlanner& plannerWithoutLegClearance() {
+  static const std::unique_ptr<FootstepTransitionPlanner> planner = [] {
+    ShippedBiped biped(kRepo);
+    biped.contact.leg_clearance = false;
+    return biped.makePlanner();
+  }();
+  return *planner;
 }
 
 /// The quick pass of `request` as the only pass; none when its strict OCP converged (the step
 /// then needs no second pass: the OCP's solver decides which fixture steps do).
-std::optional<FootstepTransition> planQuickPassAlone(FootstepPlanRequest request) {
+std::optional<FootstepTransition> planQuickPassAlone(FootstepPlanRequest request,
+                                                     const FootstepTransitionPlanner& planner) {
   ReachConfig quick_alone = *request.reach;  // budgets.quick as the only pass's budget
   quick_alone.budgets.full = quick_alone.budgets.quick;
   quick_alone.quick_pass = false;
   request.reach = quick_alone;
-  FootstepTransition quick = planStrict(request);
+  FootstepTransition quick = planStrict(request, planner);
   if (quick.trajectory.status == OcpStatus::kConverged && !quick.trajectory.relaxed) {
     std::cout << "the quick pass's strict OCP converged: no second pass to test on this step\n";
     return std::nullopt;
@@ -234,12 +248,13 @@ TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHull
   for (const FootstepPlanRequest& request : requests) {
     const ReachConfig& reach = *request.reach;
     ASSERT_TRUE(reach.quick_pass && reach.hull_pass);
-    const std::optional<FootstepTransition> quick_pass = planQuickPassAlone(request);
+    const FootstepTransitionPlanner& planner = plannerWithoutLegClearance();
+    const std::optional<FootstepTransition> quick_pass = planQuickPassAlone(request, planner);
     if (!quick_pass) continue;
     ++second_passes;
     const FootstepTransition& quick = *quick_pass;
     ASSERT_TRUE(quick.check.reach.witness.valid) << quick.reason;
-    const FootstepTransition step = planStrict(request);
+    const FootstepTransition step = planStrict(request, planner);
     expectSecondPassEndsStrict(step, "the hull pass's forward set");
     // The quick pass's check stands: its witness, bit for bit.
     EXPECT_EQ(step.check.reach.witness.terminal_position_gap,
@@ -269,11 +284,12 @@ TEST(FootstepVerdict, WideHullRetrySolvesTheQuickPassesOcpInItsGrownHulls) {
   for (const FootstepPlanRequest& request : requests) {
     const ReachConfig& reach = *request.reach;
     ASSERT_GT(reach.quick_retry_constraint_margin, reach.budgets.quick.constraint_margin);
-    const std::optional<FootstepTransition> quick_pass = planQuickPassAlone(request);
+    const FootstepTransitionPlanner& planner = plannerWithoutLegClearance();
+    const std::optional<FootstepTransition> quick_pass = planQuickPassAlone(request, planner);
     if (!quick_pass) continue;
     ++second_passes;
     const FootstepTransition& quick = *quick_pass;
-    const FootstepTransition step = planStrict(request);
+    const FootstepTransition step = planStrict(request, planner);
     expectSecondPassEndsStrict(step, "solved in them grown to");
     ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged);
     // No sample drawn after the quick pass: its check, its time.

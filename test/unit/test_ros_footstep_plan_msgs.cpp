@@ -155,8 +155,8 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   step.transition.horizon = 0.2;
   WitnessPath& w = step.check.reach.witness;
   w.valid = true;
-  w.violation =
-      PathViolation{1e-3 / 3, 2e-3 / 3, 3e-3 / 3, 0.0, 4e-3 / 3, 5e-3 / 3, 0.0, 6e-3 / 3, 7e-3 / 3};
+  w.violation = PathViolation{1e-3 / 3, 2e-3 / 3, 3e-3 / 3, 0.0,      4e-3 / 3,
+                              5e-3 / 3, 0.0,      6e-3 / 3, 7e-3 / 3, 8e-3 / 3};
   w.position_gap = 0.01 / 3;
   w.velocity_gap = 0.02 / 3;
   w.terminal_position_gap = 0.03 / 3;
@@ -197,6 +197,7 @@ TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {
   ASSERT_TRUE(bw.valid);
   EXPECT_EQ(bw.violation.max(), w.violation.max());
   EXPECT_EQ(bw.violation.ground, w.violation.ground);
+  EXPECT_EQ(bw.violation.leg_clearance, w.violation.leg_clearance);
   EXPECT_EQ(bw.violation.dynamics, w.violation.dynamics);
   EXPECT_EQ(bw.position_gap, w.position_gap);
   EXPECT_EQ(bw.velocity_gap, w.velocity_gap);

@@ -1,7 +1,8 @@
 #pragma once
 /// \file contact_config.h
 /// Contact parameters of the biped: friction coefficient and sole size of the contact wrench
-/// cone (eq. 7-8) and the names of the sole frames whose constraints are eq. (5).
+/// cone (eq. 7-8), the names of the sole frames whose constraints are eq. (5), and how far
+/// apart the legs stay along a swing (a state constraint of eq. 4).
 
 #include <string>
 
@@ -20,6 +21,13 @@ struct ContactConfig {
   double half_width = 0.08;                 ///< Y: sole half-width along the sole's y axis [m]
   std::string left_sole_frame = "l_sole";   ///< frame at the left sole centre, z out of the sole
   std::string right_sole_frame = "r_sole";  ///< frame at the right sole centre
+  /// Swing-path constraint: the legs' collision capsules (model/leg_clearance.h) stay
+  /// leg_clearance_margin apart along a swing, or as far apart as at x_0 when closer.
+  bool leg_clearance = true;
+  /// [m]; 0 already keeps the shapes apart: the capsules overhang them (by 8 mm at the
+  /// biped's sole boxes' sides, 6 cm at its thighs' ends). 0.01 m made the forward walk's
+  /// swing bulge around the stance foot and land 3 cm short once.
+  double leg_clearance_margin = 0.0;
 
   /// Throws ConfigError with the offending value when mu <= 0, a size <= 0, non-finite values
   /// or empty frame names.
@@ -29,6 +37,10 @@ struct ContactConfig {
   /// Reads fields() from a YAML section (missing keys keep the defaults, unknown keys throw),
   /// then validates.
   static ContactConfig fromYaml(const YamlSection& section);
+
+  /// The leg margin of a swing starting where the legs' capsules are `distance_at_start` apart
+  /// [m]: min(leg_clearance_margin, distance_at_start); -inf when leg_clearance is off.
+  double legMarginFrom(double distance_at_start) const;
 
   /// The frame of the sole on `side`.
   const std::string& soleFrame(Side side) const {

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/model/collision_shape.h"
 #include "reach_trajopt/model/joint_locking.h"
 
 namespace reach_trajopt {
@@ -120,6 +121,9 @@ class RobotModel {
   const std::vector<std::string>& frameNames() const { return frame_names_; }
   /// Links that carry mass or collision geometry, in tree order (for TF and the simulator).
   const std::vector<std::string>& linkNames() const { return link_names_; }
+  /// The links' collision primitives (box, sphere, cylinder; meshes skipped), poses in their
+  /// link's frame, in tree order.
+  const std::vector<CollisionShape>& collisionShapes() const { return collision_shapes_; }
   /// Parent link of a link ("" for the root link).
   const std::string& parentLink(const std::string& link) const;
 
@@ -194,6 +198,7 @@ class RobotModel {
   std::vector<std::string> frame_names_;
   std::vector<std::string> link_names_;
   std::vector<std::string> link_parents_;
+  std::vector<CollisionShape> collision_shapes_;
   std::unique_ptr<ModelTree> tree_;
 };
 

@@ -1,7 +1,8 @@
 #pragma once
 /// \file transition_check.h
 /// Re-evaluates a sampled transition trajectory against every constraint family of the OCP
-/// (eq. 1, 5, 8, torque and joint limits, reachable-set hulls, boundary states) with the full
+/// (eq. 1, 5, 8, torque and joint limits, reachable-set hulls, the legs' clearance of
+/// model/leg_clearance.h, boundary states) with the full
 /// model, independently of the reduced coordinates the OCP optimizes in. The OCP reports these
 /// numbers and uses the violating sample times to refine its NLP.
 
@@ -17,8 +18,8 @@ namespace reach_trajopt {
 /// Violations of one trajectory and where the inequality constraints fail.
 struct TransitionCheck {
   ConstraintViolations violation;
-  /// Times [s] where a cone or torque bound is violated by more than the threshold (the worst
-  /// sample of each violating run).
+  /// Times [s] where a cone, torque or leg clearance bound is violated by more than the
+  /// threshold (the worst sample of each violating run).
   std::vector<double> violating_times;
   /// Indices of request.slices whose hull is violated by more than the threshold.
   std::vector<int> violating_slices;

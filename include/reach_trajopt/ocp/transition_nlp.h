@@ -18,7 +18,8 @@
 ///     every t. Only the new contact's wrench lambda_2 at t_f (double support: the split between
 ///     the feet is free) is a variable (6, scaled by m g);
 ///  4. keep the inequality constraints (both cones of eq. 8, torque bounds, reachable-set hulls
-///     A y <= b of the swing sole, optional ground clearance) at a set of samples: a uniform
+///     A y <= b of the swing sole, optional ground clearance, the legs' clearance of
+///     leg_clearance.h, eq. 4's h_state) at a set of samples: a uniform
 ///     grid (check_interval), the times of the hull slices used, and any time the 1 ms
 ///     re-check found violated (refinement, see transition_ocp.h). t_f is sampled twice: just
 ///     before touchdown (single support, lambda_2 = 0) and at touchdown (double support);
@@ -41,11 +42,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/leg_clearance.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/cubic_bspline.h"
 #include "reach_trajopt/ocp/ocp_config.h"
@@ -112,6 +115,9 @@ class TransitionNlp {
   void sampleSolution(const Eigen::VectorXd& x, double dt, TransitionResult& out);
   /// The full state at time t in [0, T] for the solution x (lambda_2 acts only at t = T).
   void state(const Eigen::VectorXd& x, double t, TransitionSampleState& out);
+  /// How far the legs at configuration q are inside the leg clearance margin [m] (0: clear,
+  /// or no leg clearance).
+  double legClearanceViolation(const Eigen::VectorXd& q) const;
   /// eps of x (zero for the strict problem) [m].
   Eigen::Vector2d eps(const Eigen::VectorXd& x) const;
   /// lambda_2 of x [N, N m].
@@ -135,6 +141,7 @@ class TransitionNlp {
   struct Worker {
     Worker(const StanceReducedDynamics& d, int local_columns);
     std::unique_ptr<StanceReducedDynamics::Scratch> scratch;
+    Workspace kinematics;  ///< the sample's configuration, for the leg clearance
     Eigen::VectorXd input;
     Eigen::MatrixXd jin;
   };
@@ -143,6 +150,8 @@ class TransitionNlp {
     CubicBSplineBasis::Row brow;
     Eigen::VectorXd signals;
     Eigen::MatrixXd jloc;
+    double leg_distance = 0.0;        ///< the legs' capsules' distance at the sample's q [m]
+    Eigen::RowVectorXd leg_gradient;  ///< its gradient in q (1 x n_q)
   };
   /// TransitionOcpConfig::threads, 0 resolved to OpenMP's default.
   int resolvedThreads() const;
@@ -164,6 +173,9 @@ class TransitionNlp {
                    Eigen::Ref<Eigen::VectorXd> input) const;
   double controlPoint(const Eigen::VectorXd& x, int k, int joint) const;
   int freeIndex(int k) const;  ///< first variable of control point k, -1 when fixed
+  /// True when sample i has the leg clearance row: every sample after t_0 and before t_f, and
+  /// in the relaxed problem t_f's single-support sample.
+  bool hasLegRow(const Sample& smp, int i) const;
   /// Lowest swing sole height allowed at t [m] (ground_clearance, swing_clearance).
   double groundFloor(double t) const;
 
@@ -184,6 +196,9 @@ class TransitionNlp {
   double weight_;
   double ground_floor_;
   bool ground_clearance_;
+  LegClearance legs_;
+  double leg_margin_ = -HUGE_VAL;     ///< -inf: no leg clearance rows [m]
+  double leg_row_bound_ = -HUGE_VAL;  ///< the rows' bound, the margin and a pad [m]
   bool pelvis_posture_;
   double pelvis_height_target_;  ///< world z of the base at t_f (relaxed) [m]
   std::vector<double> sample_times_;

@@ -37,6 +37,7 @@ struct ConstraintViolations {
   double joint_limits = 0.0;     ///< q within its position limits
   double velocity_limits = 0.0;  ///< (|qd| - qd_max) / qd_max, reported (not constrained)
   double reachable_set = 0.0;    ///< A y - b of each slice at its time [m]
+  double leg_clearance = 0.0;    ///< margin - the legs' capsules' distance (leg_clearance.h) [m]
   double initial_state = 0.0;    ///< |x(t_0) - x_0|
   double final_state = 0.0;      ///< |x(t_f) - x_f| (strict only; 0 when relaxed)
   /// Largest of the families that must hold (all but velocity_limits).

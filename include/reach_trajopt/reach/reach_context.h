@@ -15,6 +15,7 @@
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/contact/contact_mode.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/leg_clearance.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/reach/reach_config.h"
 
@@ -46,14 +47,22 @@ struct ReachContext {
   int ny() const { return static_cast<int>(output_axes.size()); }
   FrameId swing_frame = -1;          ///< -1: no swing clearance check
   double ground_height = -HUGE_VAL;  ///< swing sole origin must stay above this [m]
+  /// The legs' capsules (contact.leg_clearance, single support only) and the distance they
+  /// keep [m] (-inf: no check; startAt() lowers it to their distance at x_0).
+  LegClearance legs;
+  double leg_margin = -HUGE_VAL;
   Eigen::VectorXd q_min, q_max, qd_max, u_max;
   std::vector<int> finite_position, finite_velocity;  ///< coordinates with finite limits
 
   /// Output y and its rate after model.update(ws, q, qd).
   void output(const Workspace& ws, Eigen::Ref<Eigen::VectorXd> y,
               Eigen::Ref<Eigen::VectorXd> y_rate) const;
-  /// True when the swing sole is above the ground (after model.update); true without check.
-  bool swingClear(const Workspace& ws) const;
+  /// The state constraints h_state of eq. (4) at the model's last update: the swing sole above
+  /// the ground and the legs leg_margin apart (each true without its check).
+  bool stateConstraintsHold(const Workspace& ws) const;
+  /// leg_margin for a check from configuration q_0: a swing never brings the legs closer than
+  /// the margin, or than they are at x_0 (ContactConfig::legMarginFrom).
+  void startAt(const Eigen::Ref<const Eigen::VectorXd>& q0);
   /// True when q, qd respect the limits (with config.limit_tolerance).
   bool withinLimits(const Eigen::Ref<const Eigen::VectorXd>& q,
                     const Eigen::Ref<const Eigen::VectorXd>& qd) const;

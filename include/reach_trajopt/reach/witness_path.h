@@ -29,6 +29,7 @@ struct PathViolation {
   double contact_velocity = 0.0;  ///< max |J_phi qd| [m/s, rad/s]
   double integration = 0.0;       ///< max |q_{k+1} - (q_k + dt qd)| of the Euler steps [m, rad]
   double ground = 0.0;            ///< max depth of the swing sole below the ground [m]
+  double leg_clearance = 0.0;     ///< max of leg_margin - the legs' distance [m]
   double max() const;
   /// Largest of the families that have no tolerance of their own (all but contact and
   /// contact_velocity).

@@ -13,19 +13,14 @@
 #include <string>
 #include <vector>
 
+#include "reach_trajopt/model/collision_shape.h"
 #include "reach_trajopt/model/joint_locking.h"
 
 namespace reach_trajopt {
 
-/// A collision primitive of a body (URDF <collision>); only box, sphere and cylinder.
-struct SimShape {
-  enum class Type { kBox, kSphere, kCylinder };
-  Type type = Type::kBox;
-  std::string link;                                        ///< URDF link it came from
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in the body's URDF frame
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box: full sizes; sphere/cylinder: radius,
-                                                   ///< length (z axis), 0 [m]
-};
+/// A collision primitive of a body (URDF <collision>; model/collision_shape.h); its pose is in
+/// the body's URDF frame.
+using SimShape = CollisionShape;
 
 /// One rigid body: a URDF link (the body's "URDF frame") and its fixed descendants.
 struct SimBody {

@@ -1,0 +1,81 @@
+#pragma once
+/// \file leg_clearance.h
+/// The distance between the two legs, a state constraint h_state(x) >= margin of eq. (4) along
+/// a swing (docs/method.md, "Swing-path constraints"). Each collision primitive of a leg's
+/// links (collision_shape.h, the shapes the simulator collides) is bounded by capsules,
+/// segments swept by a sphere, in its link's frame:
+///  - sphere: its centre, its radius;
+///  - cylinder (axis z): its axis, its radius (the capsule's caps overhang the flat ends by r);
+///  - box, sizes L >= W >= H: n = round(W / H) (1 to 8) capsules side by side across W, each
+///    along L end to end with the half diagonal of its W / n x H cross-section as radius (a
+///    flat sole box gets a row of thin capsules, which overhang it by ~H / sqrt(2), not one
+///    whose radius is half its width).
+/// Each capsule contains its shape, so the capsules' distance is a lower bound of the shapes'
+/// distance: a path whose capsules keep a margin keeps the legs' real shapes that far apart.
+/// A leg is every link below the last link the two sole frames' paths to the root share (the
+/// pelvis, for a biped), on the path to its sole. A robot whose legs have no primitive (meshes
+/// only) has no pair, and the constraint holds trivially (empty()).
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "reach_trajopt/common/side.h"
+#include "reach_trajopt/model/robot_model.h"
+
+namespace reach_trajopt {
+
+/// A capsule fixed to a link: the segment a-b (link frame) swept by a sphere of `radius`.
+struct LinkCapsule {
+  std::string link;
+  FrameId frame = -1;
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  ///< [m]
+  double radius = 0.0;                                                       ///< [m]
+};
+
+/// The capsules bounding a collision primitive (pose in its link frame), per the file comment;
+/// their `frame` is left to the caller.
+std::vector<LinkCapsule> boundingCapsules(const CollisionShape& shape);
+
+/// Closest points of segments p0-p1 and q0-q1: p0 + s (p1 - p0) and q0 + t (q1 - q0), s, t in
+/// [0, 1] (Ericson, Real-Time Collision Detection, 2005, Sec. 5.1.9). Returns the distance [m].
+double closestPointsOfSegments(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                               const Eigen::Vector3d& q0, const Eigen::Vector3d& q1,
+                               Eigen::Vector3d& on_p, Eigen::Vector3d& on_q);
+
+/// @brief Signed distance between the left and right legs' capsules, and its gradient in q.
+class LegClearance {
+ public:
+  /// The closest pair of one configuration (after RobotModel::update).
+  struct Closest {
+    double distance = std::numeric_limits<double>::infinity();  ///< [m], < 0: capsules overlap
+    int left = -1, right = -1;  ///< capsule indices in capsules(kLeft / kRight)
+    Eigen::Vector3d left_point = Eigen::Vector3d::Zero();   ///< on the left axis, world [m]
+    Eigen::Vector3d right_point = Eigen::Vector3d::Zero();  ///< on the right axis, world [m]
+  };
+
+  LegClearance() = default;  ///< no capsules: every configuration is clear
+  /// \throws ReachError naming the frame when a sole frame is unknown, or when both soles are
+  ///     on one chain (no two legs).
+  LegClearance(const RobotModel& model, const std::string& left_sole_frame,
+               const std::string& right_sole_frame);
+
+  bool empty() const { return left_.empty() || right_.empty(); }
+  const std::vector<LinkCapsule>& capsules(Side side) const {
+    return side == Side::kLeft ? left_ : right_;
+  }
+
+  /// The closest left/right capsule pair at the model's last update() in `ws`.
+  Closest closest(const RobotModel& model, const Workspace& ws) const;
+  /// d(distance)/dq of the pair `c` (1 x n_q): n^T (J_left(p_l) - J_right(p_r)), n the unit
+  /// vector from the right point to the left one (the closest points move along the surfaces,
+  /// which does not change the distance to first order). Zero when the axes intersect.
+  void gradient(const RobotModel& model, const Workspace& ws, const Closest& c,
+                Eigen::Ref<Eigen::RowVectorXd> grad) const;
+
+ private:
+  std::vector<LinkCapsule> left_, right_;
+};
+
+}  // namespace reach_trajopt

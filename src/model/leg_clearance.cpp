@@ -1,0 +1,192 @@
+/// \file leg_clearance.cpp
+/// The legs' capsules and their distance (see the header).
+
+#include "reach_trajopt/model/leg_clearance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reach_trajopt/common/error.h"
+
+namespace reach_trajopt {
+
+namespace {
+
+/// The links from the root down to `link`, root first.
+std::vector<std::string> pathFromRoot(const RobotModel& model, const std::string& link) {
+  std::vector<std::string> path;
+  for (std::string l = link; !l.empty(); l = model.parentLink(l)) path.push_back(l);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+/// True when `ancestor` is `link` or above it.
+bool isBelow(const RobotModel& model, const std::string& link, const std::string& ancestor) {
+  for (std::string l = link; !l.empty(); l = model.parentLink(l))
+    if (l == ancestor) return true;
+  return false;
+}
+
+double clamp01(double x) { return std::min(1.0, std::max(0.0, x)); }
+
+}  // namespace
+
+std::vector<LinkCapsule> boundingCapsules(const CollisionShape& shape) {
+  // Each capsule: centre, half axis and radius in the shape's frame.
+  struct Local {
+    Eigen::Vector3d centre, half_axis;
+    double radius;
+  };
+  std::vector<Local> local;
+  switch (shape.type) {
+    case CollisionShape::Type::kSphere:
+      local.push_back({Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), shape.size[0]});
+      break;
+    case CollisionShape::Type::kCylinder:
+      local.push_back(
+          {Eigen::Vector3d::Zero(), 0.5 * shape.size[1] * Eigen::Vector3d::UnitZ(), shape.size[0]});
+      break;
+    case CollisionShape::Type::kBox: {
+      int k = 0, j = 0;  // the longest and the shortest axes; i the middle one
+      shape.size.maxCoeff(&k);
+      shape.size.minCoeff(&j);
+      if (j == k) j = (k + 1) % 3;
+      const int i = 3 - k - j;
+      const double L = shape.size[k], W = shape.size[i], H = shape.size[j];
+      const int n = std::clamp(static_cast<int>(std::lround(H > 0.0 ? W / H : 8.0)), 1, 8);
+      const double width = W / n;
+      for (int m = 0; m < n; ++m) {
+        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+        centre[i] = -0.5 * W + (m + 0.5) * width;
+        Eigen::Vector3d half_axis = Eigen::Vector3d::Zero();
+        half_axis[k] = 0.5 * L;
+        local.push_back({centre, half_axis, 0.5 * std::hypot(width, H)});
+      }
+      break;
+    }
+  }
+  std::vector<LinkCapsule> out;
+  for (const Local& l : local) {
+    LinkCapsule c;
+    c.link = shape.link;
+    c.a = shape.pose * (l.centre - l.half_axis);
+    c.b = shape.pose * (l.centre + l.half_axis);
+    c.radius = l.radius;
+    out.push_back(c);
+  }
+  return out;
+}
+
+double closestPointsOfSegments(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                               const Eigen::Vector3d& q0, const Eigen::Vector3d& q1,
+                               Eigen::Vector3d& on_p, Eigen::Vector3d& on_q) {
+  constexpr double kTiny = 1e-18;  // squared length below which a segment is a point [m^2]
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a <= kTiny && e <= kTiny) {
+    s = t = 0.0;
+  } else if (a <= kTiny) {
+    t = clamp01(f / e);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= kTiny) {
+      s = clamp01(-c / a);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;  // >= 0
+      s = denom > kTiny * std::max(1.0, a * e) ? clamp01((b * f - c * e) / denom) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = clamp01(-c / a);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = clamp01((b - c) / a);
+      }
+    }
+  }
+  on_p = p0 + s * d1;
+  on_q = q0 + t * d2;
+  return (on_p - on_q).norm();
+}
+
+LegClearance::LegClearance(const RobotModel& model, const std::string& left_sole_frame,
+                           const std::string& right_sole_frame) {
+  for (const std::string* f : {&left_sole_frame, &right_sole_frame})
+    if (!model.hasFrame(*f))
+      throw ReachError("leg clearance: unknown sole frame '" + *f + "' in " + model.source());
+  const std::vector<std::string> left_path = pathFromRoot(model, left_sole_frame);
+  const std::vector<std::string> right_path = pathFromRoot(model, right_sole_frame);
+  size_t shared = 0;
+  while (shared < left_path.size() && shared < right_path.size() &&
+         left_path[shared] == right_path[shared])
+    ++shared;
+  if (shared >= left_path.size() || shared >= right_path.size())
+    throw ReachError("leg clearance: the sole frames '" + left_sole_frame + "' and '" +
+                     right_sole_frame + "' are on one chain of " + model.source() +
+                     " (no two legs)");
+  const std::string& left_top = left_path[shared];
+  const std::string& right_top = right_path[shared];
+  for (const CollisionShape& shape : model.collisionShapes()) {
+    std::vector<LinkCapsule>* leg = isBelow(model, shape.link, left_top)    ? &left_
+                                    : isBelow(model, shape.link, right_top) ? &right_
+                                                                            : nullptr;
+    if (!leg) continue;
+    for (LinkCapsule& c : boundingCapsules(shape)) {
+      c.frame = model.frameId(shape.link);
+      leg->push_back(c);
+    }
+  }
+}
+
+LegClearance::Closest LegClearance::closest(const RobotModel& model, const Workspace& ws) const {
+  Closest best;
+  if (empty()) return best;
+  std::vector<Eigen::Vector3d> ra(right_.size()), rb(right_.size());
+  for (size_t j = 0; j < right_.size(); ++j) {
+    const Eigen::Isometry3d T = model.framePose(ws, right_[j].frame);
+    ra[j] = T * right_[j].a;
+    rb[j] = T * right_[j].b;
+  }
+  Eigen::Vector3d on_l, on_r;
+  for (size_t i = 0; i < left_.size(); ++i) {
+    const Eigen::Isometry3d T = model.framePose(ws, left_[i].frame);
+    const Eigen::Vector3d la = T * left_[i].a, lb = T * left_[i].b;
+    for (size_t j = 0; j < right_.size(); ++j) {
+      const double d = closestPointsOfSegments(la, lb, ra[j], rb[j], on_l, on_r) - left_[i].radius -
+                       right_[j].radius;
+      if (d < best.distance) {
+        best.distance = d;
+        best.left = static_cast<int>(i);
+        best.right = static_cast<int>(j);
+        best.left_point = on_l;
+        best.right_point = on_r;
+      }
+    }
+  }
+  return best;
+}
+
+void LegClearance::gradient(const RobotModel& model, const Workspace& ws, const Closest& c,
+                            Eigen::Ref<Eigen::RowVectorXd> grad) const {
+  requireSize("LegClearance::gradient", grad.size(), model.nq());
+  grad.setZero();
+  if (c.left < 0 || c.right < 0) return;
+  const Eigen::Vector3d gap = c.left_point - c.right_point;
+  const double norm = gap.norm();
+  if (!(norm > 1e-12)) return;
+  const Eigen::Vector3d n = gap / norm;
+  Matrix6Xd J(6, model.nq());
+  // Point Jacobian of p on a frame at o: J_lin - [p - o]x J_ang, so n^T of it is
+  // n^T J_lin + ((p - o) x n)^T J_ang.
+  const auto add = [&](FrameId frame, const Eigen::Vector3d& p, double sign) {
+    model.frameJacobian(ws, frame, J);
+    const Eigen::Vector3d o = model.framePose(ws, frame).translation();
+    grad.noalias() += sign * n.transpose() * J.topRows<3>();
+    grad.noalias() += sign * (p - o).cross(n).transpose() * J.bottomRows<3>();
+  };
+  add(left_[c.left].frame, c.left_point, 1.0);
+  add(right_[c.right].frame, c.right_point, -1.0);
+}
+
+}  // namespace reach_trajopt

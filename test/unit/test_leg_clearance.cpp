@@ -1,0 +1,247 @@
+// The legs' clearance (model/leg_clearance.h) against independent oracles:
+//  - the closest points of two segments against a dense grid search over (s, t);
+//  - each capsule contains its primitive (the box's corners, the cylinder's rims, the sphere);
+//  - the capsules' distance is a lower bound of the URDF shapes' exact distance, computed by
+//    Bullet's GJK on the primitives themselves (box, cylinder, sphere), at random biped
+//    configurations, and not a loose one (within the capsules' radii of it, and nearly exact
+//    where the cylinders' sides are closest);
+//  - the gradient in q against central differences;
+//  - the legs are found from the sole frames (every shape of l_* below the left hip, none of
+//    the pelvis or torso), and bad sole frames are refused with their name.
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <btBulletCollisionCommon.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+
+#include "reach_trajopt/model/leg_clearance.h"
+#include "reach_trajopt/model/robot_model.h"
+
+using namespace reach_trajopt;
+
+namespace {
+
+const std::string kUrdf = std::string(REACH_TRAJOPT_SOURCE_DIR) + "/urdf/biped.urdf";
+
+double gridDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                    const Eigen::Vector3d& q1) {
+  const int n = 400;
+  double best = HUGE_VAL;
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Vector3d p = p0 + (p1 - p0) * (double(i) / n);
+    for (int j = 0; j <= n; ++j)
+      best = std::min(best, (p - q0 - (q1 - q0) * (double(j) / n)).norm());
+  }
+  return best;
+}
+
+double pointToSegment(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                      const Eigen::Vector3d& b) {
+  const Eigen::Vector3d d = b - a;
+  const double t =
+      d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (x - a - t * d).norm();
+}
+
+/// A Bullet convex shape of a primitive (its own sizes, no capsule).
+std::unique_ptr<btConvexShape> bulletShape(const CollisionShape& s) {
+  switch (s.type) {
+    case CollisionShape::Type::kBox:
+      return std::make_unique<btBoxShape>(
+          btVector3(s.size.x() / 2, s.size.y() / 2, s.size.z() / 2));
+    case CollisionShape::Type::kSphere:
+      return std::make_unique<btSphereShape>(s.size.x());
+    case CollisionShape::Type::kCylinder:
+      return std::make_unique<btCylinderShapeZ>(btVector3(s.size.x(), s.size.x(), s.size.y() / 2));
+  }
+  return nullptr;
+}
+
+btTransform toBullet(const Eigen::Isometry3d& T) {
+  btMatrix3x3 R;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) R[r][c] = T.linear()(r, c);
+  return btTransform(R, btVector3(T.translation().x(), T.translation().y(), T.translation().z()));
+}
+
+/// Bullet's GJK distance of two shapes in the world (> 0 when apart).
+double gjkDistance(const btConvexShape& a, const btTransform& Ta, const btConvexShape& b,
+                   const btTransform& Tb) {
+  btVoronoiSimplexSolver simplex;
+  btGjkEpaPenetrationDepthSolver epa;
+  btGjkPairDetector gjk(&a, &b, &simplex, &epa);
+  btGjkPairDetector::ClosestPointInput in;
+  in.m_transformA = Ta;
+  in.m_transformB = Tb;
+  btPointCollector out;
+  gjk.getClosestPoints(in, out, nullptr);
+  return out.m_hasResult ? out.m_distance : HUGE_VAL;
+}
+
+Eigen::VectorXd randomConfiguration(const RobotModel& m, std::mt19937& rng) {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq());
+  for (int i = 6; i < m.nq(); ++i) {
+    std::uniform_real_distribution<double> u(m.joints()[i].q_min, m.joints()[i].q_max);
+    q[i] = u(rng);
+  }
+  q[2] = 1.0;
+  return q;
+}
+
+}  // namespace
+
+TEST(LegClearance, SegmentClosestPointsMatchAGridSearch) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto rnd = [&] { return Eigen::Vector3d(u(rng), u(rng), u(rng)); };
+  for (int k = 0; k < 40; ++k) {
+    Eigen::Vector3d p0 = rnd(), p1 = rnd(), q0 = rnd(), q1 = rnd();
+    if (k % 5 == 1) q1 = q0 + 0.7 * (p1 - p0);  // parallel
+    if (k % 5 == 2) p1 = p0;                    // a point and a segment
+    if (k % 5 == 3) q1 = q0;
+    Eigen::Vector3d a, b;
+    const double d = closestPointsOfSegments(p0, p1, q0, q1, a, b);
+    const double grid = gridDistance(p0, p1, q0, q1);
+    EXPECT_LE(d, grid + 1e-12) << "case " << k;
+    EXPECT_NEAR(d, grid, 2e-4) << "case " << k;
+    EXPECT_NEAR((a - b).norm(), d, 1e-12);
+    EXPECT_LE(pointToSegment(a, p0, p1), 1e-12);  // the points lie on their segments
+    EXPECT_LE(pointToSegment(b, q0, q1), 1e-12);
+  }
+}
+
+TEST(LegClearance, CapsulesContainTheirPrimitives) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> size(0.02, 0.4), angle(-3.0, 3.0);
+  for (int k = 0; k < 30; ++k) {
+    CollisionShape s;
+    s.type = static_cast<CollisionShape::Type>(k % 3);
+    s.size = Eigen::Vector3d(size(rng), size(rng), size(rng));
+    s.pose = Eigen::Translation3d(0.1, -0.2, 0.3) *
+             Eigen::AngleAxisd(angle(rng), Eigen::Vector3d(1, 2, 3).normalized());
+    std::vector<Eigen::Vector3d> points;  // in the shape's frame: a grid over its surface
+    if (s.type == CollisionShape::Type::kBox) {
+      const int g = 24;
+      for (int a = 0; a <= g; ++a)
+        for (int b = 0; b <= g; ++b)
+          for (int f = 0; f < 6; ++f) {
+            Eigen::Vector3d p;
+            p[f / 2] = f % 2 ? 0.5 : -0.5;
+            p[(f / 2 + 1) % 3] = a / double(g) - 0.5;
+            p[(f / 2 + 2) % 3] = b / double(g) - 0.5;
+            points.push_back(s.size.cwiseProduct(p));
+          }
+    } else {
+      const double r = s.size.x();
+      const double half = s.type == CollisionShape::Type::kCylinder ? s.size.y() / 2 : 0;
+      for (int a = 0; a < 36; ++a)
+        for (double z : {-half, half})
+          points.push_back(Eigen::Vector3d(r * std::cos(a * 0.1745), r * std::sin(a * 0.1745), z));
+    }
+    const std::vector<LinkCapsule> caps = boundingCapsules(s);
+    ASSERT_FALSE(caps.empty());
+    double worst = -HUGE_VAL;  // largest distance of a surface point outside every capsule
+    for (const Eigen::Vector3d& p : points) {
+      double inside = HUGE_VAL;
+      for (const LinkCapsule& c : caps)
+        inside = std::min(inside, pointToSegment(s.pose * p, c.a, c.b) - c.radius);
+      worst = std::max(worst, inside);
+    }
+    EXPECT_LE(worst, 1e-12) << "shape " << k;
+    EXPECT_GE(worst, -1e-9) << "shape " << k << ": some extreme point touches the capsules";
+  }
+}
+
+TEST(LegClearance, FindsTheLegsOfTheBiped) {
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  const LegClearance legs(*model, "l_sole", "r_sole");
+  ASSERT_FALSE(legs.empty());
+  for (Side side : {Side::kLeft, Side::kRight}) {
+    const char prefix = side == Side::kLeft ? 'l' : 'r';
+    ASSERT_EQ(legs.capsules(side).size(), 6u);  // thigh, shank, foot (4 across its width)
+    for (const LinkCapsule& c : legs.capsules(side)) EXPECT_EQ(c.link[0], prefix) << c.link;
+  }
+  try {
+    LegClearance(*model, "l_sole", "no_such_sole");
+    FAIL() << "an unknown frame was accepted";
+  } catch (const ReachError& e) {
+    EXPECT_NE(std::string(e.what()).find("no_such_sole"), std::string::npos);
+  }
+  EXPECT_THROW(LegClearance(*model, "l_sole", "l_foot"), ReachError);  // one chain
+}
+
+TEST(LegClearance, IsATightLowerBoundOfTheShapesDistanceByGjk) {
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  const LegClearance legs(*model, "l_sole", "r_sole");
+  std::vector<std::pair<const CollisionShape*, std::unique_ptr<btConvexShape>>> left, right;
+  for (const CollisionShape& s : model->collisionShapes()) {
+    if (s.link[0] == 'l' && s.link[1] == '_') left.emplace_back(&s, bulletShape(s));
+    if (s.link[0] == 'r' && s.link[1] == '_') right.emplace_back(&s, bulletShape(s));
+  }
+  ASSERT_EQ(left.size(), 3u);
+  Workspace ws(*model);
+  std::mt19937 rng(11);
+  int compared = 0;
+  double closest_gap = HUGE_VAL;  // smallest exact - capsule distance seen
+  for (int k = 0; k < 400; ++k) {
+    const Eigen::VectorXd q = randomConfiguration(*model, rng);
+    model->update(ws, q, Eigen::VectorXd::Zero(model->nq()));
+    double exact = HUGE_VAL;
+    for (const auto& [sl, bl] : left)
+      for (const auto& [sr, br] : right) {
+        const btTransform Tl = toBullet(model->framePose(ws, model->frameId(sl->link)) * sl->pose);
+        const btTransform Tr = toBullet(model->framePose(ws, model->frameId(sr->link)) * sr->pose);
+        exact = std::min(exact, gjkDistance(*bl, Tl, *br, Tr));
+      }
+    const double capsules = legs.closest(*model, ws).distance;
+    if (!(exact > 1e-3)) continue;  // touching shapes: GJK's distance is a depth, not compared
+    ++compared;
+    EXPECT_LE(capsules, exact + 1e-6) << "configuration " << k;
+    // A capsule overhangs its shape by at most its radius: the thighs', 0.06 m each.
+    EXPECT_GE(capsules, exact - 0.121) << "configuration " << k << ": looser than the overhang";
+    closest_gap = std::min(closest_gap, exact - capsules);
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_LT(closest_gap, 0.01);  // where the cylinders' sides are closest, nearly exact
+}
+
+TEST(LegClearance, GradientMatchesCentralDifferences) {
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  const LegClearance legs(*model, "l_sole", "r_sole");
+  Workspace ws(*model);
+  std::mt19937 rng(5);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model->nq());
+  Eigen::RowVectorXd g(model->nq());
+  int checked = 0;
+  for (int k = 0; k < 40; ++k) {
+    Eigen::VectorXd q = randomConfiguration(*model, rng);
+    q.segment<3>(3) = Eigen::Vector3d(0.3, -0.2, 0.1);  // a rotated base too
+    model->update(ws, q, zero);
+    const LegClearance::Closest c = legs.closest(*model, ws);
+    legs.gradient(*model, ws, c, g);
+    const double h = 1e-6;
+    bool same_pair = true;
+    Eigen::RowVectorXd fd(model->nq());
+    for (int i = 0; i < model->nq() && same_pair; ++i) {
+      Eigen::VectorXd qp = q, qm = q;
+      qp[i] += h;
+      qm[i] -= h;
+      model->update(ws, qp, zero);
+      const LegClearance::Closest cp = legs.closest(*model, ws);
+      model->update(ws, qm, zero);
+      const LegClearance::Closest cm = legs.closest(*model, ws);
+      same_pair =
+          cp.left == c.left && cp.right == c.right && cm.left == c.left && cm.right == c.right;
+      fd[i] = (cp.distance - cm.distance) / (2 * h);
+    }
+    if (!same_pair) continue;
+    ++checked;
+    EXPECT_LE((g - fd).cwiseAbs().maxCoeff(), 1e-6 * std::max(1.0, fd.norm())) << "case " << k;
+  }
+  EXPECT_GT(checked, 20);
+}
