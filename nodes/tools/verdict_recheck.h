@@ -2,16 +2,19 @@
 /// \file verdict_recheck.h
 /// verdict_grid's own re-check of a "reachable" verdict's certificate, written apart from the
 /// check it judges: eq. (1) assembled from M, b and the sole Jacobian, the stance cone, the
-/// limits, the held sole and the ground from the forward kinematics, the Euler steps of the
-/// bridge, x(0) = x_0 and x(t_f) against x_f.
+/// limits, the held sole and the ground from the forward kinematics, the legs' collision
+/// primitives by Bullet's GJK (testing/exact_leg_distance.h, not the check's capsules), the
+/// Euler steps of the bridge, x(0) = x_0 and x(t_f) against x_f.
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "reach_trajopt/contact/contact_wrench_cone.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
+#include "reach_trajopt/testing/exact_leg_distance.h"
 
 namespace reach_trajopt {
 namespace verdict {
@@ -86,6 +89,14 @@ inline Recheck recheckPath(const RobotModel& model, const ContactConfig& contact
   const ContactWrenchCone::Matrix C = ContactWrenchCone(contact).worldMatrix(held.linear());
   const Eigen::VectorXd u_max = model.effortLimits(), qd_max = model.velocityLimits();
   const Eigen::VectorXd q_lo = model.positionLowerLimits(), q_hi = model.positionUpperLimits();
+  // The legs' shapes must not touch along a path that starts with them apart (the check keeps
+  // their capsules, which contain them, contact.leg_clearance_margin apart).
+  const std::optional<ExactLegDistance> legs =
+      contact.leg_clearance
+          ? std::optional<ExactLegDistance>(std::in_place, model, contact.left_sole_frame,
+                                            contact.right_sole_frame)
+          : std::nullopt;
+  double legs_start = HUGE_VAL, legs_min = HUGE_VAL;
   Workspace ws(model);
   Eigen::MatrixXd M(nq, nq), J(6, nq);
   Eigen::VectorXd b(nq);
@@ -101,6 +112,11 @@ inline Recheck recheckPath(const RobotModel& model, const ContactConfig& contact
     sole_v = std::max(sole_v, (J * qd).cwiseAbs().maxCoeff());
     depth = std::max(
         depth, step.transition.target.position.z() - model.framePose(ws, swing).translation().z());
+    if (legs) {
+      const double d = (*legs)(model, ws);
+      if (k == 0) legs_start = d;
+      legs_min = std::min(legs_min, d);
+    }
     pos = std::max({pos, (q_lo - q).maxCoeff(), (q - q_hi).maxCoeff()});
     for (int i = 0; i < nq; ++i)
       if (std::isfinite(qd_max[i]) && qd_max[i] > 0)
@@ -130,6 +146,7 @@ inline Recheck recheckPath(const RobotModel& model, const ContactConfig& contact
   out.require("held sole velocity [m/s, rad/s]", sole_v,
               reach.certificate_contact_velocity_tolerance);
   out.require("swing sole below the ground [m]", depth, reach.certificate_tolerance);
+  if (legs_start > 0.0) out.require("legs' shapes touching (exact distance 0)", -legs_min, -1e-9);
   out.require("Euler steps [m, rad]", euler, 1e-9);
   out.require("x(0) - x_0",
               std::max((p.q.col(0) - step.transition.q0).cwiseAbs().maxCoeff(),

@@ -8,11 +8,6 @@
 //  - the gradient in q against central differences;
 //  - the legs are found from the sole frames (every shape of l_* below the left hip, none of
 //    the pelvis or torso), and bad sole frames are refused with their name.
-#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
-#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
-#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
-#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
-#include <btBulletCollisionCommon.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,6 +16,7 @@
 
 #include "reach_trajopt/model/leg_clearance.h"
 #include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/testing/exact_leg_distance.h"
 
 using namespace reach_trajopt;
 
@@ -46,41 +42,6 @@ double pointToSegment(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
   const double t =
       d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
   return (x - a - t * d).norm();
-}
-
-/// A Bullet convex shape of a primitive (its own sizes, no capsule).
-std::unique_ptr<btConvexShape> bulletShape(const CollisionShape& s) {
-  switch (s.type) {
-    case CollisionShape::Type::kBox:
-      return std::make_unique<btBoxShape>(
-          btVector3(s.size.x() / 2, s.size.y() / 2, s.size.z() / 2));
-    case CollisionShape::Type::kSphere:
-      return std::make_unique<btSphereShape>(s.size.x());
-    case CollisionShape::Type::kCylinder:
-      return std::make_unique<btCylinderShapeZ>(btVector3(s.size.x(), s.size.x(), s.size.y() / 2));
-  }
-  return nullptr;
-}
-
-btTransform toBullet(const Eigen::Isometry3d& T) {
-  btMatrix3x3 R;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) R[r][c] = T.linear()(r, c);
-  return btTransform(R, btVector3(T.translation().x(), T.translation().y(), T.translation().z()));
-}
-
-/// Bullet's GJK distance of two shapes in the world (> 0 when apart).
-double gjkDistance(const btConvexShape& a, const btTransform& Ta, const btConvexShape& b,
-                   const btTransform& Tb) {
-  btVoronoiSimplexSolver simplex;
-  btGjkEpaPenetrationDepthSolver epa;
-  btGjkPairDetector gjk(&a, &b, &simplex, &epa);
-  btGjkPairDetector::ClosestPointInput in;
-  in.m_transformA = Ta;
-  in.m_transformB = Tb;
-  btPointCollector out;
-  gjk.getClosestPoints(in, out, nullptr);
-  return out.m_hasResult ? out.m_distance : HUGE_VAL;
 }
 
 Eigen::VectorXd randomConfiguration(const RobotModel& m, std::mt19937& rng) {
@@ -178,12 +139,9 @@ TEST(LegClearance, FindsTheLegsOfTheBiped) {
 TEST(LegClearance, IsATightLowerBoundOfTheShapesDistanceByGjk) {
   const auto model = RobotModel::fromUrdfFile(kUrdf);
   const LegClearance legs(*model, "l_sole", "r_sole");
-  std::vector<std::pair<const CollisionShape*, std::unique_ptr<btConvexShape>>> left, right;
-  for (const CollisionShape& s : model->collisionShapes()) {
-    if (s.link[0] == 'l' && s.link[1] == '_') left.emplace_back(&s, bulletShape(s));
-    if (s.link[0] == 'r' && s.link[1] == '_') right.emplace_back(&s, bulletShape(s));
-  }
-  ASSERT_EQ(left.size(), 3u);
+  const ExactLegDistance exact_distance(*model, "l_sole", "r_sole");
+  ASSERT_EQ(exact_distance.shapeCount(Side::kLeft), 3);
+  ASSERT_EQ(exact_distance.shapeCount(Side::kRight), 3);
   Workspace ws(*model);
   std::mt19937 rng(11);
   int compared = 0;
@@ -191,13 +149,7 @@ TEST(LegClearance, IsATightLowerBoundOfTheShapesDistanceByGjk) {
   for (int k = 0; k < 400; ++k) {
     const Eigen::VectorXd q = randomConfiguration(*model, rng);
     model->update(ws, q, Eigen::VectorXd::Zero(model->nq()));
-    double exact = HUGE_VAL;
-    for (const auto& [sl, bl] : left)
-      for (const auto& [sr, br] : right) {
-        const btTransform Tl = toBullet(model->framePose(ws, model->frameId(sl->link)) * sl->pose);
-        const btTransform Tr = toBullet(model->framePose(ws, model->frameId(sr->link)) * sr->pose);
-        exact = std::min(exact, gjkDistance(*bl, Tl, *br, Tr));
-      }
+    const double exact = exact_distance(*model, ws);
     const double capsules = legs.closest(*model, ws).distance;
     if (!(exact > 1e-3)) continue;  // touching shapes: GJK's distance is a depth, not compared
     ++compared;
