@@ -83,7 +83,9 @@ void addTimingFields(ConfigFields<C>& t) {
            "margin has left the soles (lift-off at once); 0: their edges")
       .add("stepping_com_xy_weight", &C::stepping_com_xy_weight, "", Range::nonNegative(),
            "weight of the controller's horizontal CoM task while stepping (after the settle "
-           "phase); 0: wbc.w_com_xy, the standing robot's");
+           "phase); 0: wbc.w_com_xy, the standing robot's")
+      .add("ocp_swing_com_xy_weight", &C::ocp_swing_com_xy_weight, "", Range::nonNegative(),
+           "the same while the swing tracks an OCP trajectory (swing=ocp); 0: wbc.w_com_xy");
 }
 
 /// WalkConfig::fields(): the swing, touchdown and standing posture before the walk.
@@ -865,10 +867,12 @@ void WalkingExperiment::Loop::references(double t) {
                                 : 1.0;
     com_ref_.advance(dt_, transfer, ref_);
   }
-  // Stepping, the horizontal CoM task is stiffer than standing's (WalkConfig).
-  ref_.w_com_xy = phase_ != Phase::kSettle && wc_.stepping_com_xy_weight > 0.0
-                      ? wc_.stepping_com_xy_weight
-                      : -1.0;
+  // Stepping, the horizontal CoM task is stiffer than standing's (WalkConfig); less so while
+  // the swing tracks an OCP trajectory, whose joint feed-forward carries the CoM motion it
+  // planned.
+  const bool tracking_ocp = phase_ == Phase::kSingle && tracked_.time.size() > 0;
+  const double w = tracking_ocp ? wc_.ocp_swing_com_xy_weight : wc_.stepping_com_xy_weight;
+  ref_.w_com_xy = phase_ != Phase::kSettle && w > 0.0 ? w : -1.0;
   ref_.q_ff.resize(0);
   ref_.qd_ff.resize(0);
   ref_.qdd_ff.resize(0);

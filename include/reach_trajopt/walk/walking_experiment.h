@@ -74,6 +74,11 @@ struct WalkConfig {
   /// after the settle phase); 0: WbcConfig::w_com_xy (the standing robot's). Large enough that
   /// the QP realizes the reference's pivot instead of trading it for the posture.
   double stepping_com_xy_weight = 50.0;
+  /// The same while the swing tracks an OCP trajectory (swing ocp): its joint feed-forward
+  /// carries the CoM motion the OCP planned; 50 made the proposed preset's demo walk collide
+  /// its legs at step 5, 10 did not and kept the kinematic preset's envelope. 0:
+  /// WbcConfig::w_com_xy.
+  double ocp_swing_com_xy_weight = 10.0;
   /// How long each swing lasts. kFixed: single_support_duration. kTvrBounds: chosen at lift-off
   /// in [min_single_support_duration, max_single_support_duration] so that the TVR step fits
   /// the foot offset bounds (planner/step_timing.h; Khadiv et al. 2016); the nominal duration
