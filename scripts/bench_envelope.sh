@@ -6,6 +6,8 @@
 # cores. Prints one `BENCH walk.envelope` line per preset and protocol (preset=standing: the
 # reference) and writes the polar figures and every walk to report/
 # (push_envelope_<protocol>.svg, push_envelope_<protocol>.csv).
+# Then TALOS (config/talos.yaml) in the standing protocol: the baseline and the standing robot at
+# 0.2 and 0.4 m/s, its lines marked robot=talos (report/push_envelope_talos_standing.*).
 #   scripts/bench_envelope.sh [--fine]      (--fine: magnitudes 0.1 to 1.0 m/s by 0.1, 2 seeds)
 #   scripts/bench_envelope.sh --smoke DIR   (make test: the baseline, one push, 5 steps)
 set -euo pipefail
@@ -25,3 +27,12 @@ for protocol in standing midswing; do
     | grep '^BENCH'
   echo "figure: $(cd "$out" && pwd)/push_envelope_$protocol.svg"
 done
+# TALOS (config/talos.yaml), standing protocol, the baseline beside the standing robot at 0.2 and
+# 0.4 m/s (about 10 s); its lines carry robot=talos.
+if [ "${1:-}" != "--smoke" ]; then
+  "$BIN/push_envelope" --config config/talos.yaml --jobs 2 --standing --protocol standing \
+    --policies baseline --magnitudes 0.2,0.4 --seeds 1 \
+    --svg "$out/push_envelope_talos_standing.svg" --csv "$out/push_envelope_talos_standing.csv" \
+    | grep '^BENCH' | sed 's/^BENCH walk.envelope /BENCH walk.envelope robot=talos /'
+  echo "figure: $(cd "$out" && pwd)/push_envelope_talos_standing.svg"
+fi

@@ -133,7 +133,7 @@ def talos_ocp(lines):
 def envelope(protocol):
     def get(lines):
         sel = {} if protocol is None else {"protocol": protocol}
-        got = {p: find(lines, "walk.envelope", preset=p, **sel)
+        got = {p: find(lines, "walk.envelope", preset=p, **sel, **BIPED)
                for p in ("proposed", "kinematic", "baseline")}
         if any(v is None or num(v.get("survived")) is None for v in got.values()):
             return None
@@ -147,7 +147,7 @@ def envelope(protocol):
 def envelope_radius(protocol):
     def get(lines):
         sel = {} if protocol is None else {"protocol": protocol}
-        kv = find(lines, "walk.envelope", preset="proposed", **sel)
+        kv = find(lines, "walk.envelope", preset="proposed", **sel, **BIPED)
         if kv is None or not kv.get("radii_mps"):
             return None
         radii = [num(r) for r in kv["radii_mps"].split("/")]
@@ -158,7 +158,8 @@ def envelope_radius(protocol):
 
 
 def protocols(lines):
-    ps = sorted({kv.get("protocol") for n, kv in lines if n == "walk.envelope"},
+    ps = sorted({kv.get("protocol") for n, kv in lines
+                 if n == "walk.envelope" and kv.get("robot") in (None, "biped")},
                 key=lambda p: (p is not None, p or ""))
     return ps or [None]
 

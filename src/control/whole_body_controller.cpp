@@ -132,7 +132,8 @@ void WholeBodyController::addTasks(const Eigen::VectorXd& q, const Eigen::Vector
     const Eigen::Vector3d a = ref.com_acceleration + c.kd_com * (ref.com_velocity - com_vel) +
                               c.kp_com * (ref.com_position - com);
     const Eigen::Vector3d drift = m.centerOfMassJdotQd(ws_);
-    addTask(J_com_.topRows<2>(), drift.head<2>(), a.head<2>(), c.w_com_xy);
+    addTask(J_com_.topRows<2>(), drift.head<2>(), a.head<2>(),
+            ref.w_com_xy >= 0.0 ? ref.w_com_xy : c.w_com_xy);
     addTask(J_com_.bottomRows<1>(), drift.tail<1>(), a.tail<1>(), c.w_com);
   }
   {

@@ -74,7 +74,18 @@ void addTimingFields(ConfigFields<C>& t) {
            "lets the swing sole lift off")
       .add("lift_off_capture_gain", &C::lift_off_capture_gain, "1/s", Range::positive(),
            "lift_off capture_point: the rate at which the double support steers the "
-           "capture point");
+           "capture point")
+      .add("lift_off_capture_feedback", &C::lift_off_capture_feedback, "",
+           "lift_off capture_point: steer the measured capture point (the CoM reference "
+           "restarts from the measured CoM state each tick) instead of the reference's own")
+      .add("lift_off_exit_margin", &C::lift_off_exit_margin, "m", Range::nonNegative(),
+           "lift_off capture_point: the capture point beyond the soles' box shrunk by this "
+           "margin has left the soles (lift-off at once); 0: their edges")
+      .add("stepping_com_xy_weight", &C::stepping_com_xy_weight, "", Range::nonNegative(),
+           "weight of the controller's horizontal CoM task while stepping (after the settle "
+           "phase); 0: wbc.w_com_xy, the standing robot's")
+      .add("ocp_swing_com_xy_weight", &C::ocp_swing_com_xy_weight, "", Range::nonNegative(),
+           "the same while the swing tracks an OCP trajectory (swing=ocp); 0: wbc.w_com_xy");
 }
 
 /// WalkConfig::fields(): the swing, touchdown and standing posture before the walk.
@@ -498,12 +509,21 @@ bool WalkingExperiment::Loop::liftOff(double time_in_double) {
   const Eigen::Vector2d capture = capturePoint();
   Eigen::Vector2d box_min, box_max;
   supportBox(box_min, box_max);
+  // The soles' box up to their edges, shrunk by lift_off_exit_margin.
+  const Eigen::Vector2d exit_margin =
+      Eigen::Vector2d::Constant(kSupportMargin - wc_.lift_off_exit_margin);
+  box_min -= exit_margin;
+  box_max += exit_margin;
   if ((capture.array() < box_min.array()).any() || (capture.array() > box_max.array()).any()) {
     // Only a step can catch it: with the sole on the side it leaves toward.
     const Side toward = capture.y() > 0.5 * (soleXy(Side::kLeft).y() + soleXy(Side::kRight).y())
                             ? Side::kLeft
                             : Side::kRight;
-    swing_ = initiating_ ? toward : opposite(toward);  // updatePhase flips it after a touchdown
+    // Leaving forward or backward, after a touchdown: the sole in turn (the one that just
+    // landed carries the weight it took over and cannot lift at once).
+    const bool sideways = capture.y() < box_min.y() || capture.y() > box_max.y();
+    if (sideways || initiating_)
+      swing_ = initiating_ ? toward : opposite(toward);  // updatePhase flips it after a touchdown
     return true;
   }
   const Eigen::Vector2d target = liftOffCapturePoint();
@@ -836,6 +856,9 @@ void WalkingExperiment::Loop::references(double t) {
   } else if (phase_ == Phase::kDouble && wc_.lift_off == WalkConfig::LiftOff::kCapturePoint) {
     Eigen::Vector2d box_min, box_max;
     supportBox(box_min, box_max);
+    // DCM feedback: the reference restarts from the measured CoM state, so the pivot follows
+    // from the measured capture point.
+    if (wc_.lift_off_capture_feedback) com_ref_.restart(LipmState{xy(com_), xy(vcom_)});
     com_ref_.steerCapturePoint(dt_, liftOffCapturePoint(), wc_.lift_off_capture_gain, box_min,
                                box_max, ref_);
   } else {
@@ -844,6 +867,12 @@ void WalkingExperiment::Loop::references(double t) {
                                 : 1.0;
     com_ref_.advance(dt_, transfer, ref_);
   }
+  // Stepping, the horizontal CoM task is stiffer than standing's (WalkConfig); less so while
+  // the swing tracks an OCP trajectory, whose joint feed-forward carries the CoM motion it
+  // planned.
+  const bool tracking_ocp = phase_ == Phase::kSingle && tracked_.time.size() > 0;
+  const double w = tracking_ocp ? wc_.ocp_swing_com_xy_weight : wc_.stepping_com_xy_weight;
+  ref_.w_com_xy = phase_ != Phase::kSettle && w > 0.0 ? w : -1.0;
   ref_.q_ff.resize(0);
   ref_.qd_ff.resize(0);
   ref_.qdd_ff.resize(0);

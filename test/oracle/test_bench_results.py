@@ -89,6 +89,22 @@ def test_targets_met_when_the_numbers_are(tmp_path):
     assert t["one reachability check, bench case, 2 threads"][0] == "not measured in this run"
 
 
+def test_the_envelope_figures_are_the_bipeds(tmp_path):
+    # TALOS's baseline line (robot=talos, scripts/bench_envelope.sh) comes last; the figures
+    # are the biped's: 5 > 4 and 5 >= 2 x 2 met (TALOS's 9 would fail 5 >= 2 x 9).
+    log = "\n".join([
+        "BENCH walk.envelope preset=baseline protocol=standing pushes=10 survived=2 radii_mps=0.6/0.6",
+        "BENCH walk.envelope preset=kinematic protocol=standing pushes=10 survived=4 radii_mps=0.6/0.6",
+        "BENCH walk.envelope preset=proposed protocol=standing pushes=10 survived=5 radii_mps=0.6/0.7",
+        "BENCH walk.envelope robot=talos preset=baseline protocol=standing pushes=16 survived=9 radii_mps=0.4/0.4",
+    ])
+    r, text = run(tmp_path, log)
+    assert r.returncode == 0, r.stderr
+    t = rows(text)
+    assert t["pushes survived, proposed / kinematic / baseline (standing)"][0::2] == [
+        "5 / 4 / 2 of 10", "yes"]
+
+
 def test_bad_input_is_named(tmp_path):
     r, _ = run(tmp_path, "no benchmark lines here\n")
     assert r.returncode == 2 and "holds no BENCH line" in r.stderr

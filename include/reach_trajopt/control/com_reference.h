@@ -23,6 +23,9 @@ class LipmComReference {
   /// Double support from the measured CoM state, the pivot moving `from` -> `to` [m].
   void startDoubleSupport(const LipmState& com, const Eigen::Vector2d& from,
                           const Eigen::Vector2d& to);
+  /// The reference's CoM state becomes the measured `com`, its pivot kept (DCM feedback: the
+  /// next steerCapturePoint() steers the measured capture point).
+  void restart(const LipmState& com) { com_ = com; }
   /// One tick of `dt` [s] while walking; `transfer` in [0, 1] is how far the pivot has moved
   /// (1 in single support). Fills the CoM fields of `ref`.
   void advance(double dt, double transfer, WbcReference& ref);

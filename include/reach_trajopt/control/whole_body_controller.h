@@ -72,6 +72,8 @@ struct WbcReference {
   /// Optional joint trajectory (n_q each, empty when unused): tracked by the posture task in
   /// place of `posture`, with qdd_ff as its acceleration feed-forward.
   Eigen::VectorXd q_ff, qd_ff, qdd_ff;
+  /// Weight of the horizontal CoM task for this tick; < 0: WbcConfig::w_com_xy.
+  double w_com_xy = -1.0;
 };
 
 /// Result of one tick.

@@ -52,7 +52,8 @@ struct WalkConfig {
   /// off once the measured capture point is within lift_off_capture_tolerance of it, after at
   /// least double_support_duration (none before the first step) and at most
   /// max_double_support_duration; a capture point that leaves the soles' box lifts off at once,
-  /// with the sole on the side it leaves toward (only a step can catch it). As standing, the
+  /// with the sole on the side it leaves toward when it leaves sideways (only a step can catch
+  /// it), the next sole in turn when it leaves forward or backward. As standing, the
   /// double support absorbs what the soles can; the first step starts from such a double
   /// support (gait initiation).
   enum class LiftOff { kTimed, kCapturePoint };
@@ -60,6 +61,24 @@ struct WalkConfig {
   double max_double_support_duration = 1.0;  ///< [s]
   double lift_off_capture_tolerance = 0.02;  ///< [m]
   double lift_off_capture_gain = 10.0;       ///< [1/s]
+  /// lift_off kCapturePoint: the capture point steered is the measured one (the CoM reference
+  /// restarts from the measured CoM state each tick: DCM feedback, the pivot from the measured
+  /// capture point), not the reference's own LIPM started at touchdown (which the robot, loosely
+  /// tracking it, left behind).
+  bool lift_off_capture_feedback = true;
+  /// lift_off kCapturePoint: the capture point counts as having left the soles (lift-off at
+  /// once) when it is beyond their box shrunk by this margin [m]; 0: the sole edges, where the
+  /// soles can no longer hold it.
+  double lift_off_exit_margin = 0.0;
+  /// Weight of the whole-body controller's horizontal CoM task while stepping (every phase
+  /// after the settle phase); 0: WbcConfig::w_com_xy (the standing robot's). Large enough that
+  /// the QP realizes the reference's pivot instead of trading it for the posture.
+  double stepping_com_xy_weight = 50.0;
+  /// The same while the swing tracks an OCP trajectory (swing ocp): its joint feed-forward
+  /// carries the CoM motion the OCP planned; 50 made the proposed preset's demo walk collide
+  /// its legs at step 5, 10 did not and kept the kinematic preset's envelope. 0:
+  /// WbcConfig::w_com_xy.
+  double ocp_swing_com_xy_weight = 10.0;
   /// How long each swing lasts. kFixed: single_support_duration. kTvrBounds: chosen at lift-off
   /// in [min_single_support_duration, max_single_support_duration] so that the TVR step fits
   /// the foot offset bounds (planner/step_timing.h; Khadiv et al. 2016); the nominal duration
