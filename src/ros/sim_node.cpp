@@ -5,6 +5,8 @@
 
 #include <std_msgs/String.h>
 
+#include <algorithm>
+
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 #include "reach_trajopt/ros/markers.h"
@@ -156,6 +158,13 @@ void SimNode::waitForSubscribers() {
   auto ready = [&]() {
     for (const ros::Publisher* pub : pubs_)
       if (static_cast<int>(pub->getNumSubscribers()) < p.wait_for_subscribers) return false;
+    // tvr_planner_node listens to contact_state as to com_state: with a recorder, its
+    // subscription is not the first one there (a short walk's bag missed the topic once).
+    const int contact_subscribers =
+        std::min(p.wait_for_com_subscribers, 1 + p.wait_for_subscribers);
+    if (p.wait_for_subscribers > 0 &&
+        static_cast<int>(contact_pub_.getNumSubscribers()) < contact_subscribers)
+      return false;
     return static_cast<int>(com_pub_.getNumSubscribers()) >= p.wait_for_com_subscribers;
   };
   while (ros::ok() && !ready() && ros::WallTime::now() < deadline) ros::WallDuration(0.05).sleep();
