@@ -141,14 +141,14 @@ void printStep(const StepRecord& s) {
       "step %2d %-5s t=%.3f planned_tvr=(%.3f, %.3f) planned=(%.3f, %.3f)%s from=%s "
       "executed=(%.3f, %.3f) err=%.4f m verdict=%s certificate=%s witness_violation=%.3g "
       "junction_gap=%.3g/%.3g x_f_gap=%.3g/%.3g d_H=%.4g check_s=%.3f passes=%d "
-      "ocp_s=%.3f ocp=%s latency_s=%.3f%s%s%s\n",
+      "ocp_s=%.3f ocp=%s latency_s=%.3f%s replans=%d%s%s\n",
       s.index, sideName(s.swing), s.touchdown_time, s.planned_tvr.x(), s.planned_tvr.y(),
       s.planned.x(), s.planned.y(), s.offset_clipped ? " clipped" : "", s.footholdSourceName(),
       s.executed.x(), s.executed.y(), s.touchdown_error, s.verdictName(),
       s.certificate == Certificate::kNone ? "none" : s.certificateName(), s.witness_violation,
       s.junction_position_gap, s.junction_velocity_gap, s.terminal_position_gap,
       s.terminal_velocity_gap, s.hausdorff_distance, s.check_time_s, s.check_passes, s.ocp_time_s,
-      s.ocpStatusName(), s.plan_latency_s, s.plan_late ? " LATE" : "",
+      s.ocpStatusName(), s.plan_latency_s, s.plan_late ? " LATE" : "", s.replans,
       s.reason.empty() ? "" : " reason: ", s.reason.c_str());
   std::fflush(stdout);
 }
@@ -161,7 +161,7 @@ void writeRecords(const std::string& path, const std::vector<StepRecord>& record
          "planned_y,executed_x,executed_y,touchdown_error,offset_clipped,verdict,certificate,"
          "witness_violation,junction_position_gap,junction_velocity_gap,"
          "terminal_position_gap,terminal_velocity_gap,plan_latency_s,plan_late,swing_duration_s,"
-         "foothold_source\n";
+         "foothold_source,replans\n";
   for (const StepRecord& s : records)
     out << s.index << "," << sideName(s.swing) << "," << s.plan_time << "," << s.touchdown_time
         << "," << s.planned_tvr.x() << "," << s.planned_tvr.y() << "," << s.planned.x() << ","
@@ -170,7 +170,7 @@ void writeRecords(const std::string& path, const std::vector<StepRecord>& record
         << s.certificateName() << "," << s.witness_violation << "," << s.junction_position_gap
         << "," << s.junction_velocity_gap << "," << s.terminal_position_gap << ","
         << s.terminal_velocity_gap << "," << s.plan_latency_s << "," << s.plan_late << ","
-        << s.swing_duration << "," << s.footholdSourceName() << "\n";
+        << s.swing_duration << "," << s.footholdSourceName() << "," << s.replans << "\n";
 }
 
 }  // namespace

@@ -96,11 +96,9 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
                                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                    std::chrono::duration<double>(config_.ocp.time_limit));
   if (!at.deadline || search_deadline < *at.deadline) at.deadline = search_deadline;
-  PassTotals totals{target.check_passes, target.check_time_s, target.ocp_time_s};
+  PassTotals totals = PassTotals::of(target);
   auto carryTotals = [&](FootstepTransition& step, int checked) {
-    step.check_passes = totals.passes;
-    step.check_time_s = totals.check_time_s;
-    step.ocp_time_s = totals.ocp_time_s;
+    totals.stampOn(step);
     step.candidates_checked = checked;
   };
   // The rings around the target, nearest first; each ring's kinematic checks as one batch.
@@ -126,9 +124,7 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
       candidate.target = batch.candidates[i];
       FootstepTransition step = planTarget(candidate, progress);
       ++checked;
-      totals.passes += step.check_passes;
-      totals.check_time_s += step.check_time_s;
-      totals.ocp_time_s += step.ocp_time_s;
+      totals.add(step);
       if (step.reachable && hasStrictTrajectory(r, step)) {
         carryTotals(step, checked);
         step.request = r;
@@ -195,15 +191,13 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
     quick.reason = "deadline reached after the quick pass: " + quick.reason;
     return quick;
   }
-  PassTotals totals{1, quick.check_time_s, quick.ocp_time_s};
+  PassTotals totals = PassTotals::of(quick);
   for (std::size_t i = 1; i + 1 < schedule.passes.size(); ++i) {
     std::optional<FootstepTransition> retried = retryQuickOcp(
         r, reach, schedule.passes[i], first.check, quick, quick_slices, progress, totals);
     if (retried) return std::move(*retried);
     if (r.pastDeadline()) {
-      quick.check_passes = totals.passes;
-      quick.check_time_s = totals.check_time_s;
-      quick.ocp_time_s = totals.ocp_time_s;
+      totals.stampOn(quick);
       quick.reason = "deadline reached before the full pass: " + quick.reason;
       return quick;
     }
@@ -216,9 +210,9 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
   FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;
   const char* why = quick.reachable ? "the quick pass's certified step has no strict trajectory"
                                     : "the quick pass certified nothing";
-  kept.check_passes = totals.passes;
-  kept.check_time_s = totals.check_time_s + full.check_time_s;
-  kept.ocp_time_s = totals.ocp_time_s + full.ocp_time_s;
+  totals.check_time_s += full.check_time_s;
+  totals.ocp_time_s += full.ocp_time_s;
+  totals.stampOn(kept);
   kept.reason =
       std::string(why) + (&kept == &full ? ", the full budget: " : ", kept: ") + kept.reason;
   return kept;
@@ -233,9 +227,7 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::retryQuickOcp(
   // the step then carries the sums of every pass and says which retry solved it.
   auto endsStep = [&](FootstepTransition& retry, const std::string& how) {
     if (!retry.reachable || !hasStrictTrajectory(r, retry)) return false;
-    retry.check_passes = totals.passes;
-    retry.check_time_s = totals.check_time_s;
-    retry.ocp_time_s = totals.ocp_time_s;
+    totals.stampOn(retry);
     retry.reason =
         "the quick pass's strict OCP failed in its hulls, solved in " + how + ": " + retry.reason;
     return true;

@@ -109,6 +109,14 @@ void addExperimentFields(ConfigFields<C>& t) {
         "touchdown (replaces reach.horizon), < single_support_duration")
       .add("replan_fraction", &C::replan_fraction, "", Range::between(0.0, 1.0),
            "eq. (11) re-evaluated from the measured CoM during this fraction of the swing")
+      .add("replan_tolerance", &C::replan_tolerance, "m", Range::nonNegative(),
+           "after the swing's first plan, the step is planned again (eq. 11, the policy's check "
+           "and OCP over the time left) when eq. (11)'s foothold from the measured CoM has "
+           "moved this far from the one planned (a push); 0: never")
+      .add("max_replans", &C::max_replans, "", Range::atLeast(0),
+           "replan_tolerance: at most this many new plans per swing")
+      .add("min_replan_horizon", &C::min_replan_horizon, "s", Range::positive(),
+           "replan_tolerance: no new plan when less time is left to the nominal touchdown")
       .choice("plan_latency", &C::plan_latency,
               {{"pause", WalkConfig::PlanLatency::kPause},
                {"measured", WalkConfig::PlanLatency::kMeasured},
@@ -182,14 +190,15 @@ std::string WalkResult::summaryLine() const {
      << " sim_s=" << sim_time << " wall_s=" << wall_time
      << " max_touchdown_err_m=" << max_touchdown_error << " qp_failures=" << qp_failures
      << " end=" << end_reason;
+  int replans = 0;
+  for (const StepRecord& r : records) replans += r.replans;
+  os << " replans=" << replans;
   if (policy.checksFoothold()) {
-    int infeasible = 0, failed = 0;
+    int infeasible = 0, failed = 0, late = 0, nearest_feasible = 0, nearest_reachable = 0,
+        relaxed = 0;
     for (const StepRecord& r : records) {
       infeasible += r.verdict == StepVerdict::kKinematicallyInfeasible;
       failed += r.failed_check_action.has_value();
-    }
-    int late = 0, nearest_feasible = 0, nearest_reachable = 0, relaxed = 0;
-    for (const StepRecord& r : records) {
       late += r.plan_late;
       nearest_feasible += r.foothold_source == FootholdSource::kNearestFeasible;
       nearest_reachable += r.foothold_source == FootholdSource::kNearestReachable;
@@ -339,17 +348,25 @@ struct WalkingExperiment::Loop {
   /// The swing's duration by WalkConfig::step_timing, from the measured CoM state at lift-off.
   double swingDuration(double t) const;
   void planStep(double t, double time_in_swing);
-  void checkStep(double t, double time_in_swing);
+  /// The policy's check and OCP from the measured state; `replanning`: a new plan during the
+  /// swing, over the time left to the nominal touchdown (their horizon).
+  void checkStep(double t, double time_in_swing, bool replanning = false);
+  /// WalkConfig::replan_tolerance: eq. (11)'s foothold from the measured CoM state has moved
+  /// from the one planned (`time_in_swing` [s] into the swing).
+  bool disturbed(double t, double time_in_swing) const;
+  /// Plans the step again `time_in_swing` [s] into the swing (eq. 11, then the policy's check).
+  void replan(double t, double time_in_swing);
   /// The check's plan as the policy takes it: the foothold, and the OCP's trajectory to track
   /// or not (on_fail); records a failed check's action.
   PendingPlan decidePlan(const FootstepTransition& step, double t);
   /// The plan's latency in sim time by WalkConfig::plan_latency [s] (`wall_s`: its wall time).
   double planLatency(double wall_s) const;
-  /// The plan in effect: the swing tracks the OCP's trajectory or goes to the foothold.
-  void applyPlan(PendingPlan& plan);
+  /// The plan in effect from sim time `t` [s]: the swing tracks the OCP's trajectory or goes
+  /// to the foothold.
+  void applyPlan(PendingPlan& plan, double t);
   /// A pending plan whose time has come takes effect (each single-support tick).
   void applyPendingPlan(double t);
-  FootstepPlanRequest footstepRequest(double time_in_swing) const;
+  FootstepPlanRequest footstepRequest(double time_in_swing, bool replanning) const;
   void recordCheck(const FootstepTransition& step);
   void touchdown(double t);
   void references(double t);
@@ -392,8 +409,9 @@ struct WalkingExperiment::Loop {
   bool initiating_ = false;      ///< the double support before the first lift-off
   double swing_duration_ = 0.0;  ///< this swing's duration (WalkConfig::step_timing) [s]
   StepRecord current_;
-  bool checked_ = false;      ///< this swing's footstep check has run
-  TransitionResult tracked_;  ///< the OCP trajectory tracked (empty when none)
+  bool checked_ = false;           ///< this swing's footstep check has run
+  bool replan_kept_plan_ = false;  ///< checkStep: a replan's plan was not taken (replan())
+  TransitionResult tracked_;       ///< the OCP trajectory tracked (empty when none)
   double tracked_start_ = 0.0;
   PendingPlan pending_;
   WbcReference ref_;
@@ -580,12 +598,13 @@ bool WalkingExperiment::Loop::singleSupport(double t) {
   const double ts = t - phase_start_;
   if (ts < wc_.replan_fraction * swing_duration_) {
     planStep(t, ts);
-    swing_traj_->retarget(target3());
+    swing_traj_->retarget(target3(), ts);
   }
   if (impl_.footsteps && !checked_ && ts >= swing_duration_ - impl_.footsteps->horizon())
     checkStep(t, ts);
   applyPendingPlan(t);
   if (current_.index == wc_.midswing_push_step && ts >= 0.5 * swing_duration_) pushOnce();
+  if (disturbed(t, ts)) replan(t, ts);
   const SoleContact& sc = world_->soleContacts()[static_cast<int>(swing_)];
   if (ts > 0.5 * swing_duration_ && sc.in_contact && sc.wrench[2] > wc_.touchdown_force) {
     touchdown(t);
@@ -619,6 +638,42 @@ void WalkingExperiment::Loop::beginSingleSupport(double t) {
   checked_ = false;
   tracked_ = TransitionResult();
   pending_ = PendingPlan();
+}
+
+bool WalkingExperiment::Loop::disturbed(double t, double ts) const {
+  if (wc_.replan_tolerance <= 0.0 || current_.replans >= wc_.max_replans || pending_.active)
+    return false;
+  // After the swing's first plan: the check's, or the end of the replan_fraction window.
+  if (impl_.footsteps ? !checked_ : ts < wc_.replan_fraction * swing_duration_) return false;
+  const double remaining = swing_duration_ - ts;
+  if (remaining < wc_.min_replan_horizon) return false;
+  // The in-process eq. (11), whoever proposes the steps (it is the same planner): a tick's
+  // closed form, not a request per tick.
+  const TvrStep now =
+      planner_.planFromMeasured(LipmState{xy(com_), xy(vcom_)}, current_.stance, current_.swing, t,
+                                remaining, com0_.x(), wc_.forward_speed, feet_mid_.y());
+  return (now.alpha_tvr - current_.planned_tvr).norm() > wc_.replan_tolerance;
+}
+
+void WalkingExperiment::Loop::replan(double t, double ts) {
+  ++current_.replans;
+  if (!impl_.footsteps) {
+    planStep(t, ts);
+    swing_traj_->retarget(target3(), ts);
+    return;
+  }
+  const StepRecord before = current_;
+  planStep(t, ts);
+  checkStep(t, ts, true);
+  // A swing that tracks an OCP trajectory keeps it when the new plan has none to track (its
+  // check or OCP failed: the interpolated swing cannot start from the tracked sole's state),
+  // and any swing keeps its plan when the check threw.
+  if (replan_kept_plan_) {
+    replan_kept_plan_ = false;
+    const std::string why = current_.reason;
+    current_ = before;
+    current_.reason += "; replanned " + std::to_string(ts) + " s into the swing, not taken: " + why;
+  }
 }
 
 double WalkingExperiment::Loop::swingDuration(double t) const {
@@ -671,11 +726,11 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
 
 // The policy's footstep check (in process or through setFootstepPlanner's function); the
 // simulation waits (in sim time) for it and the OCP.
-void WalkingExperiment::Loop::checkStep(double t, double ts) {
+void WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
   checked_ = true;
   try {
     const auto wall_start = std::chrono::steady_clock::now();
-    FootstepPlanRequest request = footstepRequest(ts);
+    FootstepPlanRequest request = footstepRequest(ts, replanning);
     // Paying for the plan's wall time, the planner knows its deadline: the nominal touchdown,
     // as far away in wall time as it is in sim time (a later plan would be dropped).
     if (wc_.plan_latency == WalkConfig::PlanLatency::kMeasured)
@@ -689,12 +744,16 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     recordCheck(step);
     PendingPlan plan = decidePlan(step, t);
+    if (replanning && !plan.track_ocp && tracked_.time.size() > 0) {
+      replan_kept_plan_ = true;
+      return;
+    }
     const double latency = planLatency(wall_s);
     current_.plan_latency_s = latency;
     if (latency <= 0.0) {  // the simulation waited for the plan
       current_.planned = plan.foothold;
       if (on_check_) on_check_(current_, step);
-      applyPlan(plan);
+      applyPlan(plan, t);
       return;
     }
     if (on_check_) on_check_(current_, step);
@@ -711,6 +770,7 @@ void WalkingExperiment::Loop::checkStep(double t, double ts) {
     // limit while the robot is already falling): the step goes on unchecked.
     current_.verdict = StepVerdict::kCheckError;
     current_.reason = e.what();
+    replan_kept_plan_ = replanning;  // a replan that threw changes nothing
   }
 }
 
@@ -751,24 +811,25 @@ double WalkingExperiment::Loop::planLatency(double wall_s) const {
   return 0.0;
 }
 
-void WalkingExperiment::Loop::applyPlan(PendingPlan& plan) {
+void WalkingExperiment::Loop::applyPlan(PendingPlan& plan, double t) {
   if (plan.track_ocp) {
     tracked_ = std::move(plan.trajectory);
     tracked_start_ = plan.ask_time;
   } else {
-    swing_traj_->retarget(Eigen::Vector3d(plan.foothold.x(), plan.foothold.y(), ground_z_));
+    swing_traj_->retarget(Eigen::Vector3d(plan.foothold.x(), plan.foothold.y(), ground_z_),
+                          t - phase_start_);
   }
 }
 
 void WalkingExperiment::Loop::applyPendingPlan(double t) {
   if (!pending_.active || t < pending_.apply_at) return;
   current_.planned = pending_.foothold;
-  applyPlan(pending_);
+  applyPlan(pending_, t);
   pending_ = PendingPlan();
 }
 
 // The check's request from the measured state, with the policy's parts.
-FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts) const {
+FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts, bool replanning) const {
   const WalkingPolicy& policy = wc_.policy;
   const Side stance = opposite(swing_);
   FootstepPlanRequest request;
@@ -782,6 +843,11 @@ FootstepPlanRequest WalkingExperiment::Loop::footstepRequest(double ts) const {
   // state, over the time left to the nominal touchdown.
   request.touchdown_com = planner_.lipm().propagate(LipmState{xy(com_), xy(vcom_)}, current_.stance,
                                                     std::max(0.0, swing_duration_ - ts));
+  if (replanning) {  // the sets and the OCP over the time left to the nominal touchdown
+    ReachConfig reach = impl_.footsteps->config().reach;
+    reach.horizon = std::max(0.0, swing_duration_ - ts);
+    request.reach = reach;
+  }
   request.check_reachability = policy.check == WalkingPolicy::FootholdCheck::kReachability;
   request.solve_ocp = policy.solvesOcp();
   switch (policy.on_failed_check) {

@@ -6,6 +6,7 @@
 /// ends `touchdown_depth` below the ground so that touchdown is made by contact, not by time.
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace reach_trajopt {
 
@@ -27,14 +28,23 @@ class SwingTrajectory {
   /// Sample at time t [s] since lift-off; past `duration` the sole keeps descending slowly
   /// at the final horizontal position (late touchdown).
   SwingSample sample(double t) const;
-  /// Moves the end point (re-planned footstep); the trajectory stays continuous in position
-  /// up to the change of the target times the blend reached so far.
-  void retarget(const Eigen::Vector3d& target);
+  /// Moves the end point (re-planned footstep) from `t` [s] since lift-off on: the change of
+  /// the target is added by its own minimum-jerk blend over the time left, so that position,
+  /// velocity and acceleration stay continuous at `t` (a target moved at lift-off is the
+  /// constructor's). Past the swing's end the sole goes straight to it.
+  void retarget(const Eigen::Vector3d& target, double t);
   double duration() const { return duration_; }
   const Eigen::Vector3d& target() const { return target_; }
 
  private:
+  /// A change of the target made at `time` [s], blended in over [time, duration].
+  struct Correction {
+    double time;
+    Eigen::Vector3d change;
+  };
   Eigen::Vector3d start_, target_;
+  Eigen::Vector3d first_target_;  ///< the target of the blend from start_
+  std::vector<Correction> corrections_;
   double duration_, apex_, depth_;
 };
 

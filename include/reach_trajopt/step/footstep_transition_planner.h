@@ -269,6 +269,22 @@ class FootstepTransitionPlanner {
   struct PassTotals {
     int passes = 1;
     double check_time_s = 0.0, ocp_time_s = 0.0;
+    /// The totals so far of a plan whose first part was `step`.
+    static PassTotals of(const FootstepTransition& step) {
+      return {step.check_passes, step.check_time_s, step.ocp_time_s};
+    }
+    /// Adds a pass's (or a candidate's) passes and times.
+    void add(const FootstepTransition& step) {
+      passes += step.check_passes;
+      check_time_s += step.check_time_s;
+      ocp_time_s += step.ocp_time_s;
+    }
+    /// The step returned carries the sums.
+    void stampOn(FootstepTransition& step) const {
+      step.check_passes = passes;
+      step.check_time_s = check_time_s;
+      step.ocp_time_s = ocp_time_s;
+    }
   };
   /// A retry of the quick pass's strict OCP (`pass`: the wide hull retry or the hull pass)
   /// when it applies; the step when it ended it, the sums of `totals` carried (updated with

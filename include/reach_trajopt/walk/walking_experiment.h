@@ -91,6 +91,16 @@ struct WalkConfig {
   double swing_height = 0.07;                 ///< swing apex above the ground
   double replan_fraction = 0.0;               ///< eq. (11) is re-evaluated from the measured CoM
                                               ///< state during this fraction of the swing
+  /// Replanning on a disturbance (a push during the swing, as the authors' planner replans at
+  /// half swing): after the swing's first plan (the check's, for policies with one; the end of
+  /// replan_fraction otherwise) eq. (11) is re-evaluated from the measured CoM state every
+  /// tick, and when its foothold has moved more than replan_tolerance [m] from the one
+  /// planned, the step is planned again: eq. (11), then the policy's check and OCP over the
+  /// time left to the nominal touchdown (their horizon), at most max_replans times per swing
+  /// and not when less than min_replan_horizon [s] is left. 0: never.
+  double replan_tolerance = 0.0;
+  int max_replans = 1;
+  double min_replan_horizon = 0.06;
   double touchdown_depth = 0.01;  ///< nominal swing end below the ground (touchdown by contact)
   double touchdown_force = 30.0;  ///< sole normal force that counts as touchdown [N]
   double late_touchdown = 0.15;   ///< time past the nominal swing end before a fall is declared
@@ -178,6 +188,9 @@ struct StepRecord {
   double plan_latency_s = 0.0;
   /// The plan came after its deadline and was dropped: the swing went on as it was.
   bool plan_late = false;
+  /// Times the step was planned again during the swing (WalkConfig::replan_tolerance); the
+  /// fields above are the last plan's.
+  int replans = 0;
   std::string reason;  ///< the check's and the OCP's explanations
 
   /// The enum fields' names at the edges (CSV, messages, WALK lines).
