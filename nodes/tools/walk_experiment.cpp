@@ -99,17 +99,8 @@ void applyOptions(const CliArgs& args, WalkConfig& walk) {
         parseDoubleOption("--settle", args.value("--settle"), 0.0, kMaxSettleSeconds);
     walk.max_sim_time = std::max(walk.max_sim_time, walk.settle_duration + 1.0);
   }
-  if (args.given("--plan-latency")) {
-    const std::string l = args.value("--plan-latency");
-    if (l == "pause") {
-      walk.plan_latency = WalkConfig::PlanLatency::kPause;
-    } else if (l == "measured") {
-      walk.plan_latency = WalkConfig::PlanLatency::kMeasured;
-    } else {
-      walk.plan_latency = WalkConfig::PlanLatency::kFixed;
-      walk.fixed_plan_latency = parseDoubleOption("--plan-latency", l, 0.0, 10.0);
-    }
-  }
+  if (args.given("--plan-latency"))
+    walk.setPlanLatency(args.value("--plan-latency"), "--plan-latency");
   if (args.given("--push")) walk.initial_com_velocity = pushOption(args, "--push");
   if (args.given("--midswing-push")) walk.midswing_push = pushOption(args, "--midswing-push");
   walk.validate();

@@ -3,6 +3,8 @@
 
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -19,6 +21,9 @@ namespace reach_trajopt {
 namespace ros_bridge {
 
 namespace {
+using Clock = std::chrono::steady_clock;
+constexpr double kMinTimeBudget = 1e-3;  // [s] a deadline already past, as a budget
+constexpr double kMaxTimeBudget = 1e6;   // [s]
 
 const std::pair<OcpPolicy, const char*> kOcpPolicies[] = {{OcpPolicy::kByVerdict, "by_verdict"},
                                                           {OcpPolicy::kStrict, "strict"},
@@ -140,6 +145,10 @@ reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlan
                toSampleBudgetMsg(used.budgets.hullBudget())};
   m.ocp_policy = ocpPolicyName(r.ocp_policy);
   m.on_infeasible = infeasibleFootholdPolicyName(r.on_infeasible);
+  if (r.deadline) {  // what is left of it now; one already past asks for the quickest answer
+    const double left = std::chrono::duration<double>(*r.deadline - Clock::now()).count();
+    m.time_budget = std::max(left, kMinTimeBudget);
+  }
   return m;
 }
 
@@ -210,6 +219,15 @@ FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep
   r.reach = reach;
   r.ocp_policy = parseName(kOcpPolicies, "ocp_policy", m.ocp_policy);
   r.on_infeasible = parseName(kInfeasiblePolicies, "on_infeasible", m.on_infeasible);
+  if (!std::isfinite(m.time_budget) || m.time_budget < 0.0 || m.time_budget > kMaxTimeBudget) {
+    std::ostringstream os;
+    os << "time_budget: expected 0 (none) or a wall time in (0, " << kMaxTimeBudget << "] s, got "
+       << m.time_budget;
+    throw RequestError(os.str());
+  }
+  if (m.time_budget > 0.0)
+    r.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                    std::chrono::duration<double>(m.time_budget));
   return r;
 }
 

@@ -78,6 +78,9 @@ WalkSetup readSimWalkSetup(const ros::NodeHandle& pnh) {
   pnh.getParam("push_vy", walk.initial_com_velocity.y());
   pnh.getParam("midswing_push_vx", walk.midswing_push.x());
   pnh.getParam("midswing_push_vy", walk.midswing_push.y());
+  std::string latency;
+  if (pnh.getParam("plan_latency", latency) && !latency.empty())
+    walk.setPlanLatency(latency, "~plan_latency");
   walk.validate();
   return setup;
 }

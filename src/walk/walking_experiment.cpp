@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -182,6 +183,26 @@ const ConfigFields<WalkConfig>& WalkConfig::fields() {
 }
 
 WalkConfig WalkConfig::fromYaml(const YamlSection& s) { return fields().read(s); }
+
+void WalkConfig::setPlanLatency(const std::string& value, const std::string& key) {
+  if (value == "pause") {
+    plan_latency = PlanLatency::kPause;
+    return;
+  }
+  if (value == "measured") {
+    plan_latency = PlanLatency::kMeasured;
+    return;
+  }
+  constexpr double kMaxFixedLatency = 10.0;  // [s]
+  char* end = nullptr;
+  const double seconds = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !(seconds >= 0.0) ||
+      seconds > kMaxFixedLatency)
+    throw ConfigError(key + ": expected pause, measured or a latency in [0, 10] s, got '" + value +
+                      "'");
+  plan_latency = PlanLatency::kFixed;
+  fixed_plan_latency = seconds;
+}
 
 std::string WalkResult::summaryLine() const {
   std::ostringstream os;

@@ -69,3 +69,25 @@ TEST(PlanLatency, APlanInTimeTakesEffectAfterItsLatency) {
   EXPECT_DOUBLE_EQ(b.plan_latency_s, 0.05);
   EXPECT_FALSE(b.plan_late);
 }
+
+// The option's string form (walk_experiment --plan-latency, sim_node ~plan_latency).
+TEST(PlanLatency, SetFromItsStringFormOrRefusedNamingTheKey) {
+  WalkConfig walk;
+  walk.setPlanLatency("measured", "--plan-latency");
+  EXPECT_EQ(walk.plan_latency, WalkConfig::PlanLatency::kMeasured);
+  walk.setPlanLatency("0.05", "--plan-latency");
+  EXPECT_EQ(walk.plan_latency, WalkConfig::PlanLatency::kFixed);
+  EXPECT_DOUBLE_EQ(walk.fixed_plan_latency, 0.05);
+  walk.setPlanLatency("pause", "--plan-latency");
+  EXPECT_EQ(walk.plan_latency, WalkConfig::PlanLatency::kPause);
+  for (const std::string bad : {"", "fast", "-0.1", "11", "nan", "0.1s"}) {
+    try {
+      walk.setPlanLatency(bad, "~plan_latency");
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("~plan_latency"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(walk.plan_latency, WalkConfig::PlanLatency::kPause)
+      << "a refused value changes nothing";
+}

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -136,6 +137,35 @@ TEST(RosFootstepPlanMsgs, MalformedRequestsNameTheirField) {
   rejected("seed", [](auto& m) { m.seed = -2; });
   rejected("ocp_policy", [](auto& m) { m.ocp_policy = "loose"; });
   rejected("on_infeasible", [](auto& m) { m.on_infeasible = ""; });
+  rejected("time_budget", [&](auto& m) { m.time_budget = nan; });
+  rejected("time_budget", [](auto& m) { m.time_budget = -1.0; });
+}
+
+// The step's deadline crosses the messages as the wall time left (time_budget): none stays
+// none; one 0.2 s away arrives as a deadline about 0.2 s after the receipt; one already past
+// asks for the quickest answer (a deadline at once).
+TEST(RosFootstepPlanMsgs, TheDeadlineCrossesAsTheTimeLeft) {
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  const int nq = model->nq();
+  const ReachConfig reach;
+  using Clock = std::chrono::steady_clock;
+  FootstepPlanRequest r = makeRequest(nq);
+  auto m = rb::toPlanFootstepRequestMsg(r, reach, ros::Time(0));
+  EXPECT_EQ(m.time_budget, 0.0);
+  EXPECT_FALSE(rb::fromPlanFootstepRequestMsg(m, nq, reach).deadline.has_value());
+  const auto sent = Clock::now();
+  r.deadline = sent + std::chrono::milliseconds(200);
+  m = rb::toPlanFootstepRequestMsg(r, reach, ros::Time(0));
+  EXPECT_GT(m.time_budget, 0.15);
+  EXPECT_LE(m.time_budget, 0.2);
+  const FootstepPlanRequest back = rb::fromPlanFootstepRequestMsg(m, nq, reach);
+  ASSERT_TRUE(back.deadline.has_value());
+  const double after_sent = std::chrono::duration<double>(*back.deadline - sent).count();
+  EXPECT_GT(after_sent, 0.15);
+  EXPECT_LT(after_sent, 0.5);
+  r.deadline = sent - std::chrono::seconds(1);
+  m = rb::toPlanFootstepRequestMsg(r, reach, ros::Time(0));
+  EXPECT_DOUBLE_EQ(m.time_budget, 1e-3);
 }
 
 TEST(RosFootstepPlanMsgs, ResponseRoundTripIsExact) {

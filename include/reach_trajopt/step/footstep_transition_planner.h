@@ -120,7 +120,8 @@ struct FootstepPlanRequest : ContactTransition {
   /// the foot lands); none: no limit. The passes after the first and kNearestReachable's
   /// candidates start only before it, and the OCP stops there (TransitionOcp's anytime solve:
   /// its best feasible iterate, or failed). A check already running is not cut short: it
-  /// certifies or not as without a deadline. Not carried by the messages.
+  /// certifies or not as without a deadline. The messages carry what is left of it
+  /// (PlanFootstep time_budget).
   std::optional<std::chrono::steady_clock::time_point> deadline;
   /// The deadline has passed.
   bool pastDeadline() const { return deadline && std::chrono::steady_clock::now() >= *deadline; }

@@ -138,6 +138,10 @@ struct WalkConfig {
 
   /// \throws ConfigError naming the first bad field.
   void validate() const;
+  /// plan_latency from its command-line / parameter form: "pause", "measured", or a latency
+  /// in [0, 10] s (kFixed with that fixed_plan_latency). \throws ConfigError naming `key` and
+  /// the value otherwise.
+  void setPlanLatency(const std::string& value, const std::string& key);
   /// The YAML keys of section `walk:` (the member names), their units and meaning.
   static const ConfigFields<WalkConfig>& fields();
   /// Reads fields() from a YAML section, then validates.
