@@ -368,10 +368,38 @@ FootstepCheckResult FootstepTransitionPlanner::runCheck(
     const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& pass,
     const ReachProgressCallback& progress, const FootstepTransition& out, double& time_s) const {
   const auto check_start = std::chrono::steady_clock::now();
-  FootstepCheckResult checked =
-      footstep_check_
-          ? footstep_check_(out.transition, reach, pass, r.check_reachability)
-          : checkFootstep(footsteps_, out.transition, reach, pass, r.check_reachability, progress);
+  if (footstep_check_) {
+    FootstepCheckResult checked =
+        footstep_check_(out.transition, reach, pass, r.check_reachability);
+    time_s = secondsSince(check_start);
+    return checked;
+  }
+  // A check inside the step: past the request's deadline it stops before its next slice, and
+  // a check cut short shows nothing reachable (its kinematic stage stands).
+  bool cut_short = false;
+  ReachProgressCallback within_deadline = progress;
+  if (r.deadline)
+    within_deadline = [&](const ReachProgress& p) {
+      if (r.pastDeadline()) {
+        cut_short = true;
+        return false;
+      }
+      return !progress || progress(p);
+    };
+  FootstepCheckResult checked;
+  try {
+    checked = checkFootstep(footsteps_, out.transition, reach, pass, r.check_reachability,
+                            within_deadline);
+  } catch (const ReachCancelled&) {
+    if (!cut_short) throw;  // the caller's own cancellation
+    checked = footsteps_.kinematicStage(out.transition);
+    checked.reachable = false;
+    if (checked.kinematically_feasible)
+      checked.reason =
+          "not shown reachable: the step's deadline came during the check (cut "
+          "short after " +
+          std::to_string(secondsSince(check_start)) + " s)";
+  }
   time_s = secondsSince(check_start);
   return checked;
 }

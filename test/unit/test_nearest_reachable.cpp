@@ -113,7 +113,8 @@ TEST(NearestReachable, WithoutAReachabilityCheckItIsTheKinematicSearch) {
 
 TEST(NearestReachable, APastDeadlineEndsThePlanAfterItsFirstPass) {
   // The walk's step 1 (its target through the stance sole) with the deadline already past: the
-  // target's quick pass runs whole, no candidate is checked and the OCP stops at once.
+  // target's quick pass ends at its kinematic stage, no candidate is checked and the OCP stops
+  // at once.
   FootstepPlanRequest r = walkRequests()[0];
   r.deadline = std::chrono::steady_clock::now();
   const FootstepTransition step = planNearestReachable(r);
@@ -123,13 +124,19 @@ TEST(NearestReachable, APastDeadlineEndsThePlanAfterItsFirstPass) {
   EXPECT_NE(step.foothold_source, FootholdSource::kNearestReachable);
   EXPECT_EQ(step.certificate, Certificate::kNone);
   EXPECT_NE(step.reason.find("deadline reached"), std::string::npos) << step.reason;
-  // A kinematically feasible target (step 5) keeps what its quick pass showed; its OCP, stopped
-  // at the deadline, gives no trajectory that was not re-checked.
+  // A kinematically feasible target that is certified without a deadline (step 5,
+  // ACertifiedTargetIsKept): its check stops before its first slice, cut short, and shows
+  // nothing reachable; its kinematic stage stands; its OCP, stopped at the deadline, gives no
+  // trajectory that was not re-checked.
   FootstepPlanRequest feasible = walkRequests()[2];
   feasible.deadline = std::chrono::steady_clock::now();
   const FootstepTransition s5 = planNearestReachable(feasible);
   std::cout << s5.reason << "\n";
   EXPECT_EQ(s5.check_passes, 1);
+  EXPECT_TRUE(s5.kinematically_feasible);
+  EXPECT_FALSE(s5.reachable);
+  EXPECT_NE(s5.verdict, StepVerdict::kReachable);
+  EXPECT_NE(s5.reason.find("deadline came during the check"), std::string::npos) << s5.reason;
   EXPECT_NE(s5.trajectory.status, OcpStatus::kConverged);
   if (s5.certificate == Certificate::kLocalSolve)
     ADD_FAILURE() << "a local solve past its deadline";

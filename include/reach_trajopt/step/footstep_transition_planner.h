@@ -119,9 +119,10 @@ struct FootstepPlanRequest : ContactTransition {
   /// Wall-clock time by which plan() should answer (e.g. the step's: the plan is needed before
   /// the foot lands); none: no limit. The passes after the first and kNearestReachable's
   /// candidates start only before it, and the OCP stops there (TransitionOcp's anytime solve:
-  /// its best feasible iterate, or failed). A check already running is not cut short: it
-  /// certifies or not as without a deadline. The messages carry what is left of it
-  /// (PlanFootstep time_budget).
+  /// its best feasible iterate, or failed). A check running at the deadline stops before its
+  /// next slice and shows nothing reachable ("not shown reachable", its kinematic stage kept;
+  /// never a false "reachable"). The messages carry what is left of it (PlanFootstep
+  /// time_budget).
   std::optional<std::chrono::steady_clock::time_point> deadline;
   /// The deadline has passed.
   bool pastDeadline() const { return deadline && std::chrono::steady_clock::now() >= *deadline; }
