@@ -355,8 +355,9 @@ struct WalkingExperiment::Loop {
   /// WalkConfig::FirstSwing::kFromCapturePoint's choice from the measured CoM state.
   Side firstSwingSide() const;
   void beginSingleSupport(double t);
-  /// Whether the double support ends now (WalkConfig::lift_off), `time_in_double` [s] into it.
-  bool liftOff(double time_in_double);
+  /// The sole that lifts off now (WalkConfig::lift_off), `time_in_double` [s] into the double
+  /// support; none while the double support goes on.
+  std::optional<Side> liftOff(double time_in_double) const;
   /// lift_off capture_point: where the capture point should be at lift-off [m].
   Eigen::Vector2d liftOffCapturePoint() const;
   /// The box around both soles the double support's pivot stays in [m].
@@ -528,23 +529,29 @@ bool WalkingExperiment::Loop::updatePhase(double t) {
     }
   } else if (phase_ == Phase::kSingle) {
     return singleSupport(t);
-  } else if (phase_ == Phase::kDouble && liftOff(t - phase_start_)) {
+  } else if (phase_ == Phase::kDouble) {
+    const std::optional<Side> lifting = liftOff(t - phase_start_);
+    if (!lifting) return true;
     if (result_.steps >= wc_.steps) {
       result_.end_reason = "completed";
       return false;
     }
-    if (!initiating_) swing_ = opposite(swing_);
+    swing_ = *lifting;
     initiating_ = false;
     beginSingleSupport(t);
   }
   return true;
 }
 
-bool WalkingExperiment::Loop::liftOff(double time_in_double) {
-  if (wc_.lift_off == WalkConfig::LiftOff::kTimed)
-    return time_in_double >= wc_.double_support_duration;
-  if (!initiating_ && time_in_double < wc_.double_support_duration) return false;
-  if (time_in_double >= wc_.max_double_support_duration) return true;
+std::optional<Side> WalkingExperiment::Loop::liftOff(double time_in_double) const {
+  // The sole in turn: the one that did not just land (at gait initiation, the one chosen).
+  const Side in_turn = initiating_ ? swing_ : opposite(swing_);
+  if (wc_.lift_off == WalkConfig::LiftOff::kTimed) {
+    if (time_in_double >= wc_.double_support_duration) return in_turn;
+    return std::nullopt;
+  }
+  if (!initiating_ && time_in_double < wc_.double_support_duration) return std::nullopt;
+  if (time_in_double >= wc_.max_double_support_duration) return in_turn;
   const Eigen::Vector2d capture = capturePoint();
   Eigen::Vector2d box_min, box_max;
   supportBox(box_min, box_max);
@@ -561,13 +568,12 @@ bool WalkingExperiment::Loop::liftOff(double time_in_double) {
     // Leaving forward or backward, after a touchdown: the sole in turn (the one that just
     // landed carries the weight it took over and cannot lift at once).
     const bool sideways = capture.y() < box_min.y() || capture.y() > box_max.y();
-    if (sideways || initiating_)
-      swing_ = initiating_ ? toward : opposite(toward);  // updatePhase flips it after a touchdown
-    return true;
+    return sideways || initiating_ ? toward : in_turn;
   }
   const Eigen::Vector2d target = liftOffCapturePoint();
   const double dx = std::isfinite(target.x()) ? capture.x() - target.x() : 0.0;
-  return std::hypot(dx, capture.y() - target.y()) <= wc_.lift_off_capture_tolerance;
+  if (std::hypot(dx, capture.y() - target.y()) <= wc_.lift_off_capture_tolerance) return in_turn;
+  return std::nullopt;
 }
 
 Eigen::Vector2d WalkingExperiment::Loop::liftOffCapturePoint() const {
