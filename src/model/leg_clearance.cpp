@@ -142,7 +142,12 @@ LegClearance::LegClearance(const RobotModel& model, const std::string& left_sole
 LegClearance::Closest LegClearance::closest(const RobotModel& model, const Workspace& ws) const {
   Closest best;
   if (empty()) return best;
-  std::vector<Eigen::Vector3d> ra(right_.size()), rb(right_.size());
+  // The right capsules' end points in world, per thread (grown once, reused across calls).
+  thread_local std::vector<Eigen::Vector3d> ra, rb;
+  if (ra.size() < right_.size()) {
+    ra.resize(right_.size());
+    rb.resize(right_.size());
+  }
   for (size_t j = 0; j < right_.size(); ++j) {
     const Eigen::Isometry3d T = model.framePose(ws, right_[j].frame);
     ra[j] = T * right_[j].a;
@@ -167,6 +172,15 @@ LegClearance::Closest LegClearance::closest(const RobotModel& model, const Works
   return best;
 }
 
+double LegClearance::distanceAt(const RobotModel& model,
+                                const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  if (empty()) return std::numeric_limits<double>::infinity();
+  requireSize("LegClearance::distanceAt q", q.size(), model.nq());
+  Workspace ws(model);
+  model.update(ws, q, Eigen::VectorXd::Zero(model.nq()));
+  return closest(model, ws).distance;
+}
+
 void LegClearance::gradient(const RobotModel& model, const Workspace& ws, const Closest& c,
                             Eigen::Ref<Eigen::RowVectorXd> grad) const {
   requireSize("LegClearance::gradient", grad.size(), model.nq());
@@ -176,7 +190,8 @@ void LegClearance::gradient(const RobotModel& model, const Workspace& ws, const 
   const double norm = gap.norm();
   if (!(norm > 1e-12)) return;
   const Eigen::Vector3d n = gap / norm;
-  Matrix6Xd J(6, model.nq());
+  thread_local Matrix6Xd J;
+  J.resize(6, model.nq());
   // Point Jacobian of p on a frame at o: J_lin - [p - o]x J_ang, so n^T of it is
   // n^T J_lin + ((p - o) x n)^T J_ang.
   const auto add = [&](FrameId frame, const Eigen::Vector3d& p, double sign) {

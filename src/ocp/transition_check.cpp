@@ -63,8 +63,7 @@ class SampleCheck {
   /// The legs' margin for a path from q0 (ContactConfig::legMarginFrom).
   void startAt(const ContactConfig& contact, const Eigen::VectorXd& q0) {
     if (legs_.empty() || !contact.leg_clearance) return;
-    model_.update(ws_, q0, Eigen::VectorXd::Zero(model_.nq()));
-    leg_margin_ = contact.legMarginFrom(legs_.closest(model_, ws_).distance);
+    leg_margin_ = contact.legMarginFrom(legs_.distanceAt(model_, q0));
   }
 
   /// Checks sample k into `v`; returns its worst cone / torque / leg clearance violation.

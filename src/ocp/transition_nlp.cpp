@@ -60,9 +60,7 @@ TransitionNlp::TransitionNlp(std::shared_ptr<const RobotModel> model,
   if (contact.leg_clearance) {
     legs_ = LegClearance(m, contact.left_sole_frame, contact.right_sole_frame);
     if (!legs_.empty()) {
-      Workspace ws(m);
-      m.update(ws, request.q0, Eigen::VectorXd::Zero(nq_));
-      const double start = legs_.closest(m, ws).distance;
+      const double start = legs_.distanceAt(m, request.q0);
       leg_margin_ = contact.legMarginFrom(start);
       leg_row_bound_ = std::min(leg_margin_ + kLegRowPad, start);
     }
@@ -236,9 +234,7 @@ Vector6d TransitionNlp::lambdaNew(const Eigen::VectorXd& x) const {
 
 double TransitionNlp::legClearanceViolation(const Eigen::VectorXd& q) const {
   if (!(leg_margin_ > -HUGE_VAL)) return 0.0;
-  Workspace ws(*model_);
-  model_->update(ws, q, Eigen::VectorXd::Zero(nq_));
-  return std::max(0.0, leg_margin_ - legs_.closest(*model_, ws).distance);
+  return std::max(0.0, leg_margin_ - legs_.distanceAt(*model_, q));
 }
 
 bool TransitionNlp::hasLegRow(const Sample& smp, int i) const {
@@ -420,11 +416,15 @@ void TransitionNlp::sampleSignals(const Sample& smp, const Eigen::VectorXd& x, b
   }
   if (leg_margin_ > -HUGE_VAL) {  // the legs' distance at q and d/dq (leg_clearance.h)
     const RobotModel& m = *model_;
-    m.update(w.kinematics, se.signals.segment(d.qOffset(), nq_), Eigen::VectorXd::Zero(nq_));
-    const LegClearance::Closest c = legs_.closest(m, w.kinematics);
-    se.leg_distance = c.distance;
     se.leg_gradient.resize(nq_);
-    if (gradients) legs_.gradient(m, w.kinematics, c, se.leg_gradient);
+    if (gradients) {  // the Jacobian pass left the scratch at perturbed states
+      m.update(w.kinematics, se.signals.segment(d.qOffset(), nq_), Eigen::VectorXd::Zero(nq_));
+      const LegClearance::Closest c = legs_.closest(m, w.kinematics);
+      se.leg_distance = c.distance;
+      legs_.gradient(m, w.kinematics, c, se.leg_gradient);
+    } else {  // the dynamics' own forward kinematics at this sample's q
+      se.leg_distance = legs_.closest(m, w.scratch->ws).distance;
+    }
   }
 }
 

@@ -21,6 +21,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// SLSQP's answer violates its own rows by more than this many times the tolerance: far from
+/// feasible (TransitionOcp::solveMode refines it only while the violation halves).
+constexpr double kFarFromFeasible = 100.0;
+
 const char* nloptResultName(nlopt::result r) {
   switch (r) {
     case nlopt::FAILURE:
@@ -519,6 +523,15 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
       break;
     }
     if (round >= config_.max_refinements) break;
+    // SLSQP's own rows far from holding at its answer: its problem has no feasible point near
+    // there, and more samples only add rows. As for a restart, go on only while the rounds
+    // halve the violation (of the demo's TALOS walk's strict solves that ended a round that
+    // far, none converged in a later round).
+    if (res.violation.max() > 0.5 * previous) {
+      NlpValues at_x;
+      nlp.evaluate(x, false, at_x);
+      if (nlpViolation(at_x) > kFarFromFeasible * config_.tolerance) break;
+    }
     // Violations between samples: add those samples. Otherwise SLSQP stopped at an infeasible
     // point (its tolerance tests do not look at feasibility): restart from there, which resets
     // its quasi-Newton matrix.

@@ -90,9 +90,7 @@ bool ReachContext::stateConstraintsHold(const Workspace& ws) const {
 
 void ReachContext::startAt(const Eigen::Ref<const Eigen::VectorXd>& q0) {
   if (!(leg_margin > -HUGE_VAL)) return;
-  Workspace ws(*model);
-  model->update(ws, q0, Eigen::VectorXd::Zero(n));
-  leg_margin = std::min(leg_margin, legs.closest(*model, ws).distance);
+  leg_margin = std::min(leg_margin, legs.distanceAt(*model, q0));
 }
 
 bool ReachContext::withinLimits(const Eigen::Ref<const Eigen::VectorXd>& q,

@@ -197,3 +197,31 @@ TEST(LegClearance, GradientMatchesCentralDifferences) {
   }
   EXPECT_GT(checked, 20);
 }
+
+TEST(LegClearance, DistanceAtMatchesAGridSearchOverTheCapsulePairs) {
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  const LegClearance legs(*model, "l_sole", "r_sole");
+  Workspace ws(*model);
+  std::mt19937 rng(13);
+  for (int k = 0; k < 10; ++k) {
+    Eigen::VectorXd q = randomConfiguration(*model, rng);
+    q.segment<3>(3) = Eigen::Vector3d(-0.4, 0.2, 0.1);  // a rotated base too
+    const double d = legs.distanceAt(*model, q);
+    // Oracle: every left/right capsule pair, its axes' distance by a grid search, less radii.
+    model->update(ws, q, Eigen::VectorXd::Zero(model->nq()));
+    double oracle = HUGE_VAL;
+    for (const LinkCapsule& l : legs.capsules(Side::kLeft)) {
+      const Eigen::Isometry3d Tl = model->framePose(ws, model->frameId(l.link));
+      for (const LinkCapsule& r : legs.capsules(Side::kRight)) {
+        const Eigen::Isometry3d Tr = model->framePose(ws, model->frameId(r.link));
+        oracle = std::min(
+            oracle, gridDistance(Tl * l.a, Tl * l.b, Tr * r.a, Tr * r.b) - l.radius - r.radius);
+      }
+    }
+    EXPECT_LE(d, oracle + 1e-9) << "configuration " << k;  // the grid only overestimates
+    EXPECT_GE(d, oracle - 2e-3) << "configuration " << k;  // by under its spacing
+    EXPECT_EQ(d, legs.closest(*model, ws).distance) << "configuration " << k;  // same FK
+  }
+  EXPECT_THROW(legs.distanceAt(*model, Eigen::VectorXd::Zero(3)), ReachError);
+  EXPECT_EQ(LegClearance().distanceAt(*model, Eigen::VectorXd::Zero(model->nq())), HUGE_VAL);
+}

@@ -66,8 +66,12 @@ class LegClearance {
     return side == Side::kLeft ? left_ : right_;
   }
 
-  /// The closest left/right capsule pair at the model's last update() in `ws`.
+  /// The closest left/right capsule pair at the model's last update() in `ws`. No allocation
+  /// after a thread's first call.
   Closest closest(const RobotModel& model, const Workspace& ws) const;
+  /// The legs' distance at configuration q (its own forward kinematics): closest().distance;
+  /// +inf when empty().
+  double distanceAt(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q) const;
   /// d(distance)/dq of the pair `c` (1 x n_q): n^T (J_left(p_l) - J_right(p_r)), n the unit
   /// vector from the right point to the left one (the closest points move along the surfaces,
   /// which does not change the distance to first order). Zero when the axes intersect.

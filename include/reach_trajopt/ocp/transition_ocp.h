@@ -19,7 +19,9 @@
 /// Procedure: validate the request; warm start by the SPQR fit of the seed path; SLSQP; sample
 /// the result at output_dt and re-check every constraint family with the full model
 /// (transition_check.h); if some cone, torque bound or hull is violated between NLP samples, add
-/// those times and re-solve from the last solution (at most max_refinements times). Status:
+/// those times and re-solve from the last solution (at most max_refinements times; when SLSQP's
+/// answer violates its own rows by over 100x the tolerance, more rows cannot help and it goes on
+/// only while each round halves the violation, as a restart does). Status:
 /// converged (strict) or relaxed when the re-check passes (every family <= tolerance), else
 /// failed with the family, the amount and NLopt's code; a wall-clock time_limit bounds it all
 /// (and, for the anytime solve, the caller's deadline: see solve()).
