@@ -46,7 +46,8 @@ SwingSample SwingTrajectory::sample(double t) const {
   const Eigen::Vector3d depth(0, 0, depth_);
   SwingSample out;
   if (t >= duration_) {
-    out.position = target_ - depth - Eigen::Vector3d(0, 0, kLateTouchdownDescentSpeed * (t - duration_));
+    out.position =
+        target_ - depth - Eigen::Vector3d(0, 0, kLateTouchdownDescentSpeed * (t - duration_));
     out.velocity = Eigen::Vector3d(0, 0, -kLateTouchdownDescentSpeed);
     out.acceleration.setZero();
     return out;

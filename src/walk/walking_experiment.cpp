@@ -371,8 +371,10 @@ struct WalkingExperiment::Loop {
   double swingDuration(double t) const;
   void planStep(double t, double time_in_swing);
   /// The policy's check and OCP from the measured state; `replanning`: a new plan during the
-  /// swing, over the time left to the nominal touchdown (their horizon).
-  void checkStep(double t, double time_in_swing, bool replanning = false);
+  /// swing, over the time left to the nominal touchdown (their horizon). Returns false when a
+  /// replan's plan is not taken (it has no OCP trajectory while the swing tracks one, or the
+  /// check threw): the swing keeps the plan it has.
+  bool checkStep(double t, double time_in_swing, bool replanning = false);
   /// WalkConfig::replan_tolerance: eq. (11)'s foothold from the measured CoM state has moved
   /// from the one planned (`time_in_swing` [s] into the swing).
   bool disturbed(double t, double time_in_swing) const;
@@ -431,9 +433,8 @@ struct WalkingExperiment::Loop {
   bool initiating_ = false;      ///< the double support before the first lift-off
   double swing_duration_ = 0.0;  ///< this swing's duration (WalkConfig::step_timing) [s]
   StepRecord current_;
-  bool checked_ = false;           ///< this swing's footstep check has run
-  bool replan_kept_plan_ = false;  ///< checkStep: a replan's plan was not taken (replan())
-  TransitionResult tracked_;       ///< the OCP trajectory tracked (empty when none)
+  bool checked_ = false;      ///< this swing's footstep check has run
+  TransitionResult tracked_;  ///< the OCP trajectory tracked (empty when none)
   double tracked_start_ = 0.0;
   PendingPlan pending_;
   WbcReference ref_;
@@ -691,12 +692,10 @@ void WalkingExperiment::Loop::replan(double t, double ts) {
   }
   const StepRecord before = current_;
   planStep(t, ts);
-  checkStep(t, ts, true);
   // A swing that tracks an OCP trajectory keeps it when the new plan has none to track (its
   // check or OCP failed: the interpolated swing cannot start from the tracked sole's state),
   // and any swing keeps its plan when the check threw.
-  if (replan_kept_plan_) {
-    replan_kept_plan_ = false;
+  if (!checkStep(t, ts, true)) {
     const std::string why = current_.reason;
     current_ = before;
     current_.reason += "; replanned " + std::to_string(ts) + " s into the swing, not taken: " + why;
@@ -753,7 +752,7 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
 
 // The policy's footstep check (in process or through setFootstepPlanner's function); the
 // simulation waits (in sim time) for it and the OCP.
-void WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
+bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
   checked_ = true;
   try {
     const auto wall_start = std::chrono::steady_clock::now();
@@ -771,33 +770,31 @@ void WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     recordCheck(step);
     PendingPlan plan = decidePlan(step, t);
-    if (replanning && !plan.track_ocp && tracked_.time.size() > 0) {
-      replan_kept_plan_ = true;
-      return;
-    }
+    if (replanning && !plan.track_ocp && tracked_.time.size() > 0) return false;
     const double latency = planLatency(wall_s);
     current_.plan_latency_s = latency;
     if (latency <= 0.0) {  // the simulation waited for the plan
       current_.planned = plan.foothold;
       if (on_check_) on_check_(current_, step);
       applyPlan(plan, t);
-      return;
+      return true;
     }
     if (on_check_) on_check_(current_, step);
     plan.apply_at = t + latency;
     // Its deadline is the nominal touchdown: a later plan is dropped.
     if (plan.apply_at > phase_start_ + swing_duration_) {
       current_.plan_late = true;
-      return;
+      return true;
     }
     plan.active = true;
     pending_ = std::move(plan);
+    return true;
   } catch (const ReachError& e) {
     // The measured state is outside what the check accepts (e.g. a joint beyond its velocity
     // limit while the robot is already falling): the step goes on unchecked.
     current_.verdict = StepVerdict::kCheckError;
     current_.reason = e.what();
-    replan_kept_plan_ = replanning;  // a replan that threw changes nothing
+    return !replanning;  // a replan that threw changes nothing
   }
 }
 

@@ -10,8 +10,8 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/control/swing_trajectory.h"
 #include "reach_trajopt/control/transition_tracking.h"
-#include "reach_trajopt/walk/standing_pose.h"
 #include "reach_trajopt/walk/push_envelope.h"
+#include "reach_trajopt/walk/standing_pose.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
@@ -115,17 +115,15 @@ TEST(TransitionTracking, TheSoleGoesTouchdownDepthBelowTheTrajectoryAtItsHorizon
   for (double t : {0.03, 0.1, 0.17}) {
     const double h = 1e-6;
     const WbcReference p = reference(t + h), m = reference(t - h), c = reference(t);
-    EXPECT_NEAR(c.swing_velocity.z(), (p.swing_position.z() - m.swing_position.z()) / (2 * h),
-                1e-6)
+    EXPECT_NEAR(c.swing_velocity.z(), (p.swing_position.z() - m.swing_position.z()) / (2 * h), 1e-6)
         << t;
-    EXPECT_NEAR(c.swing_acceleration.z(),
-                (p.swing_velocity.z() - m.swing_velocity.z()) / (2 * h), 1e-3)
+    EXPECT_NEAR(c.swing_acceleration.z(), (p.swing_velocity.z() - m.swing_velocity.z()) / (2 * h),
+                1e-3)
         << t;
   }
   // Past the horizon: continuous in position, descending, no feed-forward.
   const WbcReference late = reference(0.25);
-  EXPECT_NEAR(late.swing_position.z(), knot.z() - depth - kLateTouchdownDescentSpeed * 0.05,
-              1e-12);
+  EXPECT_NEAR(late.swing_position.z(), knot.z() - depth - kLateTouchdownDescentSpeed * 0.05, 1e-12);
   EXPECT_NEAR(late.swing_velocity.z(), -kLateTouchdownDescentSpeed, 1e-12);
   EXPECT_EQ(late.q_ff.size(), 0);
 }

@@ -15,8 +15,9 @@
 namespace reach_trajopt {
 
 /// Fills the swing and feed-forward fields of `ref` from `trajectory` at `t` [s] after its
-/// start, `touchdown_depth` [m] >= 0. \param swing  the swing sole's frame; `ws` a workspace of `model` and `J` a 6 x n_q
-/// buffer, both overwritten (the caller keeps them: this runs at every controller tick).
+/// start, `touchdown_depth` [m] >= 0. \param swing  the swing sole's frame; `ws` a workspace of
+/// `model` and `J` a 6 x n_q buffer, both overwritten (the caller keeps them: this runs at every
+/// controller tick).
 void trackTransition(const RobotModel& model, Workspace& ws, Matrix6Xd& J, FrameId swing,
                      const TransitionResult& trajectory, double t, double touchdown_depth,
                      WbcReference& ref);
