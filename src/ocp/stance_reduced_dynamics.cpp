@@ -37,7 +37,8 @@ StanceReducedDynamics::StanceReducedDynamics(std::shared_ptr<const RobotModel> m
       stance_pose_(stance_pose),
       swing_(swing_frame, swing_target),
       yaw_reference_(yaw_reference),
-      rnea_(model_) {
+      rnea_(model_),
+      kin_(model_) {
   if (!model_ || !model_->floatingBase()) {
     throw ModelError("StanceReducedDynamics: needs a floating-base model");
   }
@@ -88,7 +89,10 @@ StanceReducedDynamics::Scratch::Scratch(const StanceReducedDynamics& d)
       dqd(d.nq()),
       dqdd(d.nq()),
       dtau(d.nq()),
-      dr(d.nq()) {}
+      dr(d.nq()),
+      kd(d.model()),
+      dJs(6, d.nq()),
+      dJ2(6, d.nq()) {}
 
 StanceReducedDynamics::Scratch::Kinematic::Kinematic(int nq, int nu)
     : q(nq), qd(nq), qdd(nq), G(6, nu), J2(6, nq) {}
@@ -189,10 +193,28 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
                                      Eigen::Ref<Eigen::VectorXd> signals,
                                      Eigen::Ref<Eigen::MatrixXd> jac, double fd_step,
                                      bool central) const {
+  jacobianCommon(s, input, signals, jac);
+  const Eigen::Ref<const Eigen::VectorXd> qdda = input.segment(2 * nu_, nu_);
+  saveKinematic(s, qdda, s.k0);  // the unperturbed kinematic state
+  s.r0 = s.tau_ext;              // tau - J_2^T lambda_2
+  velocityColumns(s, qdda, input.tail<6>(), jac);
+  positionColumns(s, input, fd_step, central, jac);
+}
+
+void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
+                                     Eigen::Ref<Eigen::VectorXd> signals,
+                                     Eigen::Ref<Eigen::MatrixXd> jac) const {
+  jacobianCommon(s, input, signals, jac);
+  analyticColumns(s, input, jac);
+}
+
+void StanceReducedDynamics::jacobianCommon(Scratch& s,
+                                           const Eigen::Ref<const Eigen::VectorXd>& input,
+                                           Eigen::Ref<Eigen::VectorXd> signals,
+                                           Eigen::Ref<Eigen::MatrixXd> jac) const {
   requireSize("StanceReducedDynamics: Jacobian rows", jac.rows(), signalCount());
   requireSize("StanceReducedDynamics: Jacobian columns", jac.cols(), inputCount());
   evaluate(s, input, signals);
-  const Eigen::Ref<const Vector6d> lambda2 = input.tail<6>();
   jac.setZero();
 
   // qdd_a and lambda_2: the signals are affine in both. d(tau)/d(qdd_a) = M T.
@@ -218,12 +240,89 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
 
   // The unperturbed state and the analytic RNEA derivatives there (model_->update() of the
   // sample is current: evaluate() ended with velocityTerms at (q, qd)).
-  const Eigen::Ref<const Eigen::VectorXd> qdda = input.segment(2 * nu_, nu_);
-  saveKinematic(s, qdda, s.k0);
-  s.r0 = s.tau_ext;  // tau - J_2^T lambda_2
   rnea_.compute(s.rd, s.q, s.qd, s.qdd, s.tau_rd, s.dtau_dq, s.dtau_dqd);
-  velocityColumns(s, qdda, lambda2, jac);
-  positionColumns(s, input, fd_step, central, jac);
+}
+
+// The q_a and qd_a columns, analytic (see the header's file comment). Each column's direction t
+// of the full state: q_a column i moves q by t = T e_i (and qd by -J_sb^-1 dJ_s qd in the base),
+// qd_a column i moves qd by t = T e_i at fixed q.
+void StanceReducedDynamics::analyticColumns(Scratch& s,
+                                            const Eigen::Ref<const Eigen::VectorXd>& input,
+                                            Eigen::Ref<Eigen::MatrixXd> jac) const {
+  const Eigen::Ref<const Vector6d> lambda2 = input.tail<6>();
+  kin_.compute(s.kd, s.q, s.qd);
+  // The swing sole's raw velocity and classical acceleration (J_2 qdd + Jdot_2 qd), and the
+  // rotation rows' Jl^-1(e) of phi_2 (s.ws is at (q, qd): evaluate() ended with velocityTerms).
+  const Vector6d vel2 = model_->frameVelocity(s.ws, swing_frame_);
+  Vector6d acc2 = model_->frameJdotQd(s.ws, swing_frame_);
+  acc2.noalias() += s.J2 * s.qdd;
+  const Eigen::Vector3d e2 = s.swing.phi.tail<3>();
+  const Eigen::Matrix3d Jl_inv = ContactConstraint::inverseLeftJacobian(e2);
+  Eigen::VectorXd& t = s.dq;
+  Vector6d ddrift_s, dvel2, ddrift2;
+  for (int col = 0; col < 2 * nu_; ++col) {
+    const bool position = col < nu_;
+    const int i = position ? col : col - nu_;
+    t.head<6>() = s.G.col(i);
+    t.tail(nu_).setZero();
+    t[6 + i] = 1.0;
+    auto out = jac.col(col);
+    if (position) {
+      // dq = t; dqd, dqdd in the base from J_s qd = 0 and J_s qdd + Jdot_s qd = 0. A joint off
+      // the stance support path has G e_i = 0 and moves neither J_s nor the stance drift.
+      s.dqd.setZero();
+      s.dqdd.setZero();
+      const bool stance_moves = on_stance_path_[i];
+      if (stance_moves) {
+        kin_.frameDerivatives(s.kd, stance_frame_, t, s.dqd, &s.dJs, nullptr, nullptr);
+        s.dqd.head<6>().noalias() = -s.Jb_inv * (s.dJs * s.qd);
+        kin_.frameDerivatives(s.kd, stance_frame_, t, s.dqd, nullptr, nullptr, &ddrift_s);
+        ddrift_s.noalias() += s.dJs * s.qdd;
+        s.dqdd.head<6>().noalias() = -s.Jb_inv * ddrift_s;
+      }
+      kin_.frameDerivatives(s.kd, swing_frame_, t, s.dqd, &s.dJ2, &dvel2, &ddrift2);
+      // dr' = dtau - dJ_2^T lambda_2 - dJ_s^T lambda_s.
+      s.dr.noalias() = s.dtau_dq * t;
+      s.dr.noalias() += s.dtau_dqd * s.dqd;
+      s.dr.noalias() += s.M * s.dqdd;
+      s.dr.noalias() -= s.dJ2.transpose() * lambda2;
+      if (stance_moves) s.dr.noalias() -= s.dJs.transpose() * s.lambda_s;
+      // Swing terms: position and phi_2 along t; phidot_2 = B vel2, phiddot_2 = B acc2 with
+      // B = blkdiag(I, Jl^-1(e)), e moving by de = (J_phi t)_rot.
+      const Vector6d dphi = s.swing.J_phi * t;
+      const Eigen::Matrix3d dJl_inv = inverseLeftJacobianDerivative(e2, dphi.tail<3>());
+      ddrift2.noalias() += s.dJ2 * s.qdd;
+      ddrift2.noalias() += s.J2 * s.dqdd;  // d acc2
+      out.segment<3>(swingPositionOffset()) = (s.J2 * t).head<3>();
+      out.segment<6>(phi2Offset()) = dphi;
+      out.segment<3>(phidot2Offset()) = dvel2.head<3>();
+      out.segment<3>(phidot2Offset() + 3).noalias() =
+          dJl_inv * vel2.tail<3>() + Jl_inv * dvel2.tail<3>();
+      out.segment<3>(phiddot2Offset()) = ddrift2.head<3>();
+      out.segment<3>(phiddot2Offset() + 3).noalias() =
+          dJl_inv * acc2.tail<3>() + Jl_inv * ddrift2.tail<3>();
+      out.segment(qOffset(), nq_) = t;
+      out.segment(qdOffset(), nq_) = s.dqd;
+    } else {
+      // dqd = t at fixed q: dqdd = [-J_sb^-1 d(Jdot_s qd); 0].
+      s.dqd.setZero();
+      kin_.frameDerivatives(s.kd, stance_frame_, s.dqd, t, nullptr, nullptr, &ddrift_s);
+      kin_.frameDerivatives(s.kd, swing_frame_, s.dqd, t, nullptr, nullptr, &ddrift2);
+      s.dqdd.head<6>().noalias() = -s.Jb_inv * ddrift_s;
+      s.dqdd.tail(nu_).setZero();
+      s.dr.noalias() = s.dtau_dqd * t;
+      s.dr.noalias() += s.M * s.dqdd;
+      // phidot_2 = J_phi qd; phiddot_2 = B Jdot_2 qd + J_phi qdd.
+      out.segment<6>(phidot2Offset()).noalias() = s.swing.J_phi * t;
+      out.segment<3>(phiddot2Offset()) = ddrift2.head<3>();
+      out.segment<3>(phiddot2Offset() + 3).noalias() = Jl_inv * ddrift2.tail<3>();
+      out.segment<6>(phiddot2Offset()).noalias() += s.swing.J_phi * s.dqdd;
+      out.segment(qdOffset(), nq_) = t;
+    }
+    out.segment(uOffset(), nu_) = s.dr.tail(nu_);
+    out.segment(uOffset(), nu_).noalias() += s.G.transpose() * s.dr.head<6>();
+    out.segment<6>(lambdaOffset()).noalias() = s.Jb_inv.transpose() * s.dr.head<6>();
+  }
 }
 
 // One column c of the Jacobian from the changes of the full state (dq, dqd, dqdd) and of the
