@@ -282,9 +282,11 @@ void StanceReducedDynamics::analyticColumns(Scratch& s,
       }
       kin_.frameDerivatives(s.kd, swing_frame_, t, s.dqd, &s.dJ2, &dvel2, &ddrift2);
       // dr' = dtau - dJ_2^T lambda_2 - dJ_s^T lambda_s.
-      s.dr.noalias() = s.dtau_dq * t;
-      s.dr.noalias() += s.dtau_dqd * s.dqd;
-      s.dr.noalias() += s.M * s.dqdd;
+      // (t is G e_i in the base and e_{6+i}; dqd, dqdd live in the base.)
+      s.dr = s.dtau_dq.col(6 + i);
+      s.dr.noalias() += s.dtau_dq.leftCols<6>() * t.head<6>();
+      s.dr.noalias() += s.dtau_dqd.leftCols<6>() * s.dqd.head<6>();
+      s.dr.noalias() += s.M.leftCols<6>() * s.dqdd.head<6>();
       s.dr.noalias() -= s.dJ2.transpose() * lambda2;
       if (stance_moves) s.dr.noalias() -= s.dJs.transpose() * s.lambda_s;
       // Swing terms: position and phi_2 along t; phidot_2 = B vel2, phiddot_2 = B acc2 with
@@ -292,7 +294,7 @@ void StanceReducedDynamics::analyticColumns(Scratch& s,
       const Vector6d dphi = s.swing.J_phi * t;
       const Eigen::Matrix3d dJl_inv = inverseLeftJacobianDerivative(e2, dphi.tail<3>());
       ddrift2.noalias() += s.dJ2 * s.qdd;
-      ddrift2.noalias() += s.J2 * s.dqdd;  // d acc2
+      ddrift2.noalias() += s.J2.leftCols<6>() * s.dqdd.head<6>();  // d acc2
       out.segment<3>(swingPositionOffset()) = (s.J2 * t).head<3>();
       out.segment<6>(phi2Offset()) = dphi;
       out.segment<3>(phidot2Offset()) = dvel2.head<3>();
@@ -310,13 +312,14 @@ void StanceReducedDynamics::analyticColumns(Scratch& s,
       kin_.frameDerivatives(s.kd, swing_frame_, s.dqd, t, nullptr, nullptr, &ddrift2);
       s.dqdd.head<6>().noalias() = -s.Jb_inv * ddrift_s;
       s.dqdd.tail(nu_).setZero();
-      s.dr.noalias() = s.dtau_dqd * t;
-      s.dr.noalias() += s.M * s.dqdd;
+      s.dr = s.dtau_dqd.col(6 + i);
+      s.dr.noalias() += s.dtau_dqd.leftCols<6>() * t.head<6>();
+      s.dr.noalias() += s.M.leftCols<6>() * s.dqdd.head<6>();
       // phidot_2 = J_phi qd; phiddot_2 = B Jdot_2 qd + J_phi qdd.
       out.segment<6>(phidot2Offset()).noalias() = s.swing.J_phi * t;
       out.segment<3>(phiddot2Offset()) = ddrift2.head<3>();
       out.segment<3>(phiddot2Offset() + 3).noalias() = Jl_inv * ddrift2.tail<3>();
-      out.segment<6>(phiddot2Offset()).noalias() += s.swing.J_phi * s.dqdd;
+      out.segment<6>(phiddot2Offset()).noalias() += s.swing.J_phi.leftCols<6>() * s.dqdd.head<6>();
       out.segment(qdOffset(), nq_) = t;
     }
     out.segment(uOffset(), nu_) = s.dr.tail(nu_);
