@@ -22,6 +22,14 @@ inline Vector6d crossMotion(const Vector6d& m1, const Vector6d& m2) {
   return r;
 }
 
+/// m x* f (motion on force).
+inline Vector6d crossForce(const Vector6d& m, const Vector6d& f) {
+  Vector6d r;
+  r.head<3>() = m.head<3>().cross(f.head<3>()) + m.tail<3>().cross(f.tail<3>());
+  r.tail<3>() = m.head<3>().cross(f.tail<3>());
+  return r;
+}
+
 inline Eigen::Matrix3d skew(const Eigen::Vector3d& x) {
   Eigen::Matrix3d m;
   m << 0.0, -x.z(), x.y(), x.z(), 0.0, -x.x(), -x.y(), x.x(), 0.0;
@@ -168,6 +176,95 @@ void KinematicDerivatives::frameDerivatives(const Data& d, FrameId frame,
     ddrift->head<3>() =
         dA.tail<3>() + dA.head<3>().cross(p) + alpha.cross(dp) + dw.cross(v_p) + w.cross(dv_p);
     ddrift->tail<3>() = dA.head<3>();
+  }
+}
+
+KinematicDerivatives::FrameMatrices::FrameMatrices(int nq)
+    : dJx_dq(6, nq),
+      dvelocity_dq(6, nq),
+      ddrift_dq(6, nq),
+      ddrift_dqd(6, nq),
+      dJTlambda_dq(nq, nq) {}
+
+void KinematicDerivatives::frameMatrices(const Data& d, FrameId frame,
+                                         const Eigen::Ref<const Eigen::VectorXd>& x,
+                                         const Vector6d* lambda, FrameMatrices& out) const {
+  const RobotModel& m = *model_;
+  const int nq = m.nq();
+  if (!d.computed) throw ReachError("KinematicDerivatives: call compute(d, q, qd) first");
+  requireSize("KinematicDerivatives: x", x.size(), nq);
+  requireSize("KinematicDerivatives: columns of FrameMatrices", out.dJx_dq.cols(), nq);
+  const ModelTree& tree = m.tree();
+  if (frame < 0 || frame >= static_cast<int>(tree.frames.size())) {
+    throw ModelError("KinematicDerivatives: invalid frame id " + std::to_string(frame));
+  }
+  out.dJx_dq.setZero();
+  out.dvelocity_dq.setZero();
+  out.ddrift_dq.setZero();
+  out.ddrift_dqd.setZero();
+  if (lambda) {
+    requireSize("KinematicDerivatives: rows of dJTlambda_dq", out.dJTlambda_dq.rows(), nq);
+    requireSize("KinematicDerivatives: columns of dJTlambda_dq", out.dJTlambda_dq.cols(), nq);
+    out.dJTlambda_dq.setZero();
+  }
+  const Frame& f = tree.frames[frame];
+  if (f.body < 0) return;
+  const int b = f.body;
+  const Eigen::Vector3d p = d.p_world[b] + d.R_world[b] * f.placement.translation();
+  const std::vector<int>& support = tree.bodies[b].support;  // leaf to root
+  const Vector6d& Vb = d.V[b];
+  const Vector6d& Ab = d.A[b];
+  Vector6d Xb = Vector6d::Zero();  // sum of x_j S_j over the path
+  for (int j : support) Xb += x[j] * d.S[j];
+  const Eigen::Vector3d w = Vb.head<3>(), alpha = Ab.head<3>(), wx = Xb.head<3>();
+  const Eigen::Vector3d v_p = Vb.tail<3>() + w.cross(p);
+  Vector6d F = Vector6d::Zero();  // lambda at the world origin, [moment; force]
+  if (lambda) {
+    F.head<3>() = lambda->tail<3>() + p.cross(lambda->head<3>());
+    F.tail<3>() = lambda->head<3>();
+  }
+  Vector6d Xm = Vector6d::Zero();  // sum of x_j S_j up to m (m included)
+  for (auto it = support.rbegin(); it != support.rend(); ++it) {
+    const int k = *it;
+    const Vector6d& S = d.S[k];
+    const Vector6d& Vk = d.V[k];
+    Xm += x[k] * S;
+    const Eigen::Vector3d dp = S.tail<3>() + S.head<3>().cross(p);  // J_lin of joint k at p
+    // d(J x)/dq_k: dS_j = S_k x S_j for the joints j after k.
+    const Vector6d U = crossMotion(S, Xb - Xm);
+    out.dJx_dq.col(k).head<3>() = U.tail<3>() + U.head<3>().cross(p) + wx.cross(dp);
+    out.dJx_dq.col(k).tail<3>() = U.head<3>();
+    // d(J qd)/dq_k.
+    const Vector6d Vrel = Vb - Vk;
+    const Vector6d dV = crossMotion(S, Vrel);
+    const Eigen::Vector3d dw = dV.head<3>();
+    const Eigen::Vector3d dv_p = dV.tail<3>() + dw.cross(p) + w.cross(dp);
+    out.dvelocity_dq.col(k).head<3>() = dv_p;
+    out.dvelocity_dq.col(k).tail<3>() = dw;
+    // d(Jdot qd)/dq_k.
+    const Vector6d dA = crossMotion(S, Ab - d.A[k] - crossMotion(Vk, Vrel)) + crossMotion(Vk, dV);
+    out.ddrift_dq.col(k).head<3>() =
+        dA.tail<3>() + dA.head<3>().cross(p) + alpha.cross(dp) + dw.cross(v_p) + w.cross(dv_p);
+    out.ddrift_dq.col(k).tail<3>() = dA.head<3>();
+    // d(Jdot qd)/dqd_k: dV = S_k, dA = S_k x (V_b - 2 V_k), the point does not move.
+    const Vector6d dAd = dV - crossMotion(S, Vk);
+    out.ddrift_dqd.col(k).head<3>() =
+        dAd.tail<3>() + dAd.head<3>().cross(p) + S.head<3>().cross(v_p) + w.cross(dp);
+    out.ddrift_dqd.col(k).tail<3>() = dAd.head<3>();
+    if (lambda) {
+      // Column k of d(J^T lambda)/dq: (S_k x S_j) . F = -S_j . (S_k x* F) for j after k, and
+      // w_j . (dp x f) for every j.
+      const Vector6d Y = -crossForce(S, F);
+      const Eigen::Vector3d z = dp.cross(lambda->head<3>());
+      bool after = false;
+      for (auto jt = support.rbegin(); jt != support.rend(); ++jt) {
+        const int j = *jt;
+        double h = d.S[j].head<3>().dot(z);
+        if (after) h += d.S[j].dot(Y);
+        out.dJTlambda_dq(j, k) = h;
+        if (j == k) after = true;
+      }
+    }
   }
 }
 

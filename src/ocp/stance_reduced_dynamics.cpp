@@ -91,8 +91,14 @@ StanceReducedDynamics::Scratch::Scratch(const StanceReducedDynamics& d)
       dtau(d.nq()),
       dr(d.nq()),
       kd(d.model()),
-      dJs(6, d.nq()),
-      dJ2(6, d.nq()) {}
+      fs(d.nq()),
+      f2(d.nq()),
+      Qd(6, d.nu()),
+      Qdd(6, d.nu()),
+      D6(6, d.nu()),
+      dvel2(6, d.nu()),
+      dacc2(6, d.nu()),
+      dr_cols(d.nq(), d.nu()) {}
 
 StanceReducedDynamics::Scratch::Kinematic::Kinematic(int nq, int nu)
     : q(nq), qd(nq), qdd(nq), G(6, nu), J2(6, nq) {}
@@ -243,89 +249,99 @@ void StanceReducedDynamics::jacobianCommon(Scratch& s,
   rnea_.compute(s.rd, s.q, s.qd, s.qdd, s.tau_rd, s.dtau_dq, s.dtau_dqd);
 }
 
-// The q_a and qd_a columns, analytic (see the header's file comment). Each column's direction t
-// of the full state: q_a column i moves q by t = T e_i (and qd by -J_sb^-1 dJ_s qd in the base),
-// qd_a column i moves qd by t = T e_i at fixed q.
+// The q_a and qd_a columns, analytic (see the header's file comment), all columns at once: with
+// T = [G; I], A T = A_b G + A_a for any A with n_q columns.
 void StanceReducedDynamics::analyticColumns(Scratch& s,
                                             const Eigen::Ref<const Eigen::VectorXd>& input,
                                             Eigen::Ref<Eigen::MatrixXd> jac) const {
-  const Eigen::Ref<const Vector6d> lambda2 = input.tail<6>();
+  const Vector6d lambda2 = input.tail<6>();
+  const bool wrench2 = !lambda2.isZero(0.0);
+  const auto timesT = [this, &s](const auto& A, auto&& out) {
+    out.noalias() = A.template leftCols<6>() * s.G;
+    out += A.rightCols(nu_);
+  };
   kin_.compute(s.kd, s.q, s.qd);
+  kin_.frameMatrices(s.kd, stance_frame_, s.qdd, &s.lambda_s, s.fs);
+  kin_.frameMatrices(s.kd, swing_frame_, s.qdd, wrench2 ? &lambda2 : nullptr, s.f2);
   // The swing sole's raw velocity and classical acceleration (J_2 qdd + Jdot_2 qd), and the
-  // rotation rows' Jl^-1(e) of phi_2 (s.ws is at (q, qd): evaluate() ended with velocityTerms).
+  // rotation rows' Jl^-1(e) of phi_2 with its derivative contracted with them, L_v de =
+  // dJl^-1[de] v (s.ws is at (q, qd): evaluate() ended with velocityTerms).
   const Vector6d vel2 = model_->frameVelocity(s.ws, swing_frame_);
   Vector6d acc2 = model_->frameJdotQd(s.ws, swing_frame_);
   acc2.noalias() += s.J2 * s.qdd;
   const Eigen::Vector3d e2 = s.swing.phi.tail<3>();
   const Eigen::Matrix3d Jl_inv = ContactConstraint::inverseLeftJacobian(e2);
-  Eigen::VectorXd& t = s.dq;
-  Vector6d ddrift_s, dvel2, ddrift2;
-  for (int col = 0; col < 2 * nu_; ++col) {
-    const bool position = col < nu_;
-    const int i = position ? col : col - nu_;
-    t.head<6>() = s.G.col(i);
-    t.tail(nu_).setZero();
-    t[6 + i] = 1.0;
-    auto out = jac.col(col);
-    if (position) {
-      // dq = t; dqd, dqdd in the base from J_s qd = 0 and J_s qdd + Jdot_s qd = 0. A joint off
-      // the stance support path has G e_i = 0 and moves neither J_s nor the stance drift.
-      s.dqd.setZero();
-      s.dqdd.setZero();
-      const bool stance_moves = on_stance_path_[i];
-      if (stance_moves) {
-        kin_.frameDerivatives(s.kd, stance_frame_, t, s.dqd, &s.dJs, nullptr, nullptr);
-        s.dqd.head<6>().noalias() = -s.Jb_inv * (s.dJs * s.qd);
-        kin_.frameDerivatives(s.kd, stance_frame_, t, s.dqd, nullptr, nullptr, &ddrift_s);
-        ddrift_s.noalias() += s.dJs * s.qdd;
-        s.dqdd.head<6>().noalias() = -s.Jb_inv * ddrift_s;
-      }
-      kin_.frameDerivatives(s.kd, swing_frame_, t, s.dqd, &s.dJ2, &dvel2, &ddrift2);
-      // dr' = dtau - dJ_2^T lambda_2 - dJ_s^T lambda_s.
-      // (t is G e_i in the base and e_{6+i}; dqd, dqdd live in the base.)
-      s.dr = s.dtau_dq.col(6 + i);
-      s.dr.noalias() += s.dtau_dq.leftCols<6>() * t.head<6>();
-      s.dr.noalias() += s.dtau_dqd.leftCols<6>() * s.dqd.head<6>();
-      s.dr.noalias() += s.M.leftCols<6>() * s.dqdd.head<6>();
-      s.dr.noalias() -= s.dJ2.transpose() * lambda2;
-      if (stance_moves) s.dr.noalias() -= s.dJs.transpose() * s.lambda_s;
-      // Swing terms: position and phi_2 along t; phidot_2 = B vel2, phiddot_2 = B acc2 with
-      // B = blkdiag(I, Jl^-1(e)), e moving by de = (J_phi t)_rot.
-      const Vector6d dphi = s.swing.J_phi * t;
-      const Eigen::Matrix3d dJl_inv = inverseLeftJacobianDerivative(e2, dphi.tail<3>());
-      ddrift2.noalias() += s.dJ2 * s.qdd;
-      ddrift2.noalias() += s.J2.leftCols<6>() * s.dqdd.head<6>();  // d acc2
-      out.segment<3>(swingPositionOffset()) = (s.J2 * t).head<3>();
-      out.segment<6>(phi2Offset()) = dphi;
-      out.segment<3>(phidot2Offset()) = dvel2.head<3>();
-      out.segment<3>(phidot2Offset() + 3).noalias() =
-          dJl_inv * vel2.tail<3>() + Jl_inv * dvel2.tail<3>();
-      out.segment<3>(phiddot2Offset()) = ddrift2.head<3>();
-      out.segment<3>(phiddot2Offset() + 3).noalias() =
-          dJl_inv * acc2.tail<3>() + Jl_inv * ddrift2.tail<3>();
-      out.segment(qOffset(), nq_) = t;
-      out.segment(qdOffset(), nq_) = s.dqd;
-    } else {
-      // dqd = t at fixed q: dqdd = [-J_sb^-1 d(Jdot_s qd); 0].
-      s.dqd.setZero();
-      kin_.frameDerivatives(s.kd, stance_frame_, s.dqd, t, nullptr, nullptr, &ddrift_s);
-      kin_.frameDerivatives(s.kd, swing_frame_, s.dqd, t, nullptr, nullptr, &ddrift2);
-      s.dqdd.head<6>().noalias() = -s.Jb_inv * ddrift_s;
-      s.dqdd.tail(nu_).setZero();
-      s.dr = s.dtau_dqd.col(6 + i);
-      s.dr.noalias() += s.dtau_dqd.leftCols<6>() * t.head<6>();
-      s.dr.noalias() += s.M.leftCols<6>() * s.dqdd.head<6>();
-      // phidot_2 = J_phi qd; phiddot_2 = B Jdot_2 qd + J_phi qdd.
-      out.segment<6>(phidot2Offset()).noalias() = s.swing.J_phi * t;
-      out.segment<3>(phiddot2Offset()) = ddrift2.head<3>();
-      out.segment<3>(phiddot2Offset() + 3).noalias() = Jl_inv * ddrift2.tail<3>();
-      out.segment<6>(phiddot2Offset()).noalias() += s.swing.J_phi.leftCols<6>() * s.dqdd.head<6>();
-      out.segment(qdOffset(), nq_) = t;
-    }
-    out.segment(uOffset(), nu_) = s.dr.tail(nu_);
-    out.segment(uOffset(), nu_).noalias() += s.G.transpose() * s.dr.head<6>();
-    out.segment<6>(lambdaOffset()).noalias() = s.Jb_inv.transpose() * s.dr.head<6>();
+  Eigen::Matrix3d L_vel, L_acc;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Matrix3d dJl = inverseLeftJacobianDerivative(e2, Eigen::Vector3d::Unit(k));
+    L_vel.col(k) = dJl * vel2.tail<3>();
+    L_acc.col(k) = dJl * acc2.tail<3>();
   }
+  auto dq_cols = jac.leftCols(nu_);
+  auto dqd_cols = jac.middleCols(nu_, nu_);
+
+  // q_a: dq = T; from J_s qd = 0 and J_s qdd + Jdot_s qd = 0 the base velocity and acceleration
+  //   Qd = -J_sb^-1 d(J_s qd)/dq T,
+  //   Qdd = -J_sb^-1 [(d(J_s qdd)/dq + d(Jdot_s qd)/dq) T + d(Jdot_s qd)/dqd_b Qd].
+  timesT(s.fs.dvelocity_dq, s.D6);
+  s.Qd.noalias() = -s.Jb_inv * s.D6;
+  s.fs.dJx_dq += s.fs.ddrift_dq;
+  timesT(s.fs.dJx_dq, s.D6);
+  s.D6.noalias() += s.fs.ddrift_dqd.leftCols<6>() * s.Qd;
+  s.Qdd.noalias() = -s.Jb_inv * s.D6;
+  // dr' = dtau - d(J_2^T lambda_2) - d(J_s^T lambda_s).
+  timesT(s.dtau_dq, s.dr_cols);
+  s.dr_cols.noalias() += s.dtau_dqd.leftCols<6>() * s.Qd;
+  s.dr_cols.noalias() += s.M.leftCols<6>() * s.Qdd;
+  s.fs.dJTlambda_dq.leftCols<6>() *= -1.0;
+  s.dr_cols.noalias() += s.fs.dJTlambda_dq.leftCols<6>() * s.G;
+  s.dr_cols -= s.fs.dJTlambda_dq.rightCols(nu_);
+  if (wrench2) {
+    s.dr_cols.noalias() -= s.f2.dJTlambda_dq.leftCols<6>() * s.G;
+    s.dr_cols -= s.f2.dJTlambda_dq.rightCols(nu_);
+  }
+  dq_cols.middleRows(uOffset(), nu_) = s.dr_cols.bottomRows(nu_);
+  dq_cols.middleRows(uOffset(), nu_).noalias() += s.G.transpose() * s.dr_cols.topRows<6>();
+  dq_cols.middleRows<6>(lambdaOffset()).noalias() = s.Jb_inv.transpose() * s.dr_cols.topRows<6>();
+  // Swing terms: position and phi_2 along T; phidot_2 = B vel2, phiddot_2 = B acc2 with
+  // B = blkdiag(I, Jl^-1(e)), e moving by the rotation rows of dphi_2.
+  timesT(s.J2, s.D6);
+  dq_cols.middleRows<3>(swingPositionOffset()) = s.D6.topRows<3>();
+  auto dphi = dq_cols.middleRows<6>(phi2Offset());
+  timesT(s.swing.J_phi, dphi);
+  timesT(s.f2.dvelocity_dq, s.dvel2);
+  s.dvel2.noalias() += s.J2.leftCols<6>() * s.Qd;
+  s.f2.dJx_dq += s.f2.ddrift_dq;
+  timesT(s.f2.dJx_dq, s.dacc2);
+  s.dacc2.noalias() += s.f2.ddrift_dqd.leftCols<6>() * s.Qd;
+  s.dacc2.noalias() += s.J2.leftCols<6>() * s.Qdd;
+  dq_cols.middleRows<3>(phidot2Offset()) = s.dvel2.topRows<3>();
+  dq_cols.middleRows<3>(phidot2Offset() + 3).noalias() = L_vel * dphi.bottomRows<3>();
+  dq_cols.middleRows<3>(phidot2Offset() + 3).noalias() += Jl_inv * s.dvel2.bottomRows<3>();
+  dq_cols.middleRows<3>(phiddot2Offset()) = s.dacc2.topRows<3>();
+  dq_cols.middleRows<3>(phiddot2Offset() + 3).noalias() = L_acc * dphi.bottomRows<3>();
+  dq_cols.middleRows<3>(phiddot2Offset() + 3).noalias() += Jl_inv * s.dacc2.bottomRows<3>();
+  dq_cols.middleRows<6>(qOffset()) = s.G;
+  dq_cols.middleRows(qOffset() + 6, nu_).setIdentity();
+  dq_cols.middleRows<6>(qdOffset()) = s.Qd;
+
+  // qd_a: dqd = T at fixed q, Qdd = -J_sb^-1 d(Jdot_s qd)/dqd T.
+  timesT(s.fs.ddrift_dqd, s.D6);
+  s.Qdd.noalias() = -s.Jb_inv * s.D6;
+  timesT(s.dtau_dqd, s.dr_cols);
+  s.dr_cols.noalias() += s.M.leftCols<6>() * s.Qdd;
+  dqd_cols.middleRows(uOffset(), nu_) = s.dr_cols.bottomRows(nu_);
+  dqd_cols.middleRows(uOffset(), nu_).noalias() += s.G.transpose() * s.dr_cols.topRows<6>();
+  dqd_cols.middleRows<6>(lambdaOffset()).noalias() = s.Jb_inv.transpose() * s.dr_cols.topRows<6>();
+  // phidot_2 = J_phi qd; phiddot_2 = B Jdot_2 qd + J_phi qdd.
+  dqd_cols.middleRows<6>(phidot2Offset()) = dphi;
+  timesT(s.f2.ddrift_dqd, s.dacc2);
+  auto dphiddot = dqd_cols.middleRows<6>(phiddot2Offset());
+  dphiddot.topRows<3>() = s.dacc2.topRows<3>();
+  dphiddot.bottomRows<3>().noalias() = Jl_inv * s.dacc2.bottomRows<3>();
+  dphiddot.noalias() += s.swing.J_phi.leftCols<6>() * s.Qdd;
+  dqd_cols.middleRows<6>(qdOffset()) = s.G;
+  dqd_cols.middleRows(qdOffset() + 6, nu_).setIdentity();
 }
 
 // One column c of the Jacobian from the changes of the full state (dq, dqd, dqdd) and of the

@@ -1,7 +1,8 @@
 // The analytic kinematic chain of the transition OCP against central finite differences:
 //  - KinematicDerivatives (model/kinematic_derivatives.h): directional derivatives of a frame's
 //    Jacobian, velocity and drift against differences of RobotModel::frameJacobian,
-//    frameVelocity and frameJdotQd along random directions at random states;
+//    frameVelocity and frameJdotQd along random directions at random states, and the same as
+//    matrices (d(J x)/dq, d(J^T lambda)/dq included) against differences joint by joint;
 //  - inverseLeftJacobianDerivative against differences of ContactConstraint::inverseLeftJacobian
 //    on both sides of its series thresholds;
 //  - StanceReducedDynamics::evaluate's analytic Jacobian (all columns) against central
@@ -117,6 +118,48 @@ TEST_P(ChainDerivatives, FrameTermsMatchCentralDifferences) {
       Vector6d ddrift_only;
       kin.frameDerivatives(kd, frame, dq, dqd, nullptr, nullptr, &ddrift_only);
       EXPECT_LT((ddrift_only - ddrift).cwiseAbs().maxCoeff(), 1e-12);
+    }
+  }
+}
+
+TEST_P(ChainDerivatives, FrameMatricesMatchCentralDifferences) {
+  const RobotModel& m = *model_;
+  const int nq = m.nq();
+  KinematicDerivatives kin(model_);
+  KinematicDerivatives::Data kd(m);
+  KinematicDerivatives::FrameMatrices fm(nq);
+  Workspace ws(m);
+  std::mt19937 rng(5);
+  const double h = 1e-6;
+  for (const std::string& frame_name : {GetParam().stance, GetParam().swing}) {
+    const FrameId frame = m.frameId(frame_name);
+    for (int trial = 0; trial < 3; ++trial) {
+      const Eigen::VectorXd q = randomConfiguration(m, rng);
+      const Eigen::VectorXd qd = randomVector(nq, rng, 1.5);
+      const Eigen::VectorXd x = randomVector(nq, rng, 3.0);
+      const Vector6d lambda = randomVector(6, rng, 100.0);
+      // J x, J qd, Jdot qd and J^T lambda stacked into one vector.
+      auto terms = [&](const Eigen::VectorXd& y, const Eigen::VectorXd& yd) {
+        m.update(ws, y, yd);
+        Matrix6Xd J(6, nq);
+        m.frameJacobian(ws, frame, J);
+        Eigen::VectorXd out(18 + nq);
+        out << J * x, m.frameVelocity(ws, frame), m.frameJdotQd(ws, frame), J.transpose() * lambda;
+        return out;
+      };
+      Eigen::MatrixXd fd_q(18 + nq, nq), fd_qd(18 + nq, nq);
+      for (int k = 0; k < nq; ++k) {
+        const Eigen::VectorXd e = Eigen::VectorXd::Unit(nq, k);
+        fd_q.col(k) = (terms(q + h * e, qd) - terms(q - h * e, qd)) / (2.0 * h);
+        fd_qd.col(k) = (terms(q, qd + h * e) - terms(q, qd - h * e)) / (2.0 * h);
+      }
+      kin.compute(kd, q, qd);
+      kin.frameMatrices(kd, frame, x, &lambda, fm);
+      EXPECT_LT(relativeError(fm.dJx_dq, fd_q.topRows(6)), 1e-6) << frame_name;
+      EXPECT_LT(relativeError(fm.dvelocity_dq, fd_q.middleRows(6, 6)), 1e-6) << frame_name;
+      EXPECT_LT(relativeError(fm.ddrift_dq, fd_q.middleRows(12, 6)), 1e-6) << frame_name;
+      EXPECT_LT(relativeError(fm.ddrift_dqd, fd_qd.middleRows(12, 6)), 1e-6) << frame_name;
+      EXPECT_LT(relativeError(fm.dJTlambda_dq, fd_q.bottomRows(nq)), 1e-6) << frame_name;
     }
   }
 }

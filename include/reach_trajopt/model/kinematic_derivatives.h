@@ -21,7 +21,11 @@
 ///   drift = [a + alpha x p + w x (v + w x p); alpha]   for A_b = [alpha; a],
 /// and dp = J_lin dq; the derivatives of these follow by the product rule. Along one direction
 /// each costs O(d) for a frame at depth d (the dq-weighted sums of S_m over the support path
-/// run once), so the derivatives along n directions cost O(n d) after one O(n_bodies) pass.
+/// run once), so the derivatives along n directions cost O(n d) after one O(n_bodies) pass; the
+/// same as matrices (one column per joint, frameMatrices) cost O(d), and the contraction
+/// d(J^T lambda)/dq with a wrench lambda O(d^2):
+///   d(J^T lambda)_j / d q_m = [m < j] (S_m x S_j) . F + w_j . (dp_m x f),
+/// with lambda = [f; n] and F = [n + p x f; f] the wrench at the world origin.
 /// Checked against central finite differences of RobotModel (test/unit/test_chain_derivatives.cpp).
 
 #include <Eigen/Core>
@@ -62,6 +66,23 @@ class KinematicDerivatives {
   void frameDerivatives(const Data& d, FrameId frame, const Eigen::Ref<const Eigen::VectorXd>& dq,
                         const Eigen::Ref<const Eigen::VectorXd>& dqd, Matrix6Xd* dJ,
                         Vector6d* dvelocity, Vector6d* ddrift) const;
+
+  /// A frame's derivatives as matrices, the columns the joints (non-zero only on the frame's
+  /// support path), rows [linear; angular].
+  struct FrameMatrices {
+    explicit FrameMatrices(int nq);
+    Matrix6Xd dJx_dq;              ///< d(J x)/dq at fixed x (the x given to frameMatrices)
+    Matrix6Xd dvelocity_dq;        ///< d(J qd)/dq at fixed qd
+    Matrix6Xd ddrift_dq;           ///< d(Jdot qd)/dq at fixed qd
+    Matrix6Xd ddrift_dqd;          ///< d(Jdot qd)/dqd
+    Eigen::MatrixXd dJTlambda_dq;  ///< n_q x n_q: d(J^T lambda)/dq at fixed lambda (if asked)
+  };
+
+  /// All of `out` at the state of the last compute(), for one x (size n_q) and, unless null,
+  /// one lambda (a wrench [force; moment] on the frame: the rows of J^T lambda). Costs O(d) for
+  /// the 6-row matrices and O(d^2) for dJTlambda_dq, d the frame's depth. Allocates nothing.
+  void frameMatrices(const Data& d, FrameId frame, const Eigen::Ref<const Eigen::VectorXd>& x,
+                     const Vector6d* lambda, FrameMatrices& out) const;
 
   const RobotModel& model() const { return *model_; }
 

@@ -117,7 +117,9 @@ class StanceReducedDynamics {
     // Analytic chain: the soles' kinematic derivatives, a column's direction and the changes of
     // J_s, J_2 along it.
     KinematicDerivatives::Data kd;
-    Matrix6Xd dJs, dJ2;
+    KinematicDerivatives::FrameMatrices fs, f2;  // stance and swing sole
+    Matrix6Xd Qd, Qdd, D6, dvel2, dacc2;         // 6 x n_u: d(base qd), d(base qdd), ...
+    Eigen::MatrixXd dr_cols;                     // n_q x n_u: dr' of the columns
   };
 
   /// Full configuration for q_a: base from the stance sole (see file comment).
