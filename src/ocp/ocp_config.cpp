@@ -57,9 +57,15 @@ const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {
           .add("relaxed_ftol_rel", &C::relaxed_ftol_rel, "", Range::positive(),
                "the relaxed problem's (its cost is dominated by w_eps |eps|^2)")
           .add("xtol_rel", &C::xtol_rel, "", Range::positive(), "NLopt relative variable tolerance")
-          .add("fd_step", &C::fd_step, "rad, m", Range::positive(), "finite-difference step in q")
+          .choice("chain_derivatives", &C::chain_derivatives,
+                  {{"analytic", ChainDerivatives::kAnalytic},
+                   {"finite_differences", ChainDerivatives::kFiniteDifferences}},
+                  "Jacobian of the kinematic chain: exact, or differences (fd_step, "
+                  "central_differences) to compare")
+          .add("fd_step", &C::fd_step, "rad, m", Range::positive(), "finite_differences: step in q")
           .add("central_differences", &C::central_differences, "",
-               "central instead of forward differences (2x the gradient cost, ~1e-10 error)")
+               "finite_differences: central instead of forward (2x the gradient cost, ~1e-10 "
+               "error)")
           .add("fit_regularization", &C::fit_regularization, "", Range::nonNegative(),
                "seed fit: weight of the second differences")
           .add("row_screening", &C::row_screening, "m g, u_max, m", Range::nonNegative(),

@@ -37,7 +37,8 @@ StanceReducedDynamics::StanceReducedDynamics(std::shared_ptr<const RobotModel> m
       stance_pose_(stance_pose),
       swing_(swing_frame, swing_target),
       yaw_reference_(yaw_reference),
-      rnea_(model_) {
+      rnea_(model_),
+      kin_(model_) {
   if (!model_ || !model_->floatingBase()) {
     throw ModelError("StanceReducedDynamics: needs a floating-base model");
   }
@@ -88,7 +89,16 @@ StanceReducedDynamics::Scratch::Scratch(const StanceReducedDynamics& d)
       dqd(d.nq()),
       dqdd(d.nq()),
       dtau(d.nq()),
-      dr(d.nq()) {}
+      dr(d.nq()),
+      kd(d.model()),
+      fs(d.nq()),
+      f2(d.nq()),
+      Qd(6, d.nu()),
+      Qdd(6, d.nu()),
+      D6(6, d.nu()),
+      dvel2(6, d.nu()),
+      dacc2(6, d.nu()),
+      dr_cols(d.nq(), d.nu()) {}
 
 StanceReducedDynamics::Scratch::Kinematic::Kinematic(int nq, int nu)
     : q(nq), qd(nq), qdd(nq), G(6, nu), J2(6, nq) {}
@@ -189,10 +199,28 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
                                      Eigen::Ref<Eigen::VectorXd> signals,
                                      Eigen::Ref<Eigen::MatrixXd> jac, double fd_step,
                                      bool central) const {
+  jacobianCommon(s, input, signals, jac);
+  const Eigen::Ref<const Eigen::VectorXd> qdda = input.segment(2 * nu_, nu_);
+  saveKinematic(s, qdda, s.k0);  // the unperturbed kinematic state
+  s.r0 = s.tau_ext;              // tau - J_2^T lambda_2
+  velocityColumns(s, qdda, input.tail<6>(), jac);
+  positionColumns(s, input, fd_step, central, jac);
+}
+
+void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
+                                     Eigen::Ref<Eigen::VectorXd> signals,
+                                     Eigen::Ref<Eigen::MatrixXd> jac) const {
+  jacobianCommon(s, input, signals, jac);
+  analyticColumns(s, input, jac);
+}
+
+void StanceReducedDynamics::jacobianCommon(Scratch& s,
+                                           const Eigen::Ref<const Eigen::VectorXd>& input,
+                                           Eigen::Ref<Eigen::VectorXd> signals,
+                                           Eigen::Ref<Eigen::MatrixXd> jac) const {
   requireSize("StanceReducedDynamics: Jacobian rows", jac.rows(), signalCount());
   requireSize("StanceReducedDynamics: Jacobian columns", jac.cols(), inputCount());
   evaluate(s, input, signals);
-  const Eigen::Ref<const Vector6d> lambda2 = input.tail<6>();
   jac.setZero();
 
   // qdd_a and lambda_2: the signals are affine in both. d(tau)/d(qdd_a) = M T.
@@ -218,12 +246,102 @@ void StanceReducedDynamics::evaluate(Scratch& s, const Eigen::Ref<const Eigen::V
 
   // The unperturbed state and the analytic RNEA derivatives there (model_->update() of the
   // sample is current: evaluate() ended with velocityTerms at (q, qd)).
-  const Eigen::Ref<const Eigen::VectorXd> qdda = input.segment(2 * nu_, nu_);
-  saveKinematic(s, qdda, s.k0);
-  s.r0 = s.tau_ext;  // tau - J_2^T lambda_2
   rnea_.compute(s.rd, s.q, s.qd, s.qdd, s.tau_rd, s.dtau_dq, s.dtau_dqd);
-  velocityColumns(s, qdda, lambda2, jac);
-  positionColumns(s, input, fd_step, central, jac);
+}
+
+// The q_a and qd_a columns, analytic (see the header's file comment), all columns at once: with
+// T = [G; I], A T = A_b G + A_a for any A with n_q columns.
+void StanceReducedDynamics::analyticColumns(Scratch& s,
+                                            const Eigen::Ref<const Eigen::VectorXd>& input,
+                                            Eigen::Ref<Eigen::MatrixXd> jac) const {
+  const Vector6d lambda2 = input.tail<6>();
+  const bool wrench2 = !lambda2.isZero(0.0);
+  const auto timesT = [this, &s](const auto& A, auto&& out) {
+    out.noalias() = A.template leftCols<6>() * s.G;
+    out += A.rightCols(nu_);
+  };
+  kin_.compute(s.kd, s.q, s.qd);
+  kin_.frameMatrices(s.kd, stance_frame_, s.qdd, &s.lambda_s, s.fs);
+  kin_.frameMatrices(s.kd, swing_frame_, s.qdd, wrench2 ? &lambda2 : nullptr, s.f2);
+  // The swing sole's raw velocity and classical acceleration (J_2 qdd + Jdot_2 qd), and the
+  // rotation rows' Jl^-1(e) of phi_2 with its derivative contracted with them, L_v de =
+  // dJl^-1[de] v (s.ws is at (q, qd): evaluate() ended with velocityTerms).
+  const Vector6d vel2 = model_->frameVelocity(s.ws, swing_frame_);
+  Vector6d acc2 = model_->frameJdotQd(s.ws, swing_frame_);
+  acc2.noalias() += s.J2 * s.qdd;
+  const Eigen::Vector3d e2 = s.swing.phi.tail<3>();
+  const Eigen::Matrix3d Jl_inv = ContactConstraint::inverseLeftJacobian(e2);
+  Eigen::Matrix3d L_vel, L_acc;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Matrix3d dJl = inverseLeftJacobianDerivative(e2, Eigen::Vector3d::Unit(k));
+    L_vel.col(k) = dJl * vel2.tail<3>();
+    L_acc.col(k) = dJl * acc2.tail<3>();
+  }
+  auto dq_cols = jac.leftCols(nu_);
+  auto dqd_cols = jac.middleCols(nu_, nu_);
+
+  // q_a: dq = T; from J_s qd = 0 and J_s qdd + Jdot_s qd = 0 the base velocity and acceleration
+  //   Qd = -J_sb^-1 d(J_s qd)/dq T,
+  //   Qdd = -J_sb^-1 [(d(J_s qdd)/dq + d(Jdot_s qd)/dq) T + d(Jdot_s qd)/dqd_b Qd].
+  timesT(s.fs.dvelocity_dq, s.D6);
+  s.Qd.noalias() = -s.Jb_inv * s.D6;
+  s.fs.dJx_dq += s.fs.ddrift_dq;
+  timesT(s.fs.dJx_dq, s.D6);
+  s.D6.noalias() += s.fs.ddrift_dqd.leftCols<6>() * s.Qd;
+  s.Qdd.noalias() = -s.Jb_inv * s.D6;
+  // dr' = dtau - d(J_2^T lambda_2) - d(J_s^T lambda_s).
+  timesT(s.dtau_dq, s.dr_cols);
+  s.dr_cols.noalias() += s.dtau_dqd.leftCols<6>() * s.Qd;
+  s.dr_cols.noalias() += s.M.leftCols<6>() * s.Qdd;
+  s.fs.dJTlambda_dq.leftCols<6>() *= -1.0;
+  s.dr_cols.noalias() += s.fs.dJTlambda_dq.leftCols<6>() * s.G;
+  s.dr_cols -= s.fs.dJTlambda_dq.rightCols(nu_);
+  if (wrench2) {
+    s.dr_cols.noalias() -= s.f2.dJTlambda_dq.leftCols<6>() * s.G;
+    s.dr_cols -= s.f2.dJTlambda_dq.rightCols(nu_);
+  }
+  dq_cols.middleRows(uOffset(), nu_) = s.dr_cols.bottomRows(nu_);
+  dq_cols.middleRows(uOffset(), nu_).noalias() += s.G.transpose() * s.dr_cols.topRows<6>();
+  dq_cols.middleRows<6>(lambdaOffset()).noalias() = s.Jb_inv.transpose() * s.dr_cols.topRows<6>();
+  // Swing terms: position and phi_2 along T; phidot_2 = B vel2, phiddot_2 = B acc2 with
+  // B = blkdiag(I, Jl^-1(e)), e moving by the rotation rows of dphi_2.
+  timesT(s.J2, s.D6);
+  dq_cols.middleRows<3>(swingPositionOffset()) = s.D6.topRows<3>();
+  auto dphi = dq_cols.middleRows<6>(phi2Offset());
+  timesT(s.swing.J_phi, dphi);
+  timesT(s.f2.dvelocity_dq, s.dvel2);
+  s.dvel2.noalias() += s.J2.leftCols<6>() * s.Qd;
+  s.f2.dJx_dq += s.f2.ddrift_dq;
+  timesT(s.f2.dJx_dq, s.dacc2);
+  s.dacc2.noalias() += s.f2.ddrift_dqd.leftCols<6>() * s.Qd;
+  s.dacc2.noalias() += s.J2.leftCols<6>() * s.Qdd;
+  dq_cols.middleRows<3>(phidot2Offset()) = s.dvel2.topRows<3>();
+  dq_cols.middleRows<3>(phidot2Offset() + 3).noalias() = L_vel * dphi.bottomRows<3>();
+  dq_cols.middleRows<3>(phidot2Offset() + 3).noalias() += Jl_inv * s.dvel2.bottomRows<3>();
+  dq_cols.middleRows<3>(phiddot2Offset()) = s.dacc2.topRows<3>();
+  dq_cols.middleRows<3>(phiddot2Offset() + 3).noalias() = L_acc * dphi.bottomRows<3>();
+  dq_cols.middleRows<3>(phiddot2Offset() + 3).noalias() += Jl_inv * s.dacc2.bottomRows<3>();
+  dq_cols.middleRows<6>(qOffset()) = s.G;
+  dq_cols.middleRows(qOffset() + 6, nu_).setIdentity();
+  dq_cols.middleRows<6>(qdOffset()) = s.Qd;
+
+  // qd_a: dqd = T at fixed q, Qdd = -J_sb^-1 d(Jdot_s qd)/dqd T.
+  timesT(s.fs.ddrift_dqd, s.D6);
+  s.Qdd.noalias() = -s.Jb_inv * s.D6;
+  timesT(s.dtau_dqd, s.dr_cols);
+  s.dr_cols.noalias() += s.M.leftCols<6>() * s.Qdd;
+  dqd_cols.middleRows(uOffset(), nu_) = s.dr_cols.bottomRows(nu_);
+  dqd_cols.middleRows(uOffset(), nu_).noalias() += s.G.transpose() * s.dr_cols.topRows<6>();
+  dqd_cols.middleRows<6>(lambdaOffset()).noalias() = s.Jb_inv.transpose() * s.dr_cols.topRows<6>();
+  // phidot_2 = J_phi qd; phiddot_2 = B Jdot_2 qd + J_phi qdd.
+  dqd_cols.middleRows<6>(phidot2Offset()) = dphi;
+  timesT(s.f2.ddrift_dqd, s.dacc2);
+  auto dphiddot = dqd_cols.middleRows<6>(phiddot2Offset());
+  dphiddot.topRows<3>() = s.dacc2.topRows<3>();
+  dphiddot.bottomRows<3>().noalias() = Jl_inv * s.dacc2.bottomRows<3>();
+  dphiddot.noalias() += s.swing.J_phi.leftCols<6>() * s.Qdd;
+  dqd_cols.middleRows<6>(qdOffset()) = s.G;
+  dqd_cols.middleRows(qdOffset() + 6, nu_).setIdentity();
 }
 
 // One column c of the Jacobian from the changes of the full state (dq, dqd, dqdd) and of the

@@ -401,8 +401,12 @@ void TransitionNlp::sampleSignals(const Sample& smp, const Eigen::VectorXd& x, b
   splineInput(x, se.brow, w.input);
   w.input.tail<6>() = smp.final ? lambdaNew(x) : Vector6d::Zero();
   if (gradients) {
-    d.evaluate(*w.scratch, w.input, se.signals, w.jin, config_.fd_step,
-               config_.central_differences);
+    if (config_.chain_derivatives == ChainDerivatives::kAnalytic) {
+      d.evaluate(*w.scratch, w.input, se.signals, w.jin);
+    } else {
+      d.evaluate(*w.scratch, w.input, se.signals, w.jin, config_.fd_step,
+                 config_.central_differences);
+    }
     const CubicBSplineBasis::Row& brow = se.brow;
     se.jloc.resize(d.signalCount(), 4 * nu_ + 6);
     for (int j = 0; j < 4; ++j) {

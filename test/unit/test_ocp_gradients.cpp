@@ -156,9 +156,9 @@ TEST_P(TransitionNlpGradient, MatchesCentralDifferences) {
   slice.b.resize(3);
   slice.b << 1.0, 0.5, 0.6;
   r.slices.push_back(slice);
+  // The default scheme: the kinematic chain analytic (exact up to roundoff).
   TransitionOcpConfig cfg;
-  cfg.central_differences = true;
-  cfg.fd_step = 1e-5;
+  ASSERT_EQ(cfg.chain_derivatives, ChainDerivatives::kAnalytic);
   TransitionNlp nlp(m, cfg, ContactConfig(), r, relaxed);
   ASSERT_EQ(nlp.variableCount(),
             relaxed ? 12 * (cfg.segments + 1) + 8 : 12 * (cfg.segments - 1) + 6);
@@ -182,8 +182,21 @@ TEST_P(TransitionNlpGradient, MatchesCentralDifferences) {
   EXPECT_LT(relativeError(v.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-6);
   EXPECT_LT(relativeError(v.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-6);
 
-  // The default scheme (forward differences in q) within its own, looser bound.
-  TransitionNlp nlp_fwd(m, TransitionOcpConfig(), ContactConfig(), r, relaxed);
+  // chain_derivatives: finite_differences, central (step 1e-5) within the same bound, forward
+  // (the default step) within its own, looser one.
+  TransitionOcpConfig cfg_central;
+  cfg_central.chain_derivatives = ChainDerivatives::kFiniteDifferences;
+  cfg_central.central_differences = true;
+  cfg_central.fd_step = 1e-5;
+  TransitionNlp nlp_central(m, cfg_central, ContactConfig(), r, relaxed);
+  NlpValues vc;
+  nlp_central.evaluate(x, true, vc);
+  EXPECT_LT(relativeError(vc.cost_gradient.transpose(), fd.topRows(1)), 1e-6);
+  EXPECT_LT(relativeError(vc.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-6);
+  EXPECT_LT(relativeError(vc.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-6);
+  TransitionOcpConfig cfg_fwd;
+  cfg_fwd.chain_derivatives = ChainDerivatives::kFiniteDifferences;
+  TransitionNlp nlp_fwd(m, cfg_fwd, ContactConfig(), r, relaxed);
   NlpValues vf;
   nlp_fwd.evaluate(x, true, vf);
   EXPECT_LT(relativeError(vf.cost_gradient.transpose(), fd.topRows(1)), 1e-4);

@@ -10,8 +10,16 @@
 ///  - cone_margin, torque_margin: how far inside the cones and torque bounds the NLP samples
 ///    must stay, so that the samples in between (re-checked at 1 ms) stay inside too; larger
 ///    margins mean fewer refinement re-solves but a slightly smaller feasible set.
-///  - central_differences: d/dq by central instead of forward differences (2x the kinematic
-///    part of the gradient cost, about 1e-10 instead of 1e-7 relative error).
+///  - chain_derivatives: how the per-sample Jacobian differentiates the kinematic chain (the full
+///    state and the soles' terms as functions of the actuated joints, stance_reduced_dynamics.h):
+///    analytic (exact up to roundoff, the default) or finite_differences (fd_step,
+///    central_differences below), kept to compare the two. The analytic Jacobian of one sample
+///    costs about 0.3x the forward-difference one on the biped (0.2x on the 38-dof TALOS); a
+///    whole biped OCP about 0.5-0.7x (the NLP's other work stays). Both reach the same optima
+///    within the solver's tolerances, not the same bits, so a walk's trajectories differ.
+///  - central_differences: with finite_differences, d/dq by central instead of forward
+///    differences (2x the kinematic part of the gradient cost, about 1e-10 instead of 1e-7
+///    relative error).
 ///  - row_screening: SLSQP's own work per iteration (a dense least-squares subproblem) grows with
 ///    the inequality rows; it sees only those near active, the others are checked at its answer
 ///    (issue 41: on the demo walk's OCPs 0.58x the time, the same answers). 0 turns it off.
@@ -26,6 +34,9 @@ namespace reach_trajopt {
 class YamlSection;
 template <typename Config>
 class ConfigFields;
+
+/// How the transition OCP's per-sample Jacobian differentiates the kinematic chain.
+enum class ChainDerivatives { kAnalytic, kFiniteDifferences };
 
 /// Transition OCP settings. The cost (22) is written in scaled form:
 ///   J = (1/T) int [ w_torque |u ./ u_max|^2 + w_wrench |lambda / (m g)|^2
@@ -64,9 +75,10 @@ struct TransitionOcpConfig {
   /// Relaxed problem: its cost is dominated by w_eps |eps|^2, so a relative cost test would stop
   /// SLSQP before the equalities converge; it uses this tighter value and stops on xtol_rel.
   double relaxed_ftol_rel = 1.0e-14;
-  double xtol_rel = 1.0e-7;            ///< NLopt relative variable tolerance
-  double fd_step = 1.0e-6;             ///< finite-difference step in q [rad, m]
-  bool central_differences = false;    ///< see file comment
+  double xtol_rel = 1.0e-7;  ///< NLopt relative variable tolerance
+  ChainDerivatives chain_derivatives = ChainDerivatives::kAnalytic;  ///< see file comment
+  double fd_step = 1.0e-6;             ///< finite_differences: step in q [rad, m]
+  bool central_differences = false;    ///< finite_differences: see file comment
   double fit_regularization = 1.0e-6;  ///< seed fit: weight of the second differences
   /// SLSQP sees only the inequality rows within this of active (row value > -row_screening at
   /// its start: cone rows in units of m g, torque rows of u_max, hull and clearance rows in m);

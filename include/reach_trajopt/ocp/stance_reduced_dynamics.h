@@ -27,11 +27,28 @@
 ///    u = T^T (tau - J_2^T lambda_2), lambda_s = J_sb^-T (tau - J_2^T lambda_2)_b differentiated
 ///    as products;
 ///  - the kinematic chain (the full state q, qd, qdd as functions of q_a, qd_a; G, J_sb^-1, J_2;
-///    the swing sole's position, phi_2, phidot_2, phiddot_2) by differences of kinematics only, no
-///    inverse dynamics: in qd_a exact central differences (quadratic in qd at fixed q; velocity
-///    pass only); in q_a forward or central differences (step from TransitionOcpConfig). A joint
-///    off the stance sole's support path (the swing leg) moves neither the reconstructed base nor
-///    G, J_sb, the stance drift: its column needs the swing terms only, and dq = e_i exactly.
+///    the swing sole's position, phi_2, phidot_2, phiddot_2), by one of two schemes:
+///    * analytic (the default): dq/dq_a = T and dqd/dqd_a = T exactly (J_s dq = 0 defines
+///      both); the rest from differentiating the stance contact, J_s qd = 0 and
+///      J_s qdd + Jdot_s qd = 0: for q_a (dq = T dq_a)
+///        dqd_b = Qd dq_a,    Qd  = -J_sb^-1 d(J_s qd)/dq T,
+///        dqdd_b = Qdd dq_a,  Qdd = -J_sb^-1 [(d(J_s qdd)/dq + d(Jdot_s qd)/dq) T
+///                                             + d(Jdot_s qd)/dqd_b Qd],
+///      for qd_a (dqd = T dqd_a at fixed q) Qdd = -J_sb^-1 d(Jdot_s qd)/dqd T; and from
+///      r = tau - J_2^T lambda_2 = J_s^T lambda_s + S^T u
+///        du = T^T dr',  dlambda_s = J_sb^-T dr'_b,
+///        dr' = dtau - d(J_2^T lambda_2)/dq dq - d(J_s^T lambda_s)/dq dq  (the wrenches held);
+///      the swing terms likewise (phidot_2 = B J_2 qd, phiddot_2 = B (J_2 qdd + Jdot_2 qd),
+///      B = blkdiag(I, Jl^-1(e)) with d Jl^-1(e) in closed form). The soles' d(J x)/dq,
+///      d(J qd)/dq, d(Jdot qd)/dq, d(Jdot qd)/dqd, d(J^T lambda)/dq come from
+///      model/kinematic_derivatives.h as matrices, so all 2 n_u columns are matrix products:
+///      no finite difference and no per-column kinematics (measured on the biped: about 0.3x
+///      the forward-difference Jacobian's time, and 0.2x on the 38-dof TALOS).
+///    * finite_differences: differences of kinematics only, no inverse dynamics: in qd_a exact
+///      central differences (quadratic in qd at fixed q; velocity pass only); in q_a forward or
+///      central differences (step from TransitionOcpConfig). A joint off the stance sole's
+///      support path (the swing leg) moves neither the reconstructed base nor G, J_sb, the
+///      stance drift: its column needs the swing terms only, and dq = e_i exactly.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -40,6 +57,7 @@
 
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/contact/contact_mode.h"
+#include "reach_trajopt/model/kinematic_derivatives.h"
 #include "reach_trajopt/model/rnea_derivatives.h"
 #include "reach_trajopt/model/robot_model.h"
 
@@ -102,6 +120,12 @@ class StanceReducedDynamics {
     };
     Kinematic k0, kp, km;
     Eigen::VectorXd dq, dqd, dqdd, dtau, dr;
+    // Analytic chain: the soles' kinematic derivatives, a column's direction and the changes of
+    // J_s, J_2 along it.
+    KinematicDerivatives::Data kd;
+    KinematicDerivatives::FrameMatrices fs, f2;  // stance and swing sole
+    Matrix6Xd Qd, Qdd, D6, dvel2, dacc2;         // 6 x n_u: d(base qd), d(base qdd), ...
+    Eigen::MatrixXd dr_cols;                     // n_q x n_u: dr' of the columns
   };
 
   /// Full configuration for q_a: base from the stance sole (see file comment).
@@ -113,12 +137,17 @@ class StanceReducedDynamics {
   void evaluate(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
                 Eigen::Ref<Eigen::VectorXd> signals) const;
 
-  /// Signals and their Jacobian (signalCount x inputCount). The Scratch's state afterwards is
-  /// unspecified (it holds perturbed evaluations).
+  /// Signals and their Jacobian (signalCount x inputCount), the kinematic chain by finite
+  /// differences (see file comment). The Scratch's state afterwards is unspecified (it holds
+  /// perturbed evaluations).
   /// \param fd_step  step in q_a [rad]; \param central  central instead of forward differences
   void evaluate(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
                 Eigen::Ref<Eigen::VectorXd> signals, Eigen::Ref<Eigen::MatrixXd> jacobian,
                 double fd_step, bool central) const;
+  /// Signals and their Jacobian, the kinematic chain analytic (see file comment). Afterwards the
+  /// Scratch holds the state of this sample, as after the signals-only evaluate().
+  void evaluate(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
+                Eigen::Ref<Eigen::VectorXd> signals, Eigen::Ref<Eigen::MatrixXd> jacobian) const;
 
   const ContactConstraint& swingContact() const { return swing_; }
   FrameId stanceFrame() const { return stance_frame_; }
@@ -140,6 +169,13 @@ class StanceReducedDynamics {
   void chainRuleColumn(Scratch& s, int c, const Scratch::Kinematic& kp,
                        const Scratch::Kinematic& km, double span, bool kinematic_terms_move,
                        const Eigen::Ref<const Vector6d>& lambda2,
+                       Eigen::Ref<Eigen::MatrixXd> jac) const;
+  /// Both Jacobian schemes: the signals, the qdd_a and lambda_2 columns, s.k0, s.M and the RNEA
+  /// derivatives at the sample (the rest of `jac` zero).
+  void jacobianCommon(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
+                      Eigen::Ref<Eigen::VectorXd> signals, Eigen::Ref<Eigen::MatrixXd> jac) const;
+  /// evaluate()'s analytic Jacobian: the q_a and qd_a columns.
+  void analyticColumns(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& input,
                        Eigen::Ref<Eigen::MatrixXd> jac) const;
   /// evaluate()'s Jacobian: the qd_a columns (central differences of the velocity pass).
   void velocityColumns(Scratch& s, const Eigen::Ref<const Eigen::VectorXd>& qdda,
@@ -171,6 +207,7 @@ class StanceReducedDynamics {
   ContactConstraint swing_;
   double yaw_reference_;
   RneaDerivatives rnea_;
+  KinematicDerivatives kin_;
   std::vector<bool>
       on_stance_path_;  ///< actuated joint i moves the stance sole relative to the base
 };
