@@ -6,6 +6,10 @@
 #include "reach_trajopt/common/error.h"
 
 namespace reach_trajopt {
+namespace {
+constexpr double kLateDescentSpeed = 0.2;  // [m/s] after the nominal end, until contact
+}
+
 SwingTrajectory::SwingTrajectory(const Eigen::Vector3d& start, const Eigen::Vector3d& target,
                                  double duration, double apex_height, double touchdown_depth)
     : start_(start),
@@ -35,26 +39,31 @@ void SwingTrajectory::retarget(const Eigen::Vector3d& target, double t) {
   target_ = target;
 }
 
-MinimumJerkBlend minimumJerkBlend(double t, double t0, double duration) {
-  const double T = duration;
+namespace {
+/// Minimum-jerk blend b(s) = 10 s^3 - 15 s^4 + 6 s^5 of s = (t - t0) / T on [0, 1] and its
+/// first two time derivatives (zero at both ends).
+struct Blend {
+  double b, bd, bdd;
+};
+Blend minimumJerk(double t, double t0, double T) {
   const double s = std::clamp((t - t0) / T, 0.0, 1.0);
   return {s * s * s * (10 - 15 * s + 6 * s * s), 30 * s * s * (1 - s) * (1 - s) / T,
           60 * s * (1 - s) * (1 - 2 * s) / (T * T)};
 }
+}  // namespace
 
 SwingSample SwingTrajectory::sample(double t) const {
   const Eigen::Vector3d depth(0, 0, depth_);
   SwingSample out;
   if (t >= duration_) {
-    out.position =
-        target_ - depth - Eigen::Vector3d(0, 0, kLateTouchdownDescentSpeed * (t - duration_));
-    out.velocity = Eigen::Vector3d(0, 0, -kLateTouchdownDescentSpeed);
+    out.position = target_ - depth - Eigen::Vector3d(0, 0, kLateDescentSpeed * (t - duration_));
+    out.velocity = Eigen::Vector3d(0, 0, -kLateDescentSpeed);
     out.acceleration.setZero();
     return out;
   }
   const double T = duration_;
   const double s = std::max(0.0, t) / T;
-  const MinimumJerkBlend m = minimumJerkBlend(t, 0.0, T);
+  const Blend m = minimumJerk(t, 0.0, T);
   // Bump 64 h s^3 (1-s)^3.
   const double u = s * (1 - s);
   const double z = 64 * apex_ * u * u * u;
@@ -65,7 +74,7 @@ SwingSample SwingTrajectory::sample(double t) const {
   out.velocity = m.bd * (end - start_) + Eigen::Vector3d(0, 0, zd);
   out.acceleration = m.bdd * (end - start_) + Eigen::Vector3d(0, 0, zdd);
   for (const Correction& c : corrections_) {
-    const MinimumJerkBlend mc = minimumJerkBlend(t, c.time, T - c.time);
+    const Blend mc = minimumJerk(t, c.time, T - c.time);
     out.position += mc.b * c.change;
     out.velocity += mc.bd * c.change;
     out.acceleration += mc.bdd * c.change;

@@ -969,7 +969,7 @@ void WalkingExperiment::Loop::references(double t) {
   if (phase_ != Phase::kSingle) return;
   if (tracked_.time.size() > 0) {  // the OCP's swing sole, its joints as feed-forward
     trackTransition(m_, ws_traj_, J_traj_, sole_[static_cast<int>(swing_)], tracked_,
-                    t - tracked_start_, wc_.touchdown_depth, ref_);
+                    t - tracked_start_, ref_);
   } else {
     const SwingSample sw = swing_traj_->sample(t - phase_start_);
     ref_.swing_position = sw.position;

@@ -9,9 +9,7 @@
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/control/swing_trajectory.h"
-#include "reach_trajopt/control/transition_tracking.h"
 #include "reach_trajopt/walk/push_envelope.h"
-#include "reach_trajopt/walk/standing_pose.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
 using namespace reach_trajopt;
@@ -77,55 +75,6 @@ TEST(SwingTrajectory, RetargetMidSwingIsContinuousAndEndsAtTheNewTarget) {
   for (double t : {0.05, 0.11, 0.2})
     EXPECT_LT((moved.sample(t).position - built.sample(t).position).norm(), 1e-12);
   EXPECT_THROW(s.retarget(Eigen::Vector3d(NAN, 0, 0), 0.1), ReachError);
-}
-
-// The swing reference from an OCP trajectory: the sole's pose at the knot (forward kinematics of
-// the knot's q), lowered by a minimum-jerk blend to touchdown_depth below it at the horizon
-// (zero offset, velocity and acceleration at the start), then the late descent at its speed.
-// The reference's velocity and acceleration match central differences of its position.
-TEST(TransitionTracking, TheSoleGoesTouchdownDepthBelowTheTrajectoryAtItsHorizon) {
-  const auto model = RobotModel::fromUrdfFile(kUrdf);
-  const Eigen::VectorXd q0 = standingConfiguration(*model, 0.6, "l_sole", RobotConfig{});
-  const FrameId sole = model->frameId("r_sole");
-  // A trajectory that stands still: the sole's reference is its pose and the depth offset.
-  TransitionResult tracked;
-  tracked.dt = 0.01;
-  const int n = 21;  // horizon 0.2 s
-  tracked.time = Eigen::VectorXd::LinSpaced(n, 0.0, 0.2);
-  tracked.q = q0.replicate(1, n);
-  tracked.qd = Eigen::MatrixXd::Zero(model->nq(), n);
-  tracked.qdd = Eigen::MatrixXd::Zero(model->nq(), n);
-  Workspace ws(*model), oracle(*model);
-  Matrix6Xd J(6, model->nq());
-  model->update(oracle, q0, Eigen::VectorXd::Zero(model->nq()));
-  const Eigen::Vector3d knot = model->framePose(oracle, sole).translation();
-  const double depth = 0.01;
-  auto reference = [&](double t) {
-    WbcReference ref;
-    trackTransition(*model, ws, J, sole, tracked, t, depth, ref);
-    return ref;
-  };
-  const WbcReference start = reference(0.0), half = reference(0.1), end = reference(0.2);
-  EXPECT_LT((start.swing_position - knot).norm(), 1e-12);
-  EXPECT_LT(start.swing_velocity.norm(), 1e-12);
-  EXPECT_NEAR(half.swing_position.z(), knot.z() - 0.5 * depth, 1e-12);
-  EXPECT_NEAR(end.swing_position.z(), knot.z() - depth, 1e-12);
-  EXPECT_LT(end.swing_velocity.norm(), 1e-12);
-  EXPECT_EQ(half.q_ff.size(), model->nq());
-  for (double t : {0.03, 0.1, 0.17}) {
-    const double h = 1e-6;
-    const WbcReference p = reference(t + h), m = reference(t - h), c = reference(t);
-    EXPECT_NEAR(c.swing_velocity.z(), (p.swing_position.z() - m.swing_position.z()) / (2 * h), 1e-6)
-        << t;
-    EXPECT_NEAR(c.swing_acceleration.z(), (p.swing_velocity.z() - m.swing_velocity.z()) / (2 * h),
-                1e-3)
-        << t;
-  }
-  // Past the horizon: continuous in position, descending, no feed-forward.
-  const WbcReference late = reference(0.25);
-  EXPECT_NEAR(late.swing_position.z(), knot.z() - depth - kLateTouchdownDescentSpeed * 0.05, 1e-12);
-  EXPECT_NEAR(late.swing_velocity.z(), -kLateTouchdownDescentSpeed, 1e-12);
-  EXPECT_EQ(late.q_ff.size(), 0);
 }
 
 TEST(WalkingExperiment, BaselineWalksInPlaceTwentySteps) {

@@ -15,17 +15,6 @@ struct SwingSample {
   Eigen::Vector3d position, velocity, acceleration;
 };
 
-/// After the nominal end of a swing without touchdown, the sole keeps descending at this speed
-/// until contact [m/s] (the interpolated swing and the tracked OCP swing alike).
-constexpr double kLateTouchdownDescentSpeed = 0.2;
-
-/// Minimum-jerk blend b(s) = 10 s^3 - 15 s^4 + 6 s^5 of s = (t - t0) / duration, clamped to
-/// [0, 1], and its first two time derivatives [1/s, 1/s^2] (zero at both ends).
-struct MinimumJerkBlend {
-  double b, bd, bdd;
-};
-MinimumJerkBlend minimumJerkBlend(double t, double t0, double duration);
-
 class SwingTrajectory {
  public:
   /// \param start           sole centre at lift-off [m]
