@@ -3,16 +3,11 @@
 #include <cmath>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/model/spatial_algebra.h"
 
 namespace reach_trajopt {
 
 namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
 
 void checkPose(const Eigen::Isometry3d& pose) {
   requireFinite("ContactConstraint: planned pose", pose.matrix());

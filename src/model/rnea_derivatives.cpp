@@ -8,34 +8,13 @@
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/model/model_tree.h"
+#include "reach_trajopt/model/spatial_algebra.h"
 
 namespace reach_trajopt {
 
 namespace {
 
 using Matrix6d = RneaDerivatives::Matrix6d;
-
-inline Eigen::Matrix3d skew(const Eigen::Vector3d& x) {
-  Eigen::Matrix3d m;
-  m << 0.0, -x.z(), x.y(), x.z(), 0.0, -x.x(), -x.y(), x.x(), 0.0;
-  return m;
-}
-
-/// m1 x m2 (motion on motion).
-inline Vector6d crossMotion(const Vector6d& m1, const Vector6d& m2) {
-  Vector6d r;
-  r.head<3>() = m1.head<3>().cross(m2.head<3>());
-  r.tail<3>() = m1.head<3>().cross(m2.tail<3>()) + m1.tail<3>().cross(m2.head<3>());
-  return r;
-}
-
-/// m x* f (motion on force).
-inline Vector6d crossForce(const Vector6d& m, const Vector6d& f) {
-  Vector6d r;
-  r.head<3>() = m.head<3>().cross(f.head<3>()) + m.tail<3>().cross(f.tail<3>());
-  r.tail<3>() = m.head<3>().cross(f.tail<3>());
-  return r;
-}
 
 }  // namespace
 
@@ -64,32 +43,9 @@ namespace {
 /// (a0: the base's acceleration, minus gravity).
 void forwardKinematics(const Body& b, int i, double q, double qd, double qdd, const Vector6d& a0,
                        RneaDerivatives::Data& d) {
-  Eigen::Matrix3d R;
-  Eigen::Vector3d p;
-  if (b.prismatic) {
-    R = b.placement.linear();
-    p = b.placement.translation() + b.placement.linear() * (b.axis * q);
-  } else {
-    R = b.placement.linear() * Eigen::AngleAxisd(q, b.axis).toRotationMatrix();
-    p = b.placement.translation();
-  }
   const int pa = b.parent;
-  if (pa < 0) {
-    d.R_world[i] = R;
-    d.p_world[i] = p;
-  } else {
-    d.R_world[i] = d.R_world[pa] * R;
-    d.p_world[i] = d.p_world[pa] + d.R_world[pa] * p;
-  }
-  const Eigen::Vector3d axis = d.R_world[i] * b.axis;
-  Vector6d& S = d.S[i];
-  if (b.prismatic) {
-    S.head<3>().setZero();
-    S.tail<3>() = axis;
-  } else {
-    S.head<3>() = axis;
-    S.tail<3>() = d.p_world[i].cross(axis);
-  }
+  bodyWorldMotion(b, i, q, d.R_world, d.p_world, d.S[i]);
+  const Vector6d& S = d.S[i];
   const Vector6d v_parent = pa < 0 ? Vector6d::Zero() : Vector6d(d.v[pa]);
   const Vector6d a_parent = pa < 0 ? a0 : Vector6d(d.a[pa]);
   d.v[i] = v_parent + S * qd;

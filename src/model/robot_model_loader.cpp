@@ -15,6 +15,7 @@
 #include "reach_trajopt/model/collision_shape.h"
 #include "reach_trajopt/model/model_tree.h"
 #include "reach_trajopt/model/robot_model.h"
+#include "reach_trajopt/model/spatial_algebra.h"
 #include "reach_trajopt/model/urdf_validation.h"
 
 namespace reach_trajopt {
@@ -38,12 +39,6 @@ Eigen::Isometry3d toEigen(const urdf::Pose& p) {
                    .toRotationMatrix();
   T.translation() << p.position.x, p.position.y, p.position.z;
   return T;
-}
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
 }
 
 /// Adds a rigid inertia (mass m, com c and inertia about the origin I0, all in a frame F)

@@ -25,6 +25,7 @@
 #include "reach_trajopt/model/kinematic_derivatives.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/ocp/stance_reduced_dynamics.h"
+#include "reach_trajopt/testing/matrix_error.h"
 
 using namespace reach_trajopt;
 
@@ -67,15 +68,7 @@ Eigen::VectorXd randomConfiguration(const RobotModel& m, std::mt19937& rng) {
   return q;
 }
 
-/// max over rows of |A - B| / max(1, max |row of B|).
-double relativeError(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
-  double e = 0.0;
-  for (Eigen::Index r = 0; r < A.rows(); ++r) {
-    const double scale = std::max(1.0, B.row(r).cwiseAbs().maxCoeff());
-    e = std::max(e, (A.row(r) - B.row(r)).cwiseAbs().maxCoeff() / scale);
-  }
-  return e;
-}
+using reach_trajopt::testing::rowRelativeError;
 
 }  // namespace
 
@@ -113,7 +106,7 @@ TEST_P(ChainDerivatives, FrameTermsMatchCentralDifferences) {
       kin.frameDerivatives(kd, frame, dq, dqd, &dJ, &dvel, &ddrift);
       Eigen::MatrixXd an(6, nq + 2);
       an << dJ, dvel, ddrift;
-      EXPECT_LT(relativeError(an, fd), 1e-6) << frame_name << " trial " << trial;
+      EXPECT_LT(rowRelativeError(an, fd), 1e-6) << frame_name << " trial " << trial;
       // The requested outputs alone give the same numbers.
       Vector6d ddrift_only;
       kin.frameDerivatives(kd, frame, dq, dqd, nullptr, nullptr, &ddrift_only);
@@ -155,11 +148,11 @@ TEST_P(ChainDerivatives, FrameMatricesMatchCentralDifferences) {
       }
       kin.compute(kd, q, qd);
       kin.frameMatrices(kd, frame, x, &lambda, fm);
-      EXPECT_LT(relativeError(fm.dJx_dq, fd_q.topRows(6)), 1e-6) << frame_name;
-      EXPECT_LT(relativeError(fm.dvelocity_dq, fd_q.middleRows(6, 6)), 1e-6) << frame_name;
-      EXPECT_LT(relativeError(fm.ddrift_dq, fd_q.middleRows(12, 6)), 1e-6) << frame_name;
-      EXPECT_LT(relativeError(fm.ddrift_dqd, fd_qd.middleRows(12, 6)), 1e-6) << frame_name;
-      EXPECT_LT(relativeError(fm.dJTlambda_dq, fd_q.bottomRows(nq)), 1e-6) << frame_name;
+      EXPECT_LT(rowRelativeError(fm.dJx_dq, fd_q.topRows(6)), 1e-6) << frame_name;
+      EXPECT_LT(rowRelativeError(fm.dvelocity_dq, fd_q.middleRows(6, 6)), 1e-6) << frame_name;
+      EXPECT_LT(rowRelativeError(fm.ddrift_dq, fd_q.middleRows(12, 6)), 1e-6) << frame_name;
+      EXPECT_LT(rowRelativeError(fm.ddrift_dqd, fd_qd.middleRows(12, 6)), 1e-6) << frame_name;
+      EXPECT_LT(rowRelativeError(fm.dJTlambda_dq, fd_q.bottomRows(nq)), 1e-6) << frame_name;
     }
   }
 }
@@ -221,15 +214,15 @@ TEST_P(ChainDerivatives, StanceReducedJacobianMatchesCentralDifferences) {
     Eigen::MatrixXd J(d.signalCount(), d.inputCount());
     d.evaluate(s, input, sig, J);
     EXPECT_EQ((sig - sig0).cwiseAbs().maxCoeff(), 0.0) << "the same signals";
-    EXPECT_LT(relativeError(J.leftCols(nu), fd.leftCols(nu)), 1e-6) << "q_a, trial " << trial;
-    EXPECT_LT(relativeError(J.middleCols(nu, nu), fd.middleCols(nu, nu)), 1e-6)
+    EXPECT_LT(rowRelativeError(J.leftCols(nu), fd.leftCols(nu)), 1e-6) << "q_a, trial " << trial;
+    EXPECT_LT(rowRelativeError(J.middleCols(nu, nu), fd.middleCols(nu, nu)), 1e-6)
         << "qd_a, trial " << trial;
-    EXPECT_LT(relativeError(J.rightCols(nu + 6), fd.rightCols(nu + 6)), 1e-6)
+    EXPECT_LT(rowRelativeError(J.rightCols(nu + 6), fd.rightCols(nu + 6)), 1e-6)
         << "qdd_a, lambda_2, trial " << trial;
     // The finite-difference scheme (central, step 1e-5) agrees with the analytic one.
     Eigen::MatrixXd Jfd(d.signalCount(), d.inputCount());
     d.evaluate(s, input, sig, Jfd, 1e-5, true);
-    EXPECT_LT(relativeError(Jfd, J), 1e-6) << "trial " << trial;
+    EXPECT_LT(rowRelativeError(Jfd, J), 1e-6) << "trial " << trial;
   }
 }
 

@@ -14,6 +14,7 @@
 #include "reach_trajopt/ocp/stance_reduced_dynamics.h"
 #include "reach_trajopt/ocp/transition_nlp.h"
 #include "reach_trajopt/planner/kinematic_feasibility.h"
+#include "reach_trajopt/testing/matrix_error.h"
 #include "reach_trajopt/testing/reference_cases.h"
 
 using namespace reach_trajopt;
@@ -61,15 +62,7 @@ Eigen::MatrixXd centralJacobian(F f, const Eigen::VectorXd& x, int m, double h) 
   return J;
 }
 
-/// max |A - B| / max(1, |B|), column by column scale.
-double relativeError(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
-  double e = 0.0;
-  for (Eigen::Index r = 0; r < A.rows(); ++r) {
-    const double scale = std::max(1.0, B.row(r).cwiseAbs().maxCoeff());
-    e = std::max(e, (A.row(r) - B.row(r)).cwiseAbs().maxCoeff() / scale);
-  }
-  return e;
-}
+using reach_trajopt::testing::rowRelativeError;
 
 }  // namespace
 
@@ -132,14 +125,14 @@ TEST(StanceReducedDynamics, SignalJacobianMatchesCentralDifferences) {
   Eigen::MatrixXd J(d.signalCount(), d.inputCount());
   // Central differences in q_a (step 1e-5): truncation ~1e-10, so agreement to ~1e-8.
   d.evaluate(s, input, sig, J, 1e-5, true);
-  EXPECT_LT(relativeError(J.leftCols(nu), fd.leftCols(nu)), 1e-7);
+  EXPECT_LT(rowRelativeError(J.leftCols(nu), fd.leftCols(nu)), 1e-7);
   // qd_a (exact central differences), qdd_a and lambda_2 (analytic) are exact: only the
   // reference's truncation and roundoff remain.
-  EXPECT_LT(relativeError(J.rightCols(2 * nu + 6), fd.rightCols(2 * nu + 6)), 1e-7);
+  EXPECT_LT(rowRelativeError(J.rightCols(2 * nu + 6), fd.rightCols(2 * nu + 6)), 1e-7);
   // Forward differences in q_a (step 1e-6): error ~ h |f''| ~ 1e-6 relative.
   d.evaluate(s, input, sig, J, 1e-6, false);
-  EXPECT_LT(relativeError(J.leftCols(nu), fd.leftCols(nu)), 1e-4);
-  EXPECT_LT(relativeError(J.rightCols(2 * nu + 6), fd.rightCols(2 * nu + 6)), 1e-7);
+  EXPECT_LT(rowRelativeError(J.leftCols(nu), fd.leftCols(nu)), 1e-4);
+  EXPECT_LT(rowRelativeError(J.rightCols(2 * nu + 6), fd.rightCols(2 * nu + 6)), 1e-7);
 }
 
 class TransitionNlpGradient : public ::testing::TestWithParam<bool> {};
@@ -178,9 +171,9 @@ TEST_P(TransitionNlpGradient, MatchesCentralDifferences) {
   };
   const int m_all = 1 + nlp.equalityCount() + nlp.inequalityCount();
   const Eigen::MatrixXd fd = centralJacobian(all, x, m_all, 1e-6);
-  EXPECT_LT(relativeError(v.cost_gradient.transpose(), fd.topRows(1)), 1e-6);
-  EXPECT_LT(relativeError(v.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-6);
-  EXPECT_LT(relativeError(v.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-6);
+  EXPECT_LT(rowRelativeError(v.cost_gradient.transpose(), fd.topRows(1)), 1e-6);
+  EXPECT_LT(rowRelativeError(v.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-6);
+  EXPECT_LT(rowRelativeError(v.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-6);
 
   // chain_derivatives: finite_differences, central (step 1e-5) within the same bound, forward
   // (the default step) within its own, looser one.
@@ -191,17 +184,17 @@ TEST_P(TransitionNlpGradient, MatchesCentralDifferences) {
   TransitionNlp nlp_central(m, cfg_central, ContactConfig(), r, relaxed);
   NlpValues vc;
   nlp_central.evaluate(x, true, vc);
-  EXPECT_LT(relativeError(vc.cost_gradient.transpose(), fd.topRows(1)), 1e-6);
-  EXPECT_LT(relativeError(vc.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-6);
-  EXPECT_LT(relativeError(vc.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-6);
+  EXPECT_LT(rowRelativeError(vc.cost_gradient.transpose(), fd.topRows(1)), 1e-6);
+  EXPECT_LT(rowRelativeError(vc.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-6);
+  EXPECT_LT(rowRelativeError(vc.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-6);
   TransitionOcpConfig cfg_fwd;
   cfg_fwd.chain_derivatives = ChainDerivatives::kFiniteDifferences;
   TransitionNlp nlp_fwd(m, cfg_fwd, ContactConfig(), r, relaxed);
   NlpValues vf;
   nlp_fwd.evaluate(x, true, vf);
-  EXPECT_LT(relativeError(vf.cost_gradient.transpose(), fd.topRows(1)), 1e-4);
-  EXPECT_LT(relativeError(vf.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-4);
-  EXPECT_LT(relativeError(vf.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-4);
+  EXPECT_LT(rowRelativeError(vf.cost_gradient.transpose(), fd.topRows(1)), 1e-4);
+  EXPECT_LT(rowRelativeError(vf.equality_jacobian, fd.middleRows(1, nlp.equalityCount())), 1e-4);
+  EXPECT_LT(rowRelativeError(vf.inequality_jacobian, fd.bottomRows(nlp.inequalityCount())), 1e-4);
 }
 
 INSTANTIATE_TEST_SUITE_P(StrictAndRelaxed, TransitionNlpGradient, ::testing::Values(false, true));
