@@ -45,8 +45,12 @@ class TvrPlannerNode {
     proposed_pub_ = nh.advertise<std_msgs::UInt64>("footsteps_proposed", 1, true);
     propose_server_ =
         nh.advertiseService("propose_footstep", &TvrPlannerNode::proposeFootstep, this);
-    contact_sub_ = nh.subscribe("contact_state", 10, &TvrPlannerNode::onContact, this);
-    com_sub_ = nh.subscribe("com_state", 10, &TvrPlannerNode::onCom, this);
+    // A switch into single support is seen only if no com_state message in between is dropped:
+    // the simulation may publish faster than real time, in bursts, while this node waits for the
+    // CPU (a queue of 10 lost the switch of a step under load). 10 s of sim time at 100 Hz.
+    constexpr uint32_t kStateQueue = 1000;
+    contact_sub_ = nh.subscribe("contact_state", kStateQueue, &TvrPlannerNode::onContact, this);
+    com_sub_ = nh.subscribe("com_state", kStateQueue, &TvrPlannerNode::onCom, this);
   }
 
  private:
