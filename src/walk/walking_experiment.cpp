@@ -126,6 +126,9 @@ void addExperimentFields(ConfigFields<C>& t) {
               "its wall time in sim time), fixed (after fixed_plan_latency)")
       .add("fixed_plan_latency", &C::fixed_plan_latency, "s", Range::nonNegative(),
            "plan_latency fixed: the plan takes effect this long after its check starts")
+      .add("plan_deadline_margin", &C::plan_deadline_margin, "s", Range::nonNegative(),
+           "plan_latency measured: the planner's deadline is the nominal touchdown less this "
+           "(its answer still takes effect before the foot lands)")
       .add("knee_bend", &C::knee_bend, "rad", Range::nonNegative(), "standing posture")
       .add("forward_speed", &C::forward_speed, "m/s", Range{},
            "desired CoM speed along x (drives p_des of eq. 11)")
@@ -758,12 +761,14 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
     const auto wall_start = std::chrono::steady_clock::now();
     FootstepPlanRequest request = footstepRequest(ts, replanning);
     // Paying for the plan's wall time, the planner knows its deadline: the nominal touchdown,
-    // as far away in wall time as it is in sim time (a later plan would be dropped).
+    // as far away in wall time as it is in sim time (a later plan would be dropped), less the
+    // margin its answer needs to take effect before then.
     if (wc_.plan_latency == WalkConfig::PlanLatency::kMeasured)
       request.deadline =
           wall_start +
           std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-              std::chrono::duration<double>(std::max(0.0, phase_start_ + swing_duration_ - t)));
+              std::chrono::duration<double>(
+                  std::max(0.0, phase_start_ + swing_duration_ - t - wc_.plan_deadline_margin)));
     const FootstepTransition step =
         impl_.plan_footstep ? impl_.plan_footstep(request) : impl_.footsteps->plan(request);
     const double wall_s =

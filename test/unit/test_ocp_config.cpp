@@ -15,7 +15,7 @@ TEST(TransitionOcpConfig, ShippedYamlLoads) {
       YamlSection::loadFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
   const TransitionOcpConfig c = TransitionOcpConfig::fromYaml(yaml.section("ocp"));
   const TransitionOcpConfig d;
-  EXPECT_EQ(c.segments, 5);  // the walking check's 0.2 s horizon: 40 ms knots
+  EXPECT_EQ(c.segments, 4);  // the walking check's 0.2 s horizon: 50 ms knots
   EXPECT_GE(d.segments, 2);
   EXPECT_DOUBLE_EQ(c.check_interval, d.check_interval);
   EXPECT_DOUBLE_EQ(c.tolerance, 1e-4);

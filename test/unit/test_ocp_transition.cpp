@@ -41,8 +41,8 @@ namespace {
 constexpr double kTol = 1e-4;
 
 /// The OCP settings these cases were tuned with (the struct defaults before the defaults became
-/// the shipped values): 4 segments over their 0.3 s horizons (the shipped 5 are for the walk's
-/// 0.2 s check horizon) and no extra mid-horizon swing clearance.
+/// the shipped values): 4 segments over their 0.3 s horizons and no extra mid-horizon swing
+/// clearance.
 TransitionOcpConfig caseConfig() {
   TransitionOcpConfig c;
   c.segments = 4;

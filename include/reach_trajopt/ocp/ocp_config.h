@@ -3,7 +3,10 @@
 /// Parameters of the transition OCP (eq. 22-23). Speed against accuracy:
 ///  - segments: spline segments over the horizon; variables = 12 (N - 1) + 6 (strict) or
 ///    12 (N + 1) + 8 (relaxed), 42 / 68 for N = 4. More segments: richer motions, but SLSQP
-///    needs more iterations (measured: N = 6 about 1.5x the iterations of N = 4).
+///    needs more iterations (measured: N = 6 about 1.5x the iterations of N = 4). The biped's
+///    walk: N = 4 over its 0.2 s check horizon (N = 5: 1.8x the OCP time, and no more pushes
+///    survived on the envelope's grid); TALOS keeps N = 5 (with 4, more of its pushed walk's
+///    strict OCPs failed).
 ///  - check_interval: spacing of the samples where cones, torque bounds, hulls and the cost are
 ///    evaluated inside the NLP. Smaller: more rows, slower; the result is always re-checked at
 ///    output_dt and samples that violate are added (refinement), up to max_refinements.
@@ -44,7 +47,7 @@ enum class ChainDerivatives { kAnalytic, kFiniteDifferences };
 /// i.e. Qu = w_torque diag(u_max)^-2 / T, Ql = w_wrench / (m g)^2 / T, Qx = diag(w_position,
 /// w_velocity) / T, integrated by the trapezoid rule over the check samples.
 struct TransitionOcpConfig {
-  int segments = 5;              ///< cubic B-spline segments over the horizon (>= 2)
+  int segments = 4;              ///< cubic B-spline segments over the horizon (>= 2)
   double check_interval = 0.02;  ///< NLP sample spacing [s]
   double output_dt = 0.001;      ///< output / verification sample spacing [s] (controller)
   double w_torque = 1.0;         ///< weight of |u / u_max|^2
