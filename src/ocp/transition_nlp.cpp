@@ -188,7 +188,8 @@ void TransitionNlp::rebuildSamples() {
   inequality_count_ += ContactWrenchCone::kRows;  // new contact's cone at t_f
 }
 
-void TransitionNlp::addSamples(const std::vector<double>& times, const std::vector<int>& slices) {
+bool TransitionNlp::addSamples(const std::vector<double>& times, const std::vector<int>& slices) {
+  const std::size_t samples_before = samples_.size(), slices_before = enforced_slices_.size();
   for (double t : times) extra_times_.push_back(t);
   for (int s : slices) {
     if (s < 0 || s >= static_cast<int>(request_.slices.size())) {
@@ -198,6 +199,7 @@ void TransitionNlp::addSamples(const std::vector<double>& times, const std::vect
       enforced_slices_.push_back(s);
   }
   rebuildSamples();
+  return samples_.size() != samples_before || enforced_slices_.size() != slices_before;
 }
 
 int TransitionNlp::freeIndex(int k) const {

@@ -532,12 +532,12 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
       nlp.evaluate(x, false, at_x);
       if (nlpViolation(at_x) > kFarFromFeasible * config_.tolerance) break;
     }
-    // Violations between samples: add those samples. Otherwise SLSQP stopped at an infeasible
+    // Violations between samples: add those samples. Otherwise (no violation off the NLP's
+    // samples, or only at times and slices it holds already) SLSQP stopped at an infeasible
     // point (its tolerance tests do not look at feasibility): restart from there, which resets
     // its quasi-Newton matrix.
-    if (!check.violating_times.empty() || !check.violating_slices.empty()) {
-      nlp.addSamples(check.violating_times, check.violating_slices);
-    } else if (res.violation.max() > 0.5 * previous) {
+    const bool refined = nlp.addSamples(check.violating_times, check.violating_slices);
+    if (!refined && res.violation.max() > 0.5 * previous) {
       break;  // a restart that did not halve the violation: give up
     }
     previous = res.violation.max();

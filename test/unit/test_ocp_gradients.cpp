@@ -227,3 +227,31 @@ TEST(TransitionNlp, TwoThreadsGiveTheBitsOfOne) {
     }
   }
 }
+
+// Refinement (TransitionOcp): a time between two samples and a slice not yet enforced change
+// the NLP (more samples, more rows); a time it samples already or a slice it enforces already
+// do not, and the 1 ms re-check's answer then only restarts SLSQP.
+TEST(TransitionNlp, AddSamplesSaysWhetherTheNlpChanged) {
+  const auto m = biped();
+  TransitionRequest r = request();
+  ReachableSlice slice;
+  slice.time = 0.1;
+  slice.A = Eigen::MatrixXd::Identity(2, 2);
+  slice.b = Eigen::Vector2d(1.0, 1.0);
+  r.slices.push_back(slice);
+  TransitionNlp nlp(m, TransitionOcpConfig(), ContactConfig(), r, false);
+  const std::vector<double> times = nlp.sampleTimes();
+  const int rows = nlp.inequalityCount();
+  ASSERT_GE(times.size(), 3u);
+  EXPECT_FALSE(nlp.addSamples({times[0], times[1]}, {}));
+  EXPECT_EQ(nlp.sampleTimes(), times);
+  EXPECT_EQ(nlp.inequalityCount(), rows);
+  // The slice's time is on the grid: it is enforced from the start.
+  EXPECT_FALSE(nlp.addSamples({}, {0}));
+  EXPECT_EQ(nlp.inequalityCount(), rows);
+  const double between = 0.5 * (times[0] + times[1]);
+  EXPECT_TRUE(nlp.addSamples({between}, {}));
+  EXPECT_EQ(nlp.sampleTimes().size(), times.size() + 1);
+  EXPECT_GT(nlp.inequalityCount(), rows);
+  EXPECT_FALSE(nlp.addSamples({between}, {}));
+}

@@ -105,8 +105,10 @@ class TransitionNlp {
 
   /// The NLP sample times [s] (sorted).
   const std::vector<double>& sampleTimes() const { return sample_times_; }
-  /// Adds inequality samples at these times (refinement) and hull slices by index.
-  void addSamples(const std::vector<double>& times, const std::vector<int>& slices);
+  /// Adds inequality samples at these times (refinement) and hull slices by index. Returns
+  /// whether the NLP changed: false when every time is one it samples already and every slice
+  /// is enforced already (solving it again is a restart).
+  bool addSamples(const std::vector<double>& times, const std::vector<int>& slices);
   /// Slices currently enforced.
   const std::vector<int>& enforcedSlices() const { return enforced_slices_; }
 
