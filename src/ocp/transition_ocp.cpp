@@ -525,9 +525,9 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     if (round >= config_.max_refinements) break;
     // SLSQP's own rows far from holding at its answer: its problem has no feasible point near
     // there, and more samples only add rows. As for a restart, go on only while the rounds
-    // halve the violation; the first round has halved nothing (of the demo's TALOS walk's
-    // strict solves that ended a round that far, none converged in a later round).
-    if (round == 0 || res.violation.max() > 0.5 * previous) {
+    // halve the violation (of the demo's TALOS walk's strict solves that ended a round that
+    // far, none converged in a later round).
+    if (res.violation.max() > 0.5 * previous) {
       NlpValues at_x;
       nlp.evaluate(x, false, at_x);
       if (nlpViolation(at_x) > kFarFromFeasible * config_.tolerance) break;
