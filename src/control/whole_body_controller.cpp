@@ -48,7 +48,20 @@ const ConfigFields<WbcConfig>& WbcConfig::fields() {
           .add("w_qdd", &C::w_qdd, "", Range::positive(),
                "regularization of qdd (keeps the QP strictly convex)")
           .add("w_lambda", &C::w_lambda, "1/N^2", Range::positive(),
-               "regularization of the contact wrenches (keeps the QP strictly convex)");
+               "regularization of the contact wrenches (keeps the QP strictly convex)")
+          .add("leg_clearance", &C::leg_clearance, "",
+               "in single support a barrier row keeps the legs' collision capsules "
+               "(model/leg_clearance.h) leg_clearance_margin apart: d'' >= kp (margin - d) - "
+               "kd d'")
+          .add("leg_clearance_margin", &C::leg_clearance_margin, "m", Range::nonNegative(),
+               "distance the barrier holds between the legs' capsules")
+          .add("leg_clearance_activation", &C::leg_clearance_activation, "m", Range::nonNegative(),
+               "a capsule pair closer than this gets a barrier row (one row per pair)")
+          .add("kp_leg_clearance", &C::kp_leg_clearance, "1/s^2", Range::nonNegative(),
+               "the barrier's stiffness")
+          .add("kd_leg_clearance", &C::kd_leg_clearance, "1/s", Range::nonNegative(),
+               "its damping: the barrier acts from about kd / kp * (closing speed) before the "
+               "margin");
   return f;
 }
 
@@ -66,8 +79,12 @@ WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model
       pelvis_(model_->frameId(config.pelvis_frame.empty() ? model_->linkNames().front()
                                                           : config.pelvis_frame)),
       posture_(posture),
+      legs_(config.leg_clearance
+                ? LegClearance(*model_, contact.left_sole_frame, contact.right_sole_frame)
+                : LegClearance()),
       ws_(*model_),
-      qp_single_(model_->nq() + 6, 6 + 6, ContactWrenchCone::kRows + 2 * model_->nu()),
+      qp_single_(model_->nq() + 6, 6 + 6,
+                 ContactWrenchCone::kRows + legs_.pairCount() + 2 * model_->nu()),
       qp_double_(model_->nq() + 12, 6 + 12, 2 * ContactWrenchCone::kRows + 2 * model_->nu()) {
   contact_.validate();
   config_.validate();
@@ -86,7 +103,9 @@ WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model
   g_.resize(nx);
   A_eq_.resize(18, nx);
   b_eq_.resize(18);
-  A_in_.resize(2 * ContactWrenchCone::kRows + 2 * model_->nu(), nx);
+  A_in_.resize(2 * ContactWrenchCone::kRows + legs_.pairCount() + 2 * model_->nu(), nx);
+  leg_pairs_.reserve(legs_.pairCount());
+  leg_gradient_.resize(n);
   b_in_.resize(A_in_.rows());
   out_.u = Eigen::VectorXd::Zero(model_->nu());
   u_max_ = model_->effortLimits();
@@ -115,7 +134,7 @@ const WbcOutput& WholeBodyController::compute(const Eigen::VectorXd& q, const Ei
   G_.topLeftCorner(nx, nx).setZero();
   g_.head(nx).setZero();
   addTasks(q, qd, mode, ref);
-  addConstraints(mode);
+  addConstraints(mode, qd);
   return solveQp(mode);
 }
 
@@ -173,17 +192,23 @@ void WholeBodyController::addTasks(const Eigen::VectorXd& q, const Eigen::Vector
   G_.block(n, n, 6 * nc, 6 * nc).diagonal().array() += c.w_lambda;
 }
 
-void WholeBodyController::addConstraints(const ContactMode& mode) {
+void WholeBodyController::addConstraints(const ContactMode& mode, const Eigen::VectorXd& qd) {
   const RobotModel& m = *model_;
   const int n = m.nq(), nu = m.nu();
   const int nc = mode.contactCount();
   const int nx = n + 6 * nc;
   const int m_eq = 6 + 6 * nc;
-  const int m_in = ContactWrenchCone::kRows * nc + 2 * nu;
+  const int t_barrier = ContactWrenchCone::kRows * nc;
+  auto Ain_all = A_in_.topLeftCorner(A_in_.rows(), nx);
+  Ain_all.setZero();
+  const int barrier_rows_before = barrier_rows_;
+  barrier_rows_ = mode.isSingleSupport() ? addLegBarrier(t_barrier, nx, qd) : 0;
+  // The warm start numbers the rows: the torque rows moved with the barrier's count.
+  if (barrier_rows_ != barrier_rows_before) warm_single_.clear();
+  const int t0 = t_barrier + barrier_rows_;  // the torque rows
   auto Aeq = A_eq_.topLeftCorner(m_eq, nx);
-  auto Ain = A_in_.topLeftCorner(m_in, nx);
+  auto Ain = A_in_.topLeftCorner(t0 + 2 * nu, nx);
   Aeq.setZero();
-  Ain.setZero();
   Aeq.topLeftCorner(6, n) = M_.topRows(6);
   b_eq_.head(6) = -b_.head(6);
   ContactWrenchCone::Matrix Cw;
@@ -198,13 +223,11 @@ void WholeBodyController::addConstraints(const ContactMode& mode) {
     cone_.worldMatrix(m.framePose(ws_, id).linear(), Cw);
     Ain.block(ContactWrenchCone::kRows * k, col, ContactWrenchCone::kRows, 6) = Cw;
     // Torque rows: u = M_a qdd + b_a - J_a^T lambda.
-    const int t0 = ContactWrenchCone::kRows * nc;
     Ain.block(t0, col, nu, 6) = J_sole_[s].rightCols(nu).transpose();
     Ain.block(t0 + nu, col, nu, 6) = -J_sole_[s].rightCols(nu).transpose();
     ++k;
   }
-  b_in_.head(ContactWrenchCone::kRows * nc).setZero();
-  const int t0 = ContactWrenchCone::kRows * nc;
+  b_in_.head(t_barrier).setZero();
   const Eigen::VectorXd& u_max = u_max_;
   Ain.block(t0, 0, nu, n) = -M_.bottomRows(nu);  // u <= u_max
   b_in_.segment(t0, nu) = b_.tail(nu) - u_max;
@@ -212,13 +235,34 @@ void WholeBodyController::addConstraints(const ContactMode& mode) {
   b_in_.segment(t0 + nu, nu) = -u_max - b_.tail(nu);
 }
 
+int WholeBodyController::addLegBarrier(int row, int nx, const Eigen::VectorXd& qd) {
+  if (legs_.empty()) return 0;
+  const RobotModel& m = *model_;
+  const WbcConfig& cf = config_;
+  // One row per capsule pair within reach of the barrier: the closest pair alone would let a
+  // pair closing fast take over too late to be stopped.
+  legs_.pairsWithin(m, ws_, cf.leg_clearance_activation, leg_pairs_);
+  for (const LegClearance::Closest& c : leg_pairs_) {
+    legs_.gradient(m, ws_, c, leg_gradient_);
+    const double rate = leg_gradient_.dot(qd);
+    // d'' = g qdd + drift >= kp (margin - d) - kd d', as A_in x >= b_in.
+    A_in_.block(row, 0, 1, m.nq()) = leg_gradient_;
+    A_in_.block(row, m.nq(), 1, nx - m.nq()).setZero();
+    b_in_[row] = cf.kp_leg_clearance * (cf.leg_clearance_margin - c.distance) -
+                 cf.kd_leg_clearance * rate - legs_.accelerationDrift(m, ws_, c);
+    ++row;
+  }
+  return static_cast<int>(leg_pairs_.size());
+}
+
 const WbcOutput& WholeBodyController::solveQp(const ContactMode& mode) {
   const int n = model_->nq(), nu = model_->nu();
   const int nc = mode.contactCount();
   const int nx = n + 6 * nc;
   const int m_eq = 6 + 6 * nc;
-  const int m_in = ContactWrenchCone::kRows * nc + 2 * nu;
-  const int t0 = ContactWrenchCone::kRows * nc;
+  const int t_barrier = ContactWrenchCone::kRows * nc;
+  const int t0 = t_barrier + barrier_rows_;
+  const int m_in = t0 + 2 * nu;
   auto Aeq = A_eq_.topLeftCorner(m_eq, nx);
   auto Ain = A_in_.topLeftCorner(m_in, nx);
   qp::DualActiveSetQp& solver = nc == 1 ? qp_single_ : qp_double_;
@@ -228,12 +272,19 @@ const WbcOutput& WholeBodyController::solveQp(const ContactMode& mode) {
   out_.status = r.status;
   out_.message = r.message;
   if (r.status == qp::QpStatus::kInfeasible) {
-    // The torque limits cannot be met together with the contacts: solve without them (the
-    // actuators saturate in the simulator) and report the tick as not optimal.
-    const qp::QpResult& relaxed = solver.solve(G_.topLeftCorner(nx, nx), g_.head(nx), Aeq,
-                                               b_eq_.head(m_eq), Ain.topRows(t0), b_in_.head(t0));
-    if (relaxed.status == qp::QpStatus::kOptimal) {
-      out_.message = "torque limits dropped: " + out_.message;
+    // The torque limits cannot be met together with the contacts (and the legs' barrier):
+    // solve without them (the actuators saturate in the simulator), then without the barrier
+    // too, and report the tick as not optimal.
+    const int kept_rows[] = {t0, t_barrier};
+    for (int i = 0; i < (barrier_rows_ ? 2 : 1); ++i) {
+      const int rows = kept_rows[i];
+      const qp::QpResult& relaxed =
+          solver.solve(G_.topLeftCorner(nx, nx), g_.head(nx), Aeq, b_eq_.head(m_eq),
+                       Ain.topRows(rows), b_in_.head(rows));
+      if (relaxed.status != qp::QpStatus::kOptimal) continue;
+      out_.message = std::string(i == 0 ? "torque limits dropped: "
+                                        : "torque limits and the legs' barrier dropped: ") +
+                     out_.message;
       warm.clear();
       fillOutput(relaxed, mode, n, nu);
       return out_;

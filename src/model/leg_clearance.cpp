@@ -139,9 +139,8 @@ LegClearance::LegClearance(const RobotModel& model, const std::string& left_sole
   }
 }
 
-LegClearance::Closest LegClearance::closest(const RobotModel& model, const Workspace& ws) const {
-  Closest best;
-  if (empty()) return best;
+template <typename Visit>
+void LegClearance::forEachPair(const RobotModel& model, const Workspace& ws, Visit&& visit) const {
   // The right capsules' end points in world, per thread (grown once, reused across calls).
   thread_local std::vector<Eigen::Vector3d> ra, rb;
   if (ra.size() < right_.size()) {
@@ -153,23 +152,35 @@ LegClearance::Closest LegClearance::closest(const RobotModel& model, const Works
     ra[j] = T * right_[j].a;
     rb[j] = T * right_[j].b;
   }
-  Eigen::Vector3d on_l, on_r;
+  Closest pair;
   for (size_t i = 0; i < left_.size(); ++i) {
     const Eigen::Isometry3d T = model.framePose(ws, left_[i].frame);
     const Eigen::Vector3d la = T * left_[i].a, lb = T * left_[i].b;
     for (size_t j = 0; j < right_.size(); ++j) {
-      const double d = closestPointsOfSegments(la, lb, ra[j], rb[j], on_l, on_r) - left_[i].radius -
-                       right_[j].radius;
-      if (d < best.distance) {
-        best.distance = d;
-        best.left = static_cast<int>(i);
-        best.right = static_cast<int>(j);
-        best.left_point = on_l;
-        best.right_point = on_r;
-      }
+      pair.distance =
+          closestPointsOfSegments(la, lb, ra[j], rb[j], pair.left_point, pair.right_point) -
+          left_[i].radius - right_[j].radius;
+      pair.left = static_cast<int>(i);
+      pair.right = static_cast<int>(j);
+      visit(pair);
     }
   }
+}
+
+LegClearance::Closest LegClearance::closest(const RobotModel& model, const Workspace& ws) const {
+  Closest best;
+  forEachPair(model, ws, [&](const Closest& pair) {
+    if (pair.distance < best.distance) best = pair;
+  });
   return best;
+}
+
+void LegClearance::pairsWithin(const RobotModel& model, const Workspace& ws, double max_distance,
+                               std::vector<Closest>& pairs) const {
+  pairs.clear();
+  forEachPair(model, ws, [&](const Closest& pair) {
+    if (pair.distance < max_distance) pairs.push_back(pair);
+  });
 }
 
 double LegClearance::distanceAt(const RobotModel& model,
@@ -202,6 +213,25 @@ void LegClearance::gradient(const RobotModel& model, const Workspace& ws, const 
   };
   add(left_[c.left].frame, c.left_point, 1.0);
   add(right_[c.right].frame, c.right_point, -1.0);
+}
+
+double LegClearance::accelerationDrift(const RobotModel& model, const Workspace& ws,
+                                       const Closest& c) const {
+  if (c.left < 0 || c.right < 0) return 0.0;
+  const Eigen::Vector3d gap = c.left_point - c.right_point;
+  const double norm = gap.norm();
+  if (!(norm > 1e-12)) return 0.0;
+  const Eigen::Vector3d n = gap / norm;
+  // A point p fixed on a frame at o, r = p - o: its acceleration's drift is
+  // (Jdot qd)_lin + (Jdot qd)_ang x r + w x (w x r).
+  const auto drift = [&](FrameId frame, const Eigen::Vector3d& p) {
+    const Eigen::Vector3d w = model.frameVelocity(ws, frame).tail<3>();
+    const Vector6d jdot_qd = model.frameJdotQd(ws, frame);
+    const Eigen::Vector3d r = p - model.framePose(ws, frame).translation();
+    return Eigen::Vector3d(jdot_qd.head<3>() + jdot_qd.tail<3>().cross(r) + w.cross(w.cross(r)));
+  };
+  return n.dot(drift(left_[c.left].frame, c.left_point) -
+               drift(right_[c.right].frame, c.right_point));
 }
 
 }  // namespace reach_trajopt

@@ -225,3 +225,56 @@ TEST(LegClearance, DistanceAtMatchesAGridSearchOverTheCapsulePairs) {
   EXPECT_THROW(legs.distanceAt(*model, Eigen::VectorXd::Zero(3)), ReachError);
   EXPECT_EQ(LegClearance().distanceAt(*model, Eigen::VectorXd::Zero(model->nq())), HUGE_VAL);
 }
+
+TEST(LegClearance, AccelerationDriftIsTheClosestPointsAccelerationAlongTheNormal) {
+  // Oracles, along q(t) = q + t qd + t^2 / 2 qdd (coordinates are positions = velocities):
+  //  - the two closest points, held fixed on their links: the second difference of their gap
+  //    vector, along the normal, is gradient qdd + accelerationDrift;
+  //  - when only the base translates, the legs' distance (a minimum over the points, convex in
+  //    the translation) has a second difference at least that.
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  const LegClearance legs(*model, "l_sole", "r_sole");
+  Workspace ws(*model);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = model->nq();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  int checked = 0;
+  for (int k = 0; k < 80; ++k) {
+    Eigen::VectorXd q = randomConfiguration(*model, rng);
+    q.segment<3>(3) = Eigen::Vector3d(0.2, 0.1, -0.3);
+    const bool translation_only = k % 2 == 1;
+    Eigen::VectorXd qd = zero, qdd = zero;
+    for (int i = 0; i < (translation_only ? 3 : n); ++i) {
+      qd[i] = 2.0 * u(rng);
+      qdd[i] = 5.0 * u(rng);
+    }
+    model->update(ws, q, qd);
+    const LegClearance::Closest c = legs.closest(*model, ws);
+    const Eigen::Vector3d normal = (c.left_point - c.right_point).normalized();
+    Eigen::RowVectorXd g(n);
+    legs.gradient(*model, ws, c, g);
+    const double predicted = g.dot(qdd) + legs.accelerationDrift(*model, ws, c);
+    const FrameId fl = legs.capsules(Side::kLeft)[c.left].frame;
+    const FrameId fr = legs.capsules(Side::kRight)[c.right].frame;
+    const Eigen::Vector3d pl = model->framePose(ws, fl).inverse() * c.left_point;
+    const Eigen::Vector3d pr = model->framePose(ws, fr).inverse() * c.right_point;
+    const double h = 1e-4;
+    Eigen::Vector3d gap[3];
+    double minimum[3];
+    for (int j = 0; j < 3; ++j) {
+      const double t = (j - 1) * h;
+      model->update(ws, q + t * qd + 0.5 * t * t * qdd, zero);
+      gap[j] = model->framePose(ws, fl) * pl - model->framePose(ws, fr) * pr;
+      minimum[j] = legs.closest(*model, ws).distance;
+    }
+    const double along_normal = normal.dot(gap[0] - 2 * gap[1] + gap[2]) / (h * h);
+    const double minimum_dd = (minimum[0] - 2 * minimum[1] + minimum[2]) / (h * h);
+    if (!((c.left_point - c.right_point).norm() > 0.02)) continue;  // axes nearly crossing
+    ++checked;
+    const double tol = 1e-3 * std::max(1.0, std::abs(along_normal));
+    EXPECT_NEAR(predicted, along_normal, tol) << "case " << k;
+    if (translation_only) EXPECT_GE(minimum_dd, predicted - 0.05) << "case " << k;
+  }
+  EXPECT_GT(checked, 40);
+}

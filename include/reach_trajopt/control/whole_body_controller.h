@@ -10,17 +10,24 @@
 ///        J_i qdd + Jdot_i qd = 0                      (contacts, eq. 5)
 ///        C R lambda_i >= 0                            (wrench cones, eq. 7-8)
 ///        -u_max <= M_a qdd + b_a - J_a^T lambda <= u_max   (torque limits)
+///        g_d qdd + drift_d >= kp_l (m - d) - kd_l g_d qd  (single support: the legs apart)
 /// with tasks k: CoM position, pelvis orientation, swing sole pose (6-D) and joint posture,
 /// each a PD law a_k = a_ref + Kd (v_ref - v) + Kp (x_ref - x), plus an optional joint
-/// acceleration feed-forward (the OCP's trajectory in the proposed mode).
+/// acceleration feed-forward (the OCP's trajectory in the proposed mode). The barrier rows
+/// hold d, the distance of each pair of the legs' collision capsules (model/leg_clearance.h;
+/// gradient g_d) closer than `leg_clearance_activation`: a swing leg carried toward the stance
+/// leg off its plan (a push) stays `leg_clearance_margin` from it. When the rows cannot all hold,
+/// the torque limits are dropped first, then the barrier.
 
 #include <Eigen/Core>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/contact/contact_mode.h"
 #include "reach_trajopt/contact/contact_wrench_cone.h"
+#include "reach_trajopt/model/leg_clearance.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/qp/dual_active_set_qp.h"
 
@@ -43,6 +50,12 @@ struct WbcConfig {
   double w_posture = 0.03, kp_posture = 60.0, kd_posture = 12.0;  ///< actuated joints
   double w_qdd = 1e-4;                                            ///< regularization of qdd
   double w_lambda = 1e-6;  ///< regularization of contact wrenches (N^2 -> cost)
+  /// The legs' barrier in single support: d'' >= kp (margin - d) - kd d' on the distance d
+  /// [m] of each pair of the legs' capsules closer than `leg_clearance_activation` [m] (gains
+  /// 1/s^2, 1/s; off: no barrier).
+  bool leg_clearance = true;
+  double leg_clearance_margin = 0.005, leg_clearance_activation = 0.15;  ///< [m]
+  double kp_leg_clearance = 400.0, kd_leg_clearance = 40.0;
   /// Frame whose orientation the pelvis task holds; "" is the URDF root link. Not a YAML key:
   /// the robot's pelvis is kinematic_feasibility.pelvis_frame, which WalkingExperiment copies.
   std::string pelvis_frame;
@@ -109,9 +122,15 @@ class WholeBodyController {
   /// The weighted tasks (CoM, pelvis, swing sole, posture, regularization) into G_, g_.
   void addTasks(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const ContactMode& mode,
                 const WbcReference& ref);
-  /// Floating-base dynamics, contacts (5), cones (8) and torque limits into A_eq_, A_in_.
-  void addConstraints(const ContactMode& mode);
-  /// Solves the QP (without the torque limits when they are infeasible) into out_.
+  /// Floating-base dynamics, contacts (5), cones (8), the legs' barrier and torque limits
+  /// into A_eq_, A_in_.
+  void addConstraints(const ContactMode& mode, const Eigen::VectorXd& qd);
+  /// The legs' barrier rows (single support) into A_in_ from row `row`, one per capsule pair
+  /// closer than leg_clearance_activation; returns their count (0 when the barrier is off or
+  /// the robot's legs have no collision primitive).
+  int addLegBarrier(int row, int nx, const Eigen::VectorXd& qd);
+  /// Solves the QP (without the torque limits, then without the legs' barrier, when they are
+  /// infeasible) into out_.
   const WbcOutput& solveQp(const ContactMode& mode);
   void fillOutput(const qp::QpResult& r, const ContactMode& mode, int n, int nu);
   void addTask(const Eigen::Ref<const Eigen::MatrixXd>& J,
@@ -124,6 +143,10 @@ class WholeBodyController {
   ContactWrenchCone cone_;
   FrameId left_sole_, right_sole_, pelvis_;
   Eigen::VectorXd posture_;
+  LegClearance legs_;     ///< empty when wbc.leg_clearance is off
+  int barrier_rows_ = 0;  ///< this tick's barrier rows
+  std::vector<LegClearance::Closest> leg_pairs_;
+  Eigen::RowVectorXd leg_gradient_;
   Workspace ws_;
   qp::DualActiveSetQp qp_single_, qp_double_;
   std::vector<int> warm_single_, warm_double_;

@@ -69,6 +69,11 @@ class LegClearance {
   /// The closest left/right capsule pair at the model's last update() in `ws`. No allocation
   /// after a thread's first call.
   Closest closest(const RobotModel& model, const Workspace& ws) const;
+  /// Every left/right capsule pair closer than `max_distance` [m] at the model's last update(),
+  /// with its closest points (each pair once; at most pairCount()). `pairs` keeps its capacity.
+  void pairsWithin(const RobotModel& model, const Workspace& ws, double max_distance,
+                   std::vector<Closest>& pairs) const;
+  int pairCount() const { return static_cast<int>(left_.size() * right_.size()); }
   /// The legs' distance at configuration q (its own forward kinematics): closest().distance;
   /// +inf when empty().
   double distanceAt(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q) const;
@@ -77,8 +82,20 @@ class LegClearance {
   /// which does not change the distance to first order). Zero when the axes intersect.
   void gradient(const RobotModel& model, const Workspace& ws, const Closest& c,
                 Eigen::Ref<Eigen::RowVectorXd> grad) const;
+  /// The drift of the pair's distance acceleration [m/s^2] at the model's last update() with
+  /// velocity qd, the normal n held fixed: gradient() qdd + accelerationDrift() is
+  /// n^T (a_l - a_r), the closest points' (fixed on their links) relative acceleration along
+  /// n, a_p = J_p qdd + Jdot_p qd. It leaves out n's turning, |(I - n n^T) v_rel|^2 / |p_l - p_r|
+  /// >= 0, which the points sliding along the axes cancel: for legs that translate past one
+  /// another the distance, a convex function of the translation, accelerates at least this
+  /// much (a barrier on it is conservative). Zero when the axes intersect.
+  double accelerationDrift(const RobotModel& model, const Workspace& ws, const Closest& c) const;
 
  private:
+  /// Calls visit(const Closest&) for every left/right capsule pair.
+  template <typename Visit>
+  void forEachPair(const RobotModel& model, const Workspace& ws, Visit&& visit) const;
+
   std::vector<LinkCapsule> left_, right_;
 };
 
