@@ -3,6 +3,9 @@
 
 #include "reach_trajopt/reach/footstep_reachability.h"
 
+#include <cmath>
+#include <string>
+
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
 
@@ -43,6 +46,24 @@ Eigen::VectorXd FootstepReachability::touchdownVelocity(const ContactTransition&
       Eigen::Vector3d(r.touchdown.com_velocity.x(), r.touchdown.com_velocity.y(), 0.0));
 }
 
+bool FootstepReachability::derivedTouchdownWithinVelocityLimits(const ContactTransition& r,
+                                                                const ReachConfig& config,
+                                                                FootstepCheckResult& out) const {
+  if (r.qdf.size()) return true;  // given: the analyzer refuses it when out of its limits
+  const RobotModel& m = analyzer_->model();
+  const Eigen::VectorXd qd_max = m.velocityLimits();
+  for (int i = 0; i < m.nq(); ++i) {
+    if (!(std::abs(out.qdf[i]) > qd_max[i] + config.limit_tolerance)) continue;
+    out.reason =
+        "unreachable: x_f, the posture moving with the predicted touchdown CoM velocity, "
+        "exceeds the velocity limit of " +
+        m.joints()[i].name + " (|qd| = " + std::to_string(std::abs(out.qdf[i])) + " > " +
+        std::to_string(qd_max[i]) + ")";
+    return false;
+  }
+  return true;
+}
+
 ReachProblem footstepProblem(const ContactTransition& r, const Eigen::VectorXd& q_f,
                              const Eigen::VectorXd& qd_f) {
   ReachProblem p;
@@ -60,7 +81,8 @@ FootstepCheckResult FootstepReachability::check(const ContactTransition& r,
                                                 const ReachConfig& config,
                                                 const ReachProgressCallback& progress) const {
   FootstepCheckResult out = kinematicStage(r);
-  if (!out.kinematically_feasible) return out;
+  if (!out.kinematically_feasible || !derivedTouchdownWithinVelocityLimits(r, config, out))
+    return out;
   out.reach = analyzer_->check(footstepProblem(r, out.kinematics.q_f, out.qdf), config, progress);
   out.reachable = out.reach.reachable;
   out.reason = out.reach.reason;
@@ -72,7 +94,8 @@ FootstepCheckResult FootstepReachability::checkPass(const ContactTransition& r,
                                                     const CheckPass& pass,
                                                     const ReachProgressCallback& progress) const {
   FootstepCheckResult out = kinematicStage(r);
-  if (!out.kinematically_feasible) return out;
+  if (!out.kinematically_feasible || !derivedTouchdownWithinVelocityLimits(r, config, out))
+    return out;
   out.reach =
       analyzer_->checkPass(footstepProblem(r, out.kinematics.q_f, out.qdf), config, pass, progress);
   out.reachable = out.reach.reachable;

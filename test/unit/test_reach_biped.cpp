@@ -394,3 +394,33 @@ TEST(ReachBiped, StatesViolatingContactsAreErrors) {
   bad.footholds[0].reset();
   EXPECT_THROW(s.analyzer->check(bad), ReachError);
 }
+
+TEST(ReachBiped, TouchdownFasterThanTheJointsAllowIsUnreachableNotAnError) {
+  // x_f derived from a predicted touchdown CoM velocity the joints cannot follow: the step is
+  // unreachable, naming a joint whose velocity (oracle: the posture's own qd_f against the
+  // URDF limits) exceeds its limit. The same x_f given with the request is a bad request.
+  Scenario s = normalStep(testConfig());
+  const RobotModel& m = s.analyzer->model();
+  s.request.touchdown.com_velocity = Eigen::Vector2d(0.0, -8.0);
+  const FootstepReachability fr(s.analyzer, s.kinematics);
+  const FootstepCheckResult res = fr.check(s.request);
+  ASSERT_TRUE(res.kinematically_feasible) << res.reason;
+  EXPECT_FALSE(res.reachable);
+  const Eigen::VectorXd over = res.qdf.cwiseAbs() - m.velocityLimits();
+  Eigen::Index worst = 0;
+  ASSERT_GT(over.maxCoeff(&worst), 0.0);
+  EXPECT_NE(res.reason.find("exceeds the velocity limit of "), std::string::npos) << res.reason;
+  bool names_a_violating_joint = false;
+  for (int i = 0; i < m.nq(); ++i)
+    if (over[i] > 0.0 &&
+        res.reason.find("limit of " + m.joints()[i].name + " ") != std::string::npos)
+      names_a_violating_joint = true;
+  EXPECT_TRUE(names_a_violating_joint) << res.reason;
+  ContactTransition given = s.request;
+  given.qdf = res.qdf;
+  EXPECT_THROW(fr.check(given), ReachError);
+  // At the normal step's own touchdown velocity the rule refuses nothing.
+  const Scenario normal = normalStep(testConfig());
+  const FootstepCheckResult ok = fr.check(normal.request);
+  EXPECT_EQ(ok.reason.find("exceeds the velocity limit"), std::string::npos) << ok.reason;
+}

@@ -5,7 +5,9 @@
 /// fails, the step is unreachable ("we cannot obtain a reachable path toward the next mode if
 /// the planned contact location is kinematically infeasible"); otherwise its q_f with
 /// qd_f = 0 (or a given touchdown velocity) is x_f of the bidirectional reachability check from
-/// the current state x_0 in single support.
+/// the current state x_0 in single support. An x_f derived so (no touchdown velocity given)
+/// whose joint velocities exceed their limits cannot be reached: the step is unreachable, not
+/// a bad request (a touchdown velocity given outside the limits is one).
 
 #include <Eigen/Core>
 #include <memory>
@@ -72,6 +74,11 @@ class FootstepReachability {
   /// qd_f: the request's, else the posture qf moving with the touchdown CoM velocity.
   Eigen::VectorXd touchdownVelocity(const ContactTransition& request,
                                     const Eigen::VectorXd& qf) const;
+  /// False, with the reason in `out`, when the derived x_f's velocity (out.qdf) exceeds a
+  /// joint's velocity limit by more than config.limit_tolerance.
+  bool derivedTouchdownWithinVelocityLimits(const ContactTransition& request,
+                                            const ReachConfig& config,
+                                            FootstepCheckResult& out) const;
   std::shared_ptr<const ReachabilityAnalyzer> analyzer_;
   std::shared_ptr<const KinematicFeasibility> kinematics_;
 };
