@@ -219,7 +219,7 @@ std::string WalkResult::summaryLine() const {
   os << " replans=" << replans;
   if (policy.checksFoothold()) {
     int infeasible = 0, failed = 0, late = 0, nearest_feasible = 0, nearest_reachable = 0,
-        relaxed = 0;
+        relaxed = 0, clipped = 0;
     for (const StepRecord& r : records) {
       infeasible += r.verdict == StepVerdict::kKinematicallyInfeasible;
       failed += r.failed_check_action.has_value();
@@ -227,10 +227,12 @@ std::string WalkResult::summaryLine() const {
       nearest_feasible += r.foothold_source == FootholdSource::kNearestFeasible;
       nearest_reachable += r.foothold_source == FootholdSource::kNearestReachable;
       relaxed += r.foothold_source == FootholdSource::kRelaxed;
+      clipped += r.foothold_source == FootholdSource::kClippedToBounds;
     }
     os << " kinematically_infeasible=" << infeasible << " failed_checks=" << failed
        << " late_plans=" << late << " from_nearest_feasible=" << nearest_feasible
-       << " from_nearest_reachable=" << nearest_reachable << " from_relaxed=" << relaxed;
+       << " from_nearest_reachable=" << nearest_reachable << " from_relaxed=" << relaxed
+       << " from_clipped_to_bounds=" << clipped;
   }
   if (policy.check == WalkingPolicy::FootholdCheck::kReachability) {
     // The verdicts: every "reachable" rests on a certified witness; its OCP was strict.
@@ -817,8 +819,12 @@ WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
   plan.track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
   if (failed) {
     current_.failed_check_action = policy.on_failed_check;
-    if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds) {
-      // The TVR step clipped to the heuristic bounds, reached by interpolation.
+    // The TVR step clipped to the heuristic bounds, reached by interpolation: the policy's
+    // fallback, and the last resort of every other one when it found nothing (no kinematically
+    // feasible foothold near the target, no trajectory), where the swing would otherwise go to
+    // the very foothold the check rejected.
+    const bool found_nothing = step.foothold_source == FootholdSource::kTarget && !step.usable();
+    if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds || found_nothing) {
       plan.foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
       plan.track_ocp = false;
       current_.foothold_source = FootholdSource::kClippedToBounds;

@@ -365,6 +365,28 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
   EXPECT_GT(clipped, 0) << r.summaryLine();
 }
 
+TEST(WalkingPolicy, AFallbackThatFindsNothingIsClippedToTheBoundsNotTheRejectedTarget) {
+  // Pushed 0.6 m/s backward, the proposed preset's TVR steps fail the kinematic check and its
+  // nearest-foothold search finds no feasible point (the stance knee at its limit under the
+  // predicted pelvis): the step must not go to the rejected target; it is the TVR step
+  // clipped to the heuristic bounds of config/biped.yaml (|x| <= 0.42 m, 0.25 <= |y| <= 0.65
+  // m towards the swing side from the stance sole), as the baseline's.
+  const WalkResult r = runShipped("proposed", 4, Eigen::Vector2d(-0.6, 0), 300);
+  int found_nothing = 0;
+  for (const StepRecord& s : r.records) {
+    if (!s.failed_check_action.has_value()) continue;
+    EXPECT_NE(s.foothold_source, FootholdSource::kTarget) << s.index << ": " << s.reason;
+    if (s.foothold_source != FootholdSource::kClippedToBounds) continue;
+    ++found_nothing;
+    const Eigen::Vector2d o = s.planned - s.stance;
+    const double toward_swing = s.swing == Side::kLeft ? o.y() : -o.y();
+    EXPECT_LE(std::abs(o.x()), 0.42 + 1e-9) << s.index;
+    EXPECT_GE(toward_swing, 0.25 - 1e-9) << s.index;
+    EXPECT_LE(toward_swing, 0.65 + 1e-9) << s.index;
+  }
+  EXPECT_GT(found_nothing, 0) << r.summaryLine();
+}
+
 TEST(WalkingPolicy, CrossedLegsEndTheWalkAsAFall) {
   // TVR alone under a 0.4 m/s push to the left, the right leg swinging first (toward the
   // stance leg: the first leg not chosen from the push), puts the first swing sole into the
