@@ -338,6 +338,16 @@ TEST(WalkingPolicy, EachPresetWalksAndItsRecordsShowItsParts) {
   }
 }
 
+// The step's foothold lies in the heuristic bounds of config/biped.yaml: |x| <= 0.42 m and
+// 0.25 <= |y| <= 0.65 m towards the swing side, from the stance sole.
+void expectInsideHeuristicBounds(const StepRecord& s) {
+  const Eigen::Vector2d o = s.planned - s.stance;
+  const double toward_swing = s.swing == Side::kLeft ? o.y() : -o.y();
+  EXPECT_LE(std::abs(o.x()), 0.42 + 1e-9) << s.index;
+  EXPECT_GE(toward_swing, 0.25 - 1e-9) << s.index;
+  EXPECT_LE(toward_swing, 0.65 + 1e-9) << s.index;
+}
+
 TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
   // TVR without bounds under a lateral push, the right leg swinging first (toward the stance
   // leg), proposes steps through the stance sole; with the
@@ -356,11 +366,7 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
     }
     ++clipped;
     EXPECT_EQ(s.failed_check_action, WalkingPolicy::OnFailedCheck::kClipToBounds);
-    const Eigen::Vector2d o = s.planned - s.stance;
-    const double toward_swing = s.swing == Side::kLeft ? o.y() : -o.y();
-    EXPECT_LE(std::abs(o.x()), 0.42 + 1e-9) << s.index;
-    EXPECT_GE(toward_swing, 0.25 - 1e-9) << s.index;
-    EXPECT_LE(toward_swing, 0.65 + 1e-9) << s.index;
+    expectInsideHeuristicBounds(s);
   }
   EXPECT_GT(clipped, 0) << r.summaryLine();
 }
@@ -378,11 +384,7 @@ TEST(WalkingPolicy, AFallbackThatFindsNothingIsClippedToTheBoundsNotTheRejectedT
     EXPECT_NE(s.foothold_source, FootholdSource::kTarget) << s.index << ": " << s.reason;
     if (s.foothold_source != FootholdSource::kClippedToBounds) continue;
     ++found_nothing;
-    const Eigen::Vector2d o = s.planned - s.stance;
-    const double toward_swing = s.swing == Side::kLeft ? o.y() : -o.y();
-    EXPECT_LE(std::abs(o.x()), 0.42 + 1e-9) << s.index;
-    EXPECT_GE(toward_swing, 0.25 - 1e-9) << s.index;
-    EXPECT_LE(toward_swing, 0.65 + 1e-9) << s.index;
+    expectInsideHeuristicBounds(s);
   }
   EXPECT_GT(found_nothing, 0) << r.summaryLine();
 }
