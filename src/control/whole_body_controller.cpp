@@ -105,7 +105,8 @@ WholeBodyController::WholeBodyController(std::shared_ptr<const RobotModel> model
   b_eq_.resize(18);
   A_in_.resize(2 * ContactWrenchCone::kRows + legs_.pairCount() + 2 * model_->nu(), nx);
   leg_pairs_.reserve(legs_.pairCount());
-  leg_gradient_.resize(n);
+  leg_gradients_.resize(legs_.pairCount(), n);
+  leg_drifts_.resize(legs_.pairCount());
   b_in_.resize(A_in_.rows());
   out_.u = Eigen::VectorXd::Zero(model_->nu());
   u_max_ = model_->effortLimits();
@@ -242,17 +243,19 @@ int WholeBodyController::addLegBarrier(int row, int nx, const Eigen::VectorXd& q
   // One row per capsule pair within reach of the barrier: the closest pair alone would let a
   // pair closing fast take over too late to be stopped.
   legs_.pairsWithin(m, ws_, cf.leg_clearance_activation, leg_pairs_);
-  for (const LegClearance::Closest& c : leg_pairs_) {
-    legs_.gradient(m, ws_, c, leg_gradient_);
-    const double rate = leg_gradient_.dot(qd);
+  const int count = static_cast<int>(leg_pairs_.size());
+  auto gradients = leg_gradients_.topRows(count);
+  auto drifts = leg_drifts_.head(count);
+  legs_.pairTerms(m, ws_, leg_pairs_, gradients, drifts);
+  for (int k = 0; k < count; ++k) {
+    const double rate = gradients.row(k).dot(qd);
     // d'' = g qdd + drift >= kp (margin - d) - kd d', as A_in x >= b_in.
-    A_in_.block(row, 0, 1, m.nq()) = leg_gradient_;
-    A_in_.block(row, m.nq(), 1, nx - m.nq()).setZero();
-    b_in_[row] = cf.kp_leg_clearance * (cf.leg_clearance_margin - c.distance) -
-                 cf.kd_leg_clearance * rate - legs_.accelerationDrift(m, ws_, c);
-    ++row;
+    A_in_.block(row + k, 0, 1, m.nq()) = gradients.row(k);
+    A_in_.block(row + k, m.nq(), 1, nx - m.nq()).setZero();
+    b_in_[row + k] = cf.kp_leg_clearance * (cf.leg_clearance_margin - leg_pairs_[k].distance) -
+                     cf.kd_leg_clearance * rate - drifts[k];
   }
-  return static_cast<int>(leg_pairs_.size());
+  return count;
 }
 
 const WbcOutput& WholeBodyController::solveQp(const ContactMode& mode) {

@@ -192,46 +192,110 @@ double LegClearance::distanceAt(const RobotModel& model,
   return closest(model, ws).distance;
 }
 
+namespace {
+
+/// A capsule frame's kinematics at the model's last update(): what a pair's terms need.
+struct FrameTerms {
+  FrameId frame = -1;
+  Matrix6Xd J;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();  ///< angular velocity [rad/s]
+  Vector6d jdot_qd = Vector6d::Zero();
+};
+
+void computeFrameTerms(const RobotModel& model, const Workspace& ws, FrameId frame, FrameTerms& f) {
+  f.frame = frame;
+  f.J.resize(6, model.nq());
+  model.frameJacobian(ws, frame, f.J);
+  f.origin = model.framePose(ws, frame).translation();
+  f.w = model.frameVelocity(ws, frame).tail<3>();
+  f.jdot_qd = model.frameJdotQd(ws, frame);
+}
+
+/// The unit normal from the right closest point to the left one; false when the axes meet.
+bool pairNormal(const LegClearance::Closest& c, Eigen::Vector3d& n) {
+  if (c.left < 0 || c.right < 0) return false;
+  const Eigen::Vector3d gap = c.left_point - c.right_point;
+  const double norm = gap.norm();
+  if (!(norm > 1e-12)) return false;
+  n = gap / norm;
+  return true;
+}
+
+/// Point Jacobian of p on a frame at o: J_lin - [p - o]x J_ang, so n^T of it is
+/// n^T J_lin + ((p - o) x n)^T J_ang; added to `grad` with `sign`.
+template <typename Row>
+void addPointRow(const FrameTerms& f, const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+                 double sign, Row&& grad) {
+  grad.noalias() += sign * n.transpose() * f.J.topRows<3>();
+  grad.noalias() += sign * (p - f.origin).cross(n).transpose() * f.J.bottomRows<3>();
+}
+
+/// A point p fixed on the frame, r = p - o: its acceleration's drift is
+/// (Jdot qd)_lin + (Jdot qd)_ang x r + w x (w x r).
+Eigen::Vector3d pointDrift(const FrameTerms& f, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d r = p - f.origin;
+  return f.jdot_qd.head<3>() + f.jdot_qd.tail<3>().cross(r) + f.w.cross(f.w.cross(r));
+}
+
+}  // namespace
+
 void LegClearance::gradient(const RobotModel& model, const Workspace& ws, const Closest& c,
                             Eigen::Ref<Eigen::RowVectorXd> grad) const {
   requireSize("LegClearance::gradient", grad.size(), model.nq());
   grad.setZero();
-  if (c.left < 0 || c.right < 0) return;
-  const Eigen::Vector3d gap = c.left_point - c.right_point;
-  const double norm = gap.norm();
-  if (!(norm > 1e-12)) return;
-  const Eigen::Vector3d n = gap / norm;
-  thread_local Matrix6Xd J;
-  J.resize(6, model.nq());
-  // Point Jacobian of p on a frame at o: J_lin - [p - o]x J_ang, so n^T of it is
-  // n^T J_lin + ((p - o) x n)^T J_ang.
-  const auto add = [&](FrameId frame, const Eigen::Vector3d& p, double sign) {
-    model.frameJacobian(ws, frame, J);
-    const Eigen::Vector3d o = model.framePose(ws, frame).translation();
-    grad.noalias() += sign * n.transpose() * J.topRows<3>();
-    grad.noalias() += sign * (p - o).cross(n).transpose() * J.bottomRows<3>();
-  };
-  add(left_[c.left].frame, c.left_point, 1.0);
-  add(right_[c.right].frame, c.right_point, -1.0);
+  Eigen::Vector3d n;
+  if (!pairNormal(c, n)) return;
+  thread_local FrameTerms left, right;
+  computeFrameTerms(model, ws, left_[c.left].frame, left);
+  computeFrameTerms(model, ws, right_[c.right].frame, right);
+  addPointRow(left, c.left_point, n, 1.0, grad);
+  addPointRow(right, c.right_point, n, -1.0, grad);
 }
 
 double LegClearance::accelerationDrift(const RobotModel& model, const Workspace& ws,
                                        const Closest& c) const {
-  if (c.left < 0 || c.right < 0) return 0.0;
-  const Eigen::Vector3d gap = c.left_point - c.right_point;
-  const double norm = gap.norm();
-  if (!(norm > 1e-12)) return 0.0;
-  const Eigen::Vector3d n = gap / norm;
-  // A point p fixed on a frame at o, r = p - o: its acceleration's drift is
-  // (Jdot qd)_lin + (Jdot qd)_ang x r + w x (w x r).
-  const auto drift = [&](FrameId frame, const Eigen::Vector3d& p) {
-    const Eigen::Vector3d w = model.frameVelocity(ws, frame).tail<3>();
-    const Vector6d jdot_qd = model.frameJdotQd(ws, frame);
-    const Eigen::Vector3d r = p - model.framePose(ws, frame).translation();
-    return Eigen::Vector3d(jdot_qd.head<3>() + jdot_qd.tail<3>().cross(r) + w.cross(w.cross(r)));
+  Eigen::Vector3d n;
+  if (!pairNormal(c, n)) return 0.0;
+  thread_local FrameTerms left, right;
+  computeFrameTerms(model, ws, left_[c.left].frame, left);
+  computeFrameTerms(model, ws, right_[c.right].frame, right);
+  return n.dot(pointDrift(left, c.left_point) - pointDrift(right, c.right_point));
+}
+
+void LegClearance::pairTerms(const RobotModel& model, const Workspace& ws,
+                             const std::vector<Closest>& pairs,
+                             Eigen::Ref<Eigen::MatrixXd> gradients,
+                             Eigen::Ref<Eigen::VectorXd> drifts) const {
+  const int count = static_cast<int>(pairs.size());
+  requireSize("LegClearance::pairTerms gradients rows", gradients.rows(), count);
+  requireSize("LegClearance::pairTerms gradients cols", gradients.cols(), model.nq());
+  requireSize("LegClearance::pairTerms drifts", drifts.size(), count);
+  // Each capsule frame's terms once, however many pairs it is in (a few frames per leg).
+  // Reserved for every capsule's frame: a reference taken below stays valid while others are
+  // added.
+  thread_local std::vector<FrameTerms> frames;
+  frames.reserve(left_.size() + right_.size());
+  int used = 0;
+  const auto termsOf = [&](FrameId frame) -> const FrameTerms& {
+    for (int i = 0; i < used; ++i)
+      if (frames[i].frame == frame) return frames[i];
+    if (used == static_cast<int>(frames.size())) frames.emplace_back();
+    computeFrameTerms(model, ws, frame, frames[used]);
+    return frames[used++];
   };
-  return n.dot(drift(left_[c.left].frame, c.left_point) -
-               drift(right_[c.right].frame, c.right_point));
+  gradients.setZero();
+  for (int k = 0; k < count; ++k) {
+    const Closest& c = pairs[k];
+    Eigen::Vector3d n;
+    drifts[k] = 0.0;
+    if (!pairNormal(c, n)) continue;
+    const FrameTerms& left = termsOf(left_[c.left].frame);
+    const FrameTerms& right = termsOf(right_[c.right].frame);
+    addPointRow(left, c.left_point, n, 1.0, gradients.row(k));
+    addPointRow(right, c.right_point, n, -1.0, gradients.row(k));
+    drifts[k] = n.dot(pointDrift(left, c.left_point) - pointDrift(right, c.right_point));
+  }
 }
 
 }  // namespace reach_trajopt

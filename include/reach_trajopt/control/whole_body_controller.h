@@ -146,7 +146,8 @@ class WholeBodyController {
   LegClearance legs_;     ///< empty when wbc.leg_clearance is off
   int barrier_rows_ = 0;  ///< this tick's barrier rows
   std::vector<LegClearance::Closest> leg_pairs_;
-  Eigen::RowVectorXd leg_gradient_;
+  Eigen::MatrixXd leg_gradients_;  ///< the barrier rows' gradients (pairCount() x n_q)
+  Eigen::VectorXd leg_drifts_;     ///< and their acceleration drifts
   Workspace ws_;
   qp::DualActiveSetQp qp_single_, qp_double_;
   std::vector<int> warm_single_, warm_double_;

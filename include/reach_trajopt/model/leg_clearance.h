@@ -90,6 +90,12 @@ class LegClearance {
   /// another the distance, a convex function of the translation, accelerates at least this
   /// much (a barrier on it is conservative). Zero when the axes intersect.
   double accelerationDrift(const RobotModel& model, const Workspace& ws, const Closest& c) const;
+  /// gradient() and accelerationDrift() of several pairs at once (row k of `gradients`,
+  /// pairs.size() x n_q, and drifts[k] are pairs[k]'s), each capsule frame's Jacobian and
+  /// velocity terms computed once: a controller tick's barrier rows. No allocation after a
+  /// thread's first calls.
+  void pairTerms(const RobotModel& model, const Workspace& ws, const std::vector<Closest>& pairs,
+                 Eigen::Ref<Eigen::MatrixXd> gradients, Eigen::Ref<Eigen::VectorXd> drifts) const;
 
  private:
   /// Calls visit(const Closest&) for every left/right capsule pair.
