@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/control/minimum_jerk.h"
 
 namespace reach_trajopt {
 namespace {
@@ -39,19 +40,6 @@ void SwingTrajectory::retarget(const Eigen::Vector3d& target, double t) {
   target_ = target;
 }
 
-namespace {
-/// Minimum-jerk blend b(s) = 10 s^3 - 15 s^4 + 6 s^5 of s = (t - t0) / T on [0, 1] and its
-/// first two time derivatives (zero at both ends).
-struct Blend {
-  double b, bd, bdd;
-};
-Blend minimumJerk(double t, double t0, double T) {
-  const double s = std::clamp((t - t0) / T, 0.0, 1.0);
-  return {s * s * s * (10 - 15 * s + 6 * s * s), 30 * s * s * (1 - s) * (1 - s) / T,
-          60 * s * (1 - s) * (1 - 2 * s) / (T * T)};
-}
-}  // namespace
-
 SwingSample SwingTrajectory::sample(double t) const {
   const Eigen::Vector3d depth(0, 0, depth_);
   SwingSample out;
@@ -63,7 +51,7 @@ SwingSample SwingTrajectory::sample(double t) const {
   }
   const double T = duration_;
   const double s = std::max(0.0, t) / T;
-  const Blend m = minimumJerk(t, 0.0, T);
+  const MinimumJerkBlend m = minimumJerk(t, 0.0, T);
   // Bump 64 h s^3 (1-s)^3.
   const double u = s * (1 - s);
   const double z = 64 * apex_ * u * u * u;
@@ -74,7 +62,7 @@ SwingSample SwingTrajectory::sample(double t) const {
   out.velocity = m.bd * (end - start_) + Eigen::Vector3d(0, 0, zd);
   out.acceleration = m.bdd * (end - start_) + Eigen::Vector3d(0, 0, zdd);
   for (const Correction& c : corrections_) {
-    const Blend mc = minimumJerk(t, c.time, T - c.time);
+    const MinimumJerkBlend mc = minimumJerk(t, c.time, T - c.time);
     out.position += mc.b * c.change;
     out.velocity += mc.bd * c.change;
     out.acceleration += mc.bdd * c.change;

@@ -6,10 +6,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "reach_trajopt/control/minimum_jerk.h"
+
 namespace reach_trajopt {
 
 void trackTransition(const RobotModel& m, Workspace& ws, Matrix6Xd& J, FrameId id,
-                     const TransitionResult& tracked, double tt, WbcReference& ref) {
+                     const TransitionResult& tracked, double tt, const TouchdownAim& aim,
+                     WbcReference& ref) {
   constexpr double kDescent = 0.2;  // past the horizon: keep descending [m/s]
   const int last = static_cast<int>(tracked.time.size()) - 1;
   const int k = std::min(last, static_cast<int>(std::lround(tt / tracked.dt)));
@@ -20,6 +23,15 @@ void trackTransition(const RobotModel& m, Workspace& ws, Matrix6Xd& J, FrameId i
   ref.swing_rotation = T.linear();
   ref.swing_velocity = (J * tracked.qd.col(k)).head<3>();
   ref.swing_acceleration = (J * tracked.qdd.col(k) + m.frameJdotQd(ws, id)).head<3>();
+  // The last `aim.blend` seconds lower the sole to `aim.depth` below the trajectory's
+  // landing, so that it touches down by contact on time.
+  const double blend = std::min(aim.blend, tracked.time[last]);
+  if (blend > 0.0) {
+    const MinimumJerkBlend b = minimumJerk(tt, tracked.time[last] - blend, blend);
+    ref.swing_position.z() -= aim.depth * b.b;
+    ref.swing_velocity.z() -= aim.depth * b.bd;
+    ref.swing_acceleration.z() -= aim.depth * b.bdd;
+  }
   if (tt > tracked.time[last]) {
     ref.swing_position.z() -= kDescent * (tt - tracked.time[last]);
     ref.swing_velocity = Eigen::Vector3d(0, 0, -kDescent);

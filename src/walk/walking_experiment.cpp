@@ -97,6 +97,9 @@ void addSwingFields(ConfigFields<C>& t) {
            "swing apex above the ground")
       .add("touchdown_depth", &C::touchdown_depth, "m", Range::nonNegative(),
            "nominal swing end below the ground (touchdown by contact)")
+      .add("ocp_touchdown_blend", &C::ocp_touchdown_blend, "s", Range::nonNegative(),
+           "a swing tracking an OCP trajectory: its sole sinks to touchdown_depth below the "
+           "trajectory's landing over this last part of it (0: lands on the OCP's sole)")
       .add("touchdown_force", &C::touchdown_force, "N", Range::positive(),
            "sole normal force that counts as touchdown")
       .add("late_touchdown", &C::late_touchdown, "s", Range::nonNegative(),
@@ -980,7 +983,8 @@ void WalkingExperiment::Loop::references(double t) {
   if (phase_ != Phase::kSingle) return;
   if (tracked_.time.size() > 0) {  // the OCP's swing sole, its joints as feed-forward
     trackTransition(m_, ws_traj_, J_traj_, sole_[static_cast<int>(swing_)], tracked_,
-                    t - tracked_start_, ref_);
+                    t - tracked_start_, TouchdownAim{wc_.touchdown_depth, wc_.ocp_touchdown_blend},
+                    ref_);
   } else {
     const SwingSample sw = swing_traj_->sample(t - phase_start_);
     ref_.swing_position = sw.position;

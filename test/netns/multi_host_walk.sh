@@ -144,7 +144,7 @@ mkdir -p "$work/h0"
 ip netns exec "${hosts[0]}" env ROS_IP=10.43.0.1 ROS_MASTER_URI="$master" ROS_HOME="$work/h0" \
   "$BIN/check_walk_nodes" __name:=check_walk_nodes _config:="$REPO/config/biped.yaml" \
   _sim_config:="$REPO/config/sim.yaml" _policy:=kinematic _steps:=$steps _seed:=1 \
-  _push_vx:=-0.3 _push_vy:=-0.3 _timeout:=400 _workers:=2 \
+  _push_vx:=-0.3 _push_vy:=-0.6 _timeout:=400 _workers:=2 \
   --gtest_output="xml:$results/netns-check_walk_nodes.xml" >"$work/checker.log" 2>&1 &
 checker=$!
 pids+=($checker)

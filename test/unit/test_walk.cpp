@@ -9,6 +9,7 @@
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/control/swing_trajectory.h"
+#include "reach_trajopt/control/transition_tracking.h"
 #include "reach_trajopt/walk/push_envelope.h"
 #include "reach_trajopt/walk/walk_setup.h"
 
@@ -75,6 +76,52 @@ TEST(SwingTrajectory, RetargetMidSwingIsContinuousAndEndsAtTheNewTarget) {
   for (double t : {0.05, 0.11, 0.2})
     EXPECT_LT((moved.sample(t).position - built.sample(t).position).norm(), 1e-12);
   EXPECT_THROW(s.retarget(Eigen::Vector3d(NAN, 0, 0), 0.1), ReachError);
+}
+
+TEST(SwingTrajectory, TrackedOcpSwingSinksToTheTouchdownDepthOverItsLastPart) {
+  // A 0.2 s trajectory holding one posture: the tracked sole's reference is the posture's sole
+  // until the blend starts, then sinks by the minimum-jerk profile (written out here) to the
+  // depth at the trajectory's end, then descends at 0.2 m/s.
+  const auto model = RobotModel::fromUrdfFile(kUrdf);
+  const FrameId sole = model->frameId("r_sole");
+  TransitionResult tr;
+  tr.dt = 0.001;
+  const int n = 201;
+  tr.time = Eigen::VectorXd::LinSpaced(n, 0.0, 0.2);
+  tr.q = Eigen::MatrixXd::Zero(model->nq(), n);
+  tr.qd = tr.qdd = tr.q;
+  Workspace ws(*model), ws_oracle(*model);
+  Matrix6Xd J(6, model->nq());
+  model->update(ws_oracle, tr.q.col(0), tr.qd.col(0));
+  const Eigen::Vector3d landing = model->framePose(ws_oracle, sole).translation();
+  const double depth = 0.01, blend = 0.05;
+  const auto reference = [&](double t, const TouchdownAim& aim) {
+    WbcReference ref;
+    trackTransition(*model, ws, J, sole, tr, t, aim, ref);
+    return ref;
+  };
+  const TouchdownAim aim{depth, blend};
+  for (const double t : {0.0, 0.1, 0.15}) {
+    const WbcReference ref = reference(t, aim);
+    EXPECT_LT((ref.swing_position - landing).norm(), 1e-12) << t;
+    EXPECT_LT(ref.swing_velocity.norm(), 1e-12) << t;
+    EXPECT_EQ(ref.q_ff.size(), model->nq());
+  }
+  for (const double s : {0.25, 0.5, 0.75, 1.0}) {
+    const double t = 0.15 + s * blend;
+    const WbcReference ref = reference(t, aim);
+    const double b = s * s * s * (10 - 15 * s + 6 * s * s);
+    const double bd = 30 * s * s * (1 - s) * (1 - s) / blend;
+    EXPECT_NEAR(ref.swing_position.z(), landing.z() - depth * b, 1e-12) << t;
+    EXPECT_NEAR(ref.swing_velocity.z(), -depth * bd, 1e-9) << t;
+    EXPECT_LT((ref.swing_position.head<2>() - landing.head<2>()).norm(), 1e-12) << t;
+  }
+  const WbcReference late = reference(0.25, aim);
+  EXPECT_NEAR(late.swing_position.z(), landing.z() - depth - 0.2 * 0.05, 1e-12);
+  EXPECT_NEAR(late.swing_velocity.z(), -0.2, 1e-12);
+  EXPECT_EQ(late.q_ff.size(), 0);
+  // No blend: the sole aims at the trajectory's landing.
+  EXPECT_NEAR(reference(0.2, TouchdownAim{depth, 0.0}).swing_position.z(), landing.z(), 1e-12);
 }
 
 TEST(WalkingExperiment, BaselineWalksInPlaceTwentySteps) {
@@ -173,16 +220,22 @@ TEST(WalkingExperiment, BaselineWalksForwardWithTheShippedConfig) {
 // A run on the shipped configuration (config/biped.yaml) with a walking `policy`, with the check
 // drawing `samples` initial samples (the paper's 1e4 in the shipped file), from a push (initial CoM
 // velocity [m/s]) or at a commanded forward speed [m/s].
+// The shipped config walking `policy` for `steps` steps from an initial CoM velocity `push`.
+WalkSetup shippedSetup(const std::string& policy, int steps, const Eigen::Vector2d& push) {
+  WalkSetup setup =
+      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  setup.walk.policy = WalkingPolicy::parse(policy);
+  setup.walk.steps = steps;
+  setup.walk.initial_com_velocity = push;
+  return setup;
+}
+
 WalkResult runShipped(const std::string& policy, int steps, const Eigen::Vector2d& push,
                       int samples, double forward_speed = 0.0, unsigned seed = 1,
                       std::optional<WalkConfig::FirstSwing> first_swing = std::nullopt,
                       bool leg_barrier = true) {
-  WalkSetup setup =
-      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  WalkSetup setup = shippedSetup(policy, steps, push);
   setup.wbc.leg_clearance = leg_barrier;
-  setup.walk.policy = WalkingPolicy::parse(policy);
-  setup.walk.steps = steps;
-  setup.walk.initial_com_velocity = push;
   setup.walk.forward_speed = forward_speed;
   setup.walk.seed = seed;
   if (first_swing) setup.walk.first_swing = *first_swing;
@@ -372,21 +425,31 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
 }
 
 TEST(WalkingPolicy, AFallbackThatFindsNothingIsClippedToTheBoundsNotTheRejectedTarget) {
-  // Pushed 0.6 m/s backward, the proposed preset's TVR steps fail the kinematic check and its
-  // nearest-foothold search finds no feasible point (the stance knee at its limit under the
-  // predicted pelvis): the step must not go to the rejected target; it is the TVR step
-  // clipped to the heuristic bounds of config/biped.yaml (|x| <= 0.42 m, 0.25 <= |y| <= 0.65
-  // m towards the swing side from the stance sole), as the baseline's.
-  const WalkResult r = runShipped("proposed", 4, Eigen::Vector2d(-0.6, 0), 300);
-  int found_nothing = 0;
-  for (const StepRecord& s : r.records) {
-    if (!s.failed_check_action.has_value()) continue;
-    EXPECT_NE(s.foothold_source, FootholdSource::kTarget) << s.index << ": " << s.reason;
-    if (s.foothold_source != FootholdSource::kClippedToBounds) continue;
-    ++found_nothing;
-    expectInsideHeuristicBounds(s);
+  // Pushed 0.4 m/s to the left with the right leg swinging first, the TVR puts the first swing
+  // sole into the stance foot (kinematically infeasible); the nearest-foothold search is cut
+  // to one ring of 1 mm, so that it finds no feasible point (as when the stance knee is at its
+  // limit under the predicted pelvis). The step must not go to the rejected target: it is the
+  // TVR step clipped to the heuristic bounds of config/biped.yaml (|x| <= 0.42 m,
+  // 0.25 <= |y| <= 0.65 m towards the swing side from the stance sole), as the baseline's.
+  for (const std::string policy : {"proposed", "kinematic"}) {
+    WalkSetup setup = shippedSetup(policy, 2, Eigen::Vector2d(0, 0.4));
+    setup.walk.first_swing = WalkConfig::FirstSwing::kRight;
+    setup.footsteps.nearest_foothold.rings = 1;
+    setup.footsteps.nearest_foothold.ring_step = 0.001;
+    setup.footsteps.reach.budgets.full.initial_samples = 300;
+    const WalkResult r = setup.experiment(kUrdf)->run();
+    ASSERT_FALSE(r.records.empty()) << r.summaryLine();
+    EXPECT_EQ(r.records[0].verdict, StepVerdict::kKinematicallyInfeasible) << r.records[0].reason;
+    int found_nothing = 0;
+    for (const StepRecord& s : r.records) {
+      if (!s.failed_check_action.has_value()) continue;
+      EXPECT_NE(s.foothold_source, FootholdSource::kTarget) << s.index << ": " << s.reason;
+      if (s.foothold_source != FootholdSource::kClippedToBounds) continue;
+      ++found_nothing;
+      expectInsideHeuristicBounds(s);
+    }
+    EXPECT_GT(found_nothing, 0) << r.summaryLine();
   }
-  EXPECT_GT(found_nothing, 0) << r.summaryLine();
 }
 
 TEST(WalkingPolicy, CrossedLegsEndTheWalkAsAFall) {

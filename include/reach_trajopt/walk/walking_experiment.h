@@ -102,6 +102,10 @@ struct WalkConfig {
   int max_replans = 1;
   double min_replan_horizon = 0.06;
   double touchdown_depth = 0.01;  ///< nominal swing end below the ground (touchdown by contact)
+  /// A swing tracking an OCP trajectory: its sole's reference sinks to touchdown_depth below
+  /// the trajectory's landing over this last part of it [s] (minimum jerk; 0: it aims at the
+  /// OCP's landing and, with the tracking lag, touches down late).
+  double ocp_touchdown_blend = 0.05;
   double touchdown_force = 30.0;  ///< sole normal force that counts as touchdown [N]
   double late_touchdown = 0.15;   ///< time past the nominal swing end before a fall is declared
   double check_horizon = 0.2;     ///< policies with a check: the check and the OCP start this long
