@@ -203,13 +203,18 @@ struct FrameTerms {
   Vector6d jdot_qd = Vector6d::Zero();
 };
 
-void computeFrameTerms(const RobotModel& model, const Workspace& ws, FrameId frame, FrameTerms& f) {
+void computeFrameTerms(const RobotModel& model, const Workspace& ws, FrameId frame, FrameTerms& f,
+                       bool jacobian = true, bool velocity = true) {
   f.frame = frame;
-  f.J.resize(6, model.nq());
-  model.frameJacobian(ws, frame, f.J);
   f.origin = model.framePose(ws, frame).translation();
-  f.w = model.frameVelocity(ws, frame).tail<3>();
-  f.jdot_qd = model.frameJdotQd(ws, frame);
+  if (jacobian) {  // gradient()
+    f.J.resize(6, model.nq());
+    model.frameJacobian(ws, frame, f.J);
+  }
+  if (velocity) {  // accelerationDrift()
+    f.w = model.frameVelocity(ws, frame).tail<3>();
+    f.jdot_qd = model.frameJdotQd(ws, frame);
+  }
 }
 
 /// The unit normal from the right closest point to the left one; false when the axes meet.
@@ -247,8 +252,8 @@ void LegClearance::gradient(const RobotModel& model, const Workspace& ws, const 
   Eigen::Vector3d n;
   if (!pairNormal(c, n)) return;
   thread_local FrameTerms left, right;
-  computeFrameTerms(model, ws, left_[c.left].frame, left);
-  computeFrameTerms(model, ws, right_[c.right].frame, right);
+  computeFrameTerms(model, ws, left_[c.left].frame, left, true, false);
+  computeFrameTerms(model, ws, right_[c.right].frame, right, true, false);
   addPointRow(left, c.left_point, n, 1.0, grad);
   addPointRow(right, c.right_point, n, -1.0, grad);
 }
@@ -258,8 +263,8 @@ double LegClearance::accelerationDrift(const RobotModel& model, const Workspace&
   Eigen::Vector3d n;
   if (!pairNormal(c, n)) return 0.0;
   thread_local FrameTerms left, right;
-  computeFrameTerms(model, ws, left_[c.left].frame, left);
-  computeFrameTerms(model, ws, right_[c.right].frame, right);
+  computeFrameTerms(model, ws, left_[c.left].frame, left, false, true);
+  computeFrameTerms(model, ws, right_[c.right].frame, right, false, true);
   return n.dot(pointDrift(left, c.left_point) - pointDrift(right, c.right_point));
 }
 
