@@ -137,6 +137,35 @@ LegClearance::LegClearance(const RobotModel& model, const std::string& left_sole
       leg->push_back(c);
     }
   }
+  left_links_ = groupByLink(left_);
+  right_links_ = groupByLink(right_);
+}
+
+std::vector<LegClearance::LinkGroup> LegClearance::groupByLink(
+    const std::vector<LinkCapsule>& capsules) {
+  std::vector<LinkGroup> groups;
+  for (int i = 0; i < static_cast<int>(capsules.size());) {
+    LinkGroup g;
+    g.frame = capsules[i].frame;
+    g.first = i;
+    while (i < static_cast<int>(capsules.size()) && capsules[i].frame == g.frame) ++i;
+    g.count = i - g.first;
+    // The enclosing capsule's axis: the mean of its capsules' axes (a box's centre line).
+    for (int k = g.first; k < i; ++k) {
+      g.a += capsules[k].a / g.count;
+      g.b += capsules[k].b / g.count;
+    }
+    // Its radius: the distance to the axis, a convex function, is largest over a capsule at one
+    // of its ends, plus that capsule's radius.
+    Eigen::Vector3d on_axis, on_end;
+    for (int k = g.first; k < i; ++k)
+      for (const Eigen::Vector3d* end : {&capsules[k].a, &capsules[k].b})
+        g.radius =
+            std::max(g.radius, closestPointsOfSegments(g.a, g.b, *end, *end, on_axis, on_end) +
+                                   capsules[k].radius);
+    groups.push_back(g);
+  }
+  return groups;
 }
 
 template <typename Visit>
@@ -165,6 +194,62 @@ void LegClearance::forEachPair(const RobotModel& model, const Workspace& ws, Vis
       visit(pair);
     }
   }
+}
+
+bool LegClearance::separatedBy(const RobotModel& model, const Workspace& ws, double margin) const {
+  // Per thread, grown once: the right links' poses and enclosing axes in world; a link's
+  // capsules' end points in world only when a pair of links needs them.
+  thread_local std::vector<Eigen::Isometry3d> right_pose;
+  thread_local std::vector<Eigen::Vector3d> rga, rgb, ra, rb, la, lb;
+  thread_local std::vector<char> right_ready;
+  const size_t n_right = right_links_.size();
+  right_pose.resize(n_right);
+  rga.resize(n_right);
+  rgb.resize(n_right);
+  right_ready.assign(n_right, 0);
+  ra.resize(right_.size());
+  rb.resize(right_.size());
+  la.resize(left_.size());
+  lb.resize(left_.size());
+  for (size_t g = 0; g < n_right; ++g) {
+    const LinkGroup& r = right_links_[g];
+    right_pose[g] = model.framePose(ws, r.frame);
+    rga[g] = right_pose[g] * r.a;
+    rgb[g] = right_pose[g] * r.b;
+  }
+  Eigen::Vector3d on_l, on_r;
+  for (const LinkGroup& l : left_links_) {
+    const Eigen::Isometry3d Tl = model.framePose(ws, l.frame);
+    const Eigen::Vector3d lga = Tl * l.a, lgb = Tl * l.b;
+    bool left_ready = false;
+    for (size_t g = 0; g < n_right; ++g) {
+      const LinkGroup& r = right_links_[g];
+      if (closestPointsOfSegments(lga, lgb, rga[g], rgb[g], on_l, on_r) - l.radius - r.radius >=
+          margin)
+        continue;  // every capsule pair of these two links is at least this far apart
+      if (!left_ready) {
+        for (int i = l.first; i < l.first + l.count; ++i) {
+          la[i] = Tl * left_[i].a;
+          lb[i] = Tl * left_[i].b;
+        }
+        left_ready = true;
+      }
+      if (!right_ready[g]) {
+        for (int j = r.first; j < r.first + r.count; ++j) {
+          ra[j] = right_pose[g] * right_[j].a;
+          rb[j] = right_pose[g] * right_[j].b;
+        }
+        right_ready[g] = 1;
+      }
+      for (int i = l.first; i < l.first + l.count; ++i)
+        for (int j = r.first; j < r.first + r.count; ++j)
+          if (closestPointsOfSegments(la[i], lb[i], ra[j], rb[j], on_l, on_r) - left_[i].radius -
+                  right_[j].radius <
+              margin)
+            return false;
+    }
+  }
+  return true;
 }
 
 LegClearance::Closest LegClearance::closest(const RobotModel& model, const Workspace& ws) const {

@@ -85,7 +85,7 @@ void ReachContext::output(const Workspace& ws, Eigen::Ref<Eigen::VectorXd> y,
 bool ReachContext::stateConstraintsHold(const Workspace& ws) const {
   if (swing_frame >= 0 && model->framePose(ws, swing_frame).translation().z() < ground_height)
     return false;
-  return !(leg_margin > -HUGE_VAL) || legs.closest(*model, ws).distance >= leg_margin;
+  return !(leg_margin > -HUGE_VAL) || legs.separatedBy(*model, ws, leg_margin);
 }
 
 void ReachContext::startAt(const Eigen::Ref<const Eigen::VectorXd>& q0) {

@@ -6,13 +6,18 @@
 //    configurations, and not a loose one (within the capsules' radii of it, and nearly exact
 //    where the cylinders' sides are closest);
 //  - the gradient in q against central differences;
+//  - separatedBy(margin), decided link pair by link pair, answers closest().distance >= margin
+//    (every capsule pair) at random configurations, margins either side of the distance, on
+//    the biped and on a variant whose foot and thigh links carry several shapes;
 //  - the legs are found from the sole frames (every shape of l_* below the left hip, none of
 //    the pelvis or torso), and bad sole frames are refused with their name.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <memory>
 #include <random>
+#include <sstream>
 
 #include "reach_trajopt/model/leg_clearance.h"
 #include "reach_trajopt/model/robot_model.h"
@@ -224,6 +229,69 @@ TEST(LegClearance, DistanceAtMatchesAGridSearchOverTheCapsulePairs) {
   }
   EXPECT_THROW(legs.distanceAt(*model, Eigen::VectorXd::Zero(3)), ReachError);
   EXPECT_EQ(LegClearance().distanceAt(*model, Eigen::VectorXd::Zero(model->nq())), HUGE_VAL);
+}
+
+namespace {
+
+/// The biped's URDF with extra primitives on the feet and thighs (several shapes per link, in
+/// the file's order: the foot box, then a sphere at the toe and a cylinder under the heel).
+std::string bipedWithSeveralShapesPerLink() {
+  std::ifstream in(kUrdf);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string xml = buffer.str();
+  const std::string extra =
+      "<collision><origin xyz=\"0.16 0.02 -0.01\"/><geometry><sphere radius=\"0.05\"/>"
+      "</geometry></collision><collision><origin xyz=\"-0.1 0 -0.03\" rpy=\"1.5708 0 0\"/>"
+      "<geometry><cylinder radius=\"0.03\" length=\"0.12\"/></geometry></collision>";
+  for (const std::string link : {"l_foot", "r_foot", "l_thigh", "r_thigh"}) {
+    const size_t at = xml.find("<link name=\"" + link + "\">");
+    const size_t end = xml.find("</link>", at);
+    xml.insert(end, extra);
+  }
+  return xml;
+}
+
+}  // namespace
+
+TEST(LegClearance, SeparatedByAnswersTheTestOverEveryCapsulePair) {
+  const auto biped = RobotModel::fromUrdfFile(kUrdf);
+  const auto several = RobotModel::fromUrdfString(bipedWithSeveralShapesPerLink(), {}, "several");
+  for (const auto& model : {biped, several}) {
+    const LegClearance legs(*model, "l_sole", "r_sole");
+    Workspace ws(*model);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> margin_draw(-0.05, 0.3);
+    int separated = 0, not_separated = 0;
+    for (int k = 0; k < 600; ++k) {
+      Eigen::VectorXd q = randomConfiguration(*model, rng);
+      if (k % 2) q.segment<3>(3) = Eigen::Vector3d(0.3, -0.2, 0.5);  // a rotated base too
+      model->update(ws, q, Eigen::VectorXd::Zero(model->nq()));
+      // Oracle: the smallest distance over every left/right capsule pair (their axes' closest
+      // points, less the radii).
+      double oracle = HUGE_VAL;
+      Eigen::Vector3d p, r;
+      for (const LinkCapsule& l : legs.capsules(Side::kLeft)) {
+        const Eigen::Isometry3d Tl = model->framePose(ws, model->frameId(l.link));
+        for (const LinkCapsule& c : legs.capsules(Side::kRight)) {
+          const Eigen::Isometry3d Tr = model->framePose(ws, model->frameId(c.link));
+          oracle = std::min(oracle,
+                            closestPointsOfSegments(Tl * l.a, Tl * l.b, Tr * c.a, Tr * c.b, p, r) -
+                                l.radius - c.radius);
+        }
+      }
+      for (const double margin : {oracle - 1e-4, oracle + 1e-4, margin_draw(rng)}) {
+        const bool expected = oracle >= margin;
+        EXPECT_EQ(legs.separatedBy(*model, ws, margin), expected)
+            << model->source() << " configuration " << k << ": distance " << oracle << ", margin "
+            << margin;
+        (expected ? separated : not_separated) += 1;
+      }
+    }
+    EXPECT_GT(separated, 600);  // both answers asked for
+    EXPECT_GT(not_separated, 600);
+  }
+  EXPECT_EQ(LegClearance(*several, "l_sole", "r_sole").capsules(Side::kLeft).size(), 10u);
 }
 
 TEST(LegClearance, AccelerationDriftIsTheClosestPointsAccelerationAlongTheNormal) {

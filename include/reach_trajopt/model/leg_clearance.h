@@ -74,6 +74,10 @@ class LegClearance {
   void pairsWithin(const RobotModel& model, const Workspace& ws, double max_distance,
                    std::vector<Closest>& pairs) const;
   int pairCount() const { return static_cast<int>(left_.size() * right_.size()); }
+  /// closest().distance >= margin [m] at the model's last update(), decided link pair by link
+  /// pair (see the file comment) and stopped at the first capsule pair closer than `margin`.
+  /// No allocation after a thread's first call.
+  bool separatedBy(const RobotModel& model, const Workspace& ws, double margin) const;
   /// The legs' distance at configuration q (its own forward kinematics): closest().distance;
   /// +inf when empty().
   double distanceAt(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q) const;
@@ -102,7 +106,18 @@ class LegClearance {
   template <typename Visit>
   void forEachPair(const RobotModel& model, const Workspace& ws, Visit&& visit) const;
 
+  /// A run of one link's consecutive capsules in left_ / right_ (a link's shapes come one
+  /// after the other) and a capsule enclosing them all, in the link's frame.
+  struct LinkGroup {
+    FrameId frame = -1;
+    int first = 0, count = 0;  ///< its capsules: [first, first + count)
+    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  ///< [m]
+    double radius = 0.0;                                                       ///< [m]
+  };
+  static std::vector<LinkGroup> groupByLink(const std::vector<LinkCapsule>& capsules);
+
   std::vector<LinkCapsule> left_, right_;
+  std::vector<LinkGroup> left_links_, right_links_;
 };
 
 }  // namespace reach_trajopt
