@@ -25,7 +25,11 @@ const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
                "points per ring, first along +x")
           .add("max_checked", &C::max_checked, "", Range::between(1, 100),
                "on_fail nearest_reachable: feasible candidates the reachability check examines "
-               "per step, nearest first");
+               "per step, nearest first")
+          .add("retreat_checks", &C::retreat_checks, "", Range::between(0, 20),
+               "on_fail nearest_reachable, after those: checks of points on the segment from "
+               "the target to the swing sole at x_0, by bisection for the certified point "
+               "nearest the target (0: none)");
   return f;
 }
 

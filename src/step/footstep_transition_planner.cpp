@@ -109,21 +109,33 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   batch.q_init = t.q0;
   batch.pelvis_position = t.touchdown.pelvis_position;
   std::optional<FootstepTransition> nearest_feasible;  // the first feasible candidate's plan
-  int checked = 0;
+  int checked = 0;  // every candidate's check, the rings' and the retreat's
+  // A target beyond the leg's reach (kinematically infeasible): its rings' points lie at the
+  // edge of that reach, so the retreat toward the swing sole is tried first.
+  const bool retreat_first = !target.kinematically_feasible;
+  if (retreat_first) {
+    if (std::optional<FootstepTransition> retreat =
+            planRetreat(r, at, target, progress, totals, checked)) {
+      carryTotals(*retreat, checked);
+      return std::move(*retreat);
+    }
+  }
   const NearestFootholdConfig& rings = nearest_.config();
-  for (int ring = 1; ring <= rings.rings && checked < rings.max_checked && !at.pastDeadline();
+  int ring_checked = 0;
+  for (int ring = 1; ring <= rings.rings && ring_checked < rings.max_checked && !at.pastDeadline();
        ++ring) {
     batch.candidates = nearest_.ringCandidates(r.target, ring);
     const std::vector<CandidateOutcome> outcomes =
         candidate_check_ ? candidate_check_(batch)
                          : checkFootholdCandidates(*kinematics_, batch, false);
     for (std::size_t i = 0;
-         i < outcomes.size() && checked < rings.max_checked && !at.pastDeadline(); ++i) {
+         i < outcomes.size() && ring_checked < rings.max_checked && !at.pastDeadline(); ++i) {
       if (!outcomes[i].error.empty() || !outcomes[i].kinematics.feasible) continue;
       FootstepPlanRequest candidate = at;
       candidate.target = batch.candidates[i];
       FootstepTransition step = planTarget(candidate, progress);
       ++checked;
+      ++ring_checked;
       totals.add(step);
       if (step.reachable && hasStrictTrajectory(r, step)) {
         carryTotals(step, checked);
@@ -137,6 +149,14 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
         return step;
       }
       if (!nearest_feasible) nearest_feasible = std::move(step);
+    }
+  }
+  // None of the rings' candidates certified: points toward where the swing sole comes from.
+  if (!retreat_first) {
+    if (std::optional<FootstepTransition> retreat =
+            planRetreat(r, at, target, progress, totals, checked)) {
+      carryTotals(*retreat, checked);
+      return std::move(*retreat);
     }
   }
   // None certified: the target's own plan when feasible (its relaxed OCP), else the nearest
@@ -154,6 +174,48 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
                 " nearest feasible candidates checked" +
                 (at.pastDeadline() ? " (deadline reached)" : "") + ": " + kept.reason;
   return kept;
+}
+
+std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
+    const FootstepPlanRequest& r, const FootstepPlanRequest& at, const FootstepTransition& target,
+    const FootstepPlanProgress& progress, PassTotals& totals, int& checked) const {
+  const int checks = config_.nearest_foothold.retreat_checks;
+  if (checks <= 0 || at.pastDeadline()) return std::nullopt;
+  // The swing sole's position at x_0, at the target's height: the foot was standing there.
+  const RobotModel& m = *model_;
+  const ContactTransition& t = target.transition;
+  Workspace ws(m);
+  m.update(ws, t.q0, Eigen::VectorXd::Zero(m.nq()));
+  Eigen::Vector3d from = m.framePose(ws, m.frameId(contact_.soleFrame(t.moving()))).translation();
+  from.z() = r.target.position.z();
+  // Bisection on the segment target -> from: s = 0 (the target) is not certified; the
+  // certified point nearest it is kept.
+  double lo = 0.0, hi = 1.0;
+  std::optional<FootstepTransition> best;
+  for (int k = 0; k < checks && !at.pastDeadline(); ++k) {
+    const double s = 0.5 * (lo + hi);
+    FootstepPlanRequest candidate = at;
+    candidate.target.position = r.target.position + s * (from - r.target.position);
+    FootstepTransition step = planTarget(candidate, progress);
+    ++checked;
+    totals.add(step);
+    if (step.reachable && hasStrictTrajectory(r, step)) {
+      hi = s;
+      best = std::move(step);
+    } else {
+      lo = s;
+    }
+  }
+  if (!best) return std::nullopt;
+  best->request = r;
+  best->target_verdict = target.verdict;
+  best->foothold_source = FootholdSource::kNearestReachable;
+  char where[128];
+  std::snprintf(where, sizeof where,
+                "nearest reachable foothold toward the swing sole, %.3f m from the target: ",
+                (best->foothold - r.target.position).head<2>().norm());
+  best->reason = where + best->reason + "; the target: " + target.reason;
+  return best;
 }
 
 FootstepTransition FootstepTransitionPlanner::planTarget(

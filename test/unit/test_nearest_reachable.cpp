@@ -5,7 +5,9 @@
 // certifies, whose strict trajectory this test re-checks at every 1 ms sample with the model
 // (eq. 1 with both soles' wrenches, the held sole, x(t_f) on the ring point's IK posture), no
 // nearer than the nearest kinematically feasible ring point found by the kinematic search
-// alone; when none of the candidates is certified the answer says so and carries no certificate.
+// alone; a target beyond the leg's reach is replaced by a certified point of the segment toward
+// the swing sole (the retreat, tried before the rings for such a target); when none of the
+// candidates is certified the answer says so and carries no certificate.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -90,6 +92,7 @@ TEST(NearestReachable, NoCertifiedCandidateSaysSoAndCertifiesNothing) {
   const ShippedPipeline& p = pipeline();
   FootstepPlannerConfig one_candidate = p.config;
   one_candidate.nearest_foothold.max_checked = 1;
+  one_candidate.nearest_foothold.retreat_checks = 0;
   const FootstepTransitionPlanner planner(p.model, p.contact, one_candidate);
   FootstepPlanRequest r = benchSwingCase(p.model, p.config, p.contact);
   r.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
@@ -100,6 +103,46 @@ TEST(NearestReachable, NoCertifiedCandidateSaysSoAndCertifiesNothing) {
   EXPECT_NE(step.foothold_source, FootholdSource::kNearestReachable);
   EXPECT_EQ(step.candidates_checked, 1);
   EXPECT_NE(step.reason.find("no reachable foothold among the"), std::string::npos) << step.reason;
+}
+
+TEST(NearestReachable, ATargetBeyondReachIsReplacedByACertifiedPointTowardTheSwingSole) {
+  // The walk's step 5 (certified as planned) with its target moved 0.35 m further out, away
+  // from the stance sole: beyond the leg's reach. The retreat's bisection on the segment
+  // target -> swing sole at x_0 gives a point of that segment that the check certifies, with a
+  // strict trajectory re-checked here at every 1 ms sample.
+  const ShippedPipeline& p = pipeline();
+  FootstepPlanRequest r = walkRequests()[2];
+  Workspace ws(*p.model);
+  p.model->update(ws, r.q0, Eigen::VectorXd::Zero(p.model->nq()));
+  const Eigen::Vector2d from =
+      p.model->framePose(ws, p.model->frameId(p.contact.soleFrame(opposite(r.stance))))
+          .translation()
+          .head<2>();
+  const double outward = r.target.position.y() > r.stance_contact.position.y() ? 1.0 : -1.0;
+  r.target.position.y() += 0.35 * outward;
+  const FootstepTransition step = planNearestReachable(r);
+  std::cout << step.reason << "\n";
+  ASSERT_TRUE(step.target_verdict.has_value());
+  EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
+  ASSERT_EQ(step.foothold_source, FootholdSource::kNearestReachable) << step.reason;
+  EXPECT_NE(step.reason.find("toward the swing sole"), std::string::npos) << step.reason;
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
+  EXPECT_NE(step.certificate, Certificate::kNone);
+  EXPECT_LE(step.candidates_checked, p.config.nearest_foothold.retreat_checks);
+  ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
+  EXPECT_FALSE(step.trajectory.relaxed);
+  const TransitionRecheck c = recheckTransition(*p.model, p.contact, step);
+  EXPECT_LE(c.dynamics, 1e-6);
+  EXPECT_LE(c.held_sole, 1e-3);
+  EXPECT_LE(c.end_q, 1e-3);
+  EXPECT_LE(c.landing, 1e-3);
+  // On the segment, strictly between its ends: off the line by nothing, s in (0, 1).
+  const Eigen::Vector2d target = r.target.position.head<2>(), chosen = step.foothold.head<2>();
+  const Eigen::Vector2d d = from - target;
+  const double s = (chosen - target).dot(d) / d.squaredNorm();
+  EXPECT_LT((chosen - target - s * d).norm(), 1e-6);
+  EXPECT_GT(s, 0.0);
+  EXPECT_LT(s, 1.0);
 }
 
 TEST(NearestReachable, WithoutAReachabilityCheckItIsTheKinematicSearch) {

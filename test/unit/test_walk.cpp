@@ -427,15 +427,16 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
 TEST(WalkingPolicy, AFallbackThatFindsNothingIsClippedToTheBoundsNotTheRejectedTarget) {
   // Pushed 0.4 m/s to the left with the right leg swinging first, the TVR puts the first swing
   // sole into the stance foot (kinematically infeasible); the nearest-foothold search is cut
-  // to one ring of 1 mm, so that it finds no feasible point (as when the stance knee is at its
-  // limit under the predicted pelvis). The step must not go to the rejected target: it is the
-  // TVR step clipped to the heuristic bounds of config/biped.yaml (|x| <= 0.42 m,
-  // 0.25 <= |y| <= 0.65 m towards the swing side from the stance sole), as the baseline's.
+  // to one ring of 1 mm and no retreat, so that it finds no feasible point (as when the stance
+  // knee is at its limit under the predicted pelvis). The step must not go to the rejected target:
+  // it is the TVR step clipped to the heuristic bounds of config/biped.yaml (|x| <= 0.42 m, 0.25 <=
+  // |y| <= 0.65 m towards the swing side from the stance sole), as the baseline's.
   for (const std::string policy : {"proposed", "kinematic"}) {
     WalkSetup setup = shippedSetup(policy, 2, Eigen::Vector2d(0, 0.4));
     setup.walk.first_swing = WalkConfig::FirstSwing::kRight;
     setup.footsteps.nearest_foothold.rings = 1;
     setup.footsteps.nearest_foothold.ring_step = 0.001;
+    setup.footsteps.nearest_foothold.retreat_checks = 0;  // no point toward the swing sole
     setup.footsteps.reach.budgets.full.initial_samples = 300;
     const WalkResult r = setup.experiment(kUrdf)->run();
     ASSERT_FALSE(r.records.empty()) << r.summaryLine();

@@ -75,9 +75,10 @@ enum class InfeasibleFootholdPolicy {
   /// kinematically feasible and that the reachability check (steps 2-4, every pass) certifies
   /// with a strict trajectory, nearest first, at most NearestFootholdConfig::max_checked
   /// candidates checked, all of them within one ocp.time_limit (or the request's earlier
-  /// deadline). None certified: the target's own plan when it is kinematically
-  /// feasible (its relaxed OCP), else the nearest feasible candidate's (uncertified, its OCP
-  /// strict then relaxed). Without a reachability check: kNearestFeasible.
+  /// deadline), then NearestFootholdConfig::retreat_checks points toward the swing sole (the
+  /// certified one nearest the target). None certified: the target's own plan when it is
+  /// kinematically feasible (its relaxed OCP), else the nearest feasible candidate's (uncertified,
+  /// its OCP strict then relaxed). Without a reachability check: kNearestFeasible.
   kNearestReachable,
 };
 
@@ -288,6 +289,15 @@ class FootstepTransitionPlanner {
       step.ocp_time_s = ocp_time_s;
     }
   };
+  /// planNearestReachable() after the rings' candidates: NearestFootholdConfig::retreat_checks
+  /// points of the segment from the target (not certified) to the swing sole's position at
+  /// x_0, by bisection; the certified one nearest the target (its strict trajectory), or none.
+  /// `totals` and `checked` count every plan it made.
+  std::optional<FootstepTransition> planRetreat(const FootstepPlanRequest& r,
+                                                const FootstepPlanRequest& at,
+                                                const FootstepTransition& target,
+                                                const FootstepPlanProgress& progress,
+                                                PassTotals& totals, int& checked) const;
   /// A retry of the quick pass's strict OCP (`pass`: the wide hull retry or the hull pass)
   /// when it applies; the step when it ended it, the sums of `totals` carried (updated with
   /// this pass's).
