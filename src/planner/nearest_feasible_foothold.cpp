@@ -27,9 +27,10 @@ const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
                "on_fail nearest_reachable: feasible candidates the reachability check examines "
                "per step, nearest first")
           .add("retreat_checks", &C::retreat_checks, "", Range::between(0, 20),
-               "on_fail nearest_reachable, after those: checks of points on the segment from "
+               "on_fail nearest_reachable, the retreat: checks of points on the segment from "
                "the target to the swing sole at x_0, by bisection for the certified point "
-               "nearest the target (0: none)");
+               "nearest the target (0: none); after the rings' candidates, before them for a "
+               "kinematically infeasible target");
   return f;
 }
 

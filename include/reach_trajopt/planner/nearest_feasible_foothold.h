@@ -34,9 +34,10 @@ struct NearestFootholdConfig {
   /// on_fail nearest_reachable (step/footstep_transition_planner.h): kinematically feasible
   /// candidates the reachability check may examine per step, nearest first.
   int max_checked = 4;
-  /// on_fail nearest_reachable, after the rings' candidates: reachability checks of points on
-  /// the segment from the target to the swing sole's position at x_0 (where the foot comes
-  /// from), by bisection for the certified point nearest the target (0: none).
+  /// on_fail nearest_reachable, the retreat: reachability checks of points on the segment from
+  /// the target to the swing sole's position at x_0 (where the foot comes from), by bisection
+  /// for the certified point nearest the target (0: none); after the rings' candidates, or
+  /// before them for a kinematically infeasible target.
   int retreat_checks = 3;
   /// \throws ConfigError naming the first bad field.
   void validate() const;

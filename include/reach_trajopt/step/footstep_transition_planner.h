@@ -76,9 +76,11 @@ enum class InfeasibleFootholdPolicy {
   /// with a strict trajectory, nearest first, at most NearestFootholdConfig::max_checked
   /// candidates checked, all of them within one ocp.time_limit (or the request's earlier
   /// deadline), then NearestFootholdConfig::retreat_checks points toward the swing sole (the
-  /// certified one nearest the target). None certified: the target's own plan when it is
-  /// kinematically feasible (its relaxed OCP), else the nearest feasible candidate's (uncertified,
-  /// its OCP strict then relaxed). Without a reachability check: kNearestFeasible.
+  /// certified one nearest the target; before the rings for a kinematically infeasible
+  /// target, whose ring points lie at the edge of the leg's reach). None certified: the target's
+  /// own plan when it is kinematically feasible (its relaxed OCP), else the nearest feasible
+  /// candidate's (uncertified, its OCP strict then relaxed). Without a reachability check:
+  /// kNearestFeasible.
   kNearestReachable,
 };
 
@@ -289,10 +291,10 @@ class FootstepTransitionPlanner {
       step.ocp_time_s = ocp_time_s;
     }
   };
-  /// planNearestReachable() after the rings' candidates: NearestFootholdConfig::retreat_checks
-  /// points of the segment from the target (not certified) to the swing sole's position at
-  /// x_0, by bisection; the certified one nearest the target (its strict trajectory), or none.
-  /// `totals` and `checked` count every plan it made.
+  /// planNearestReachable()'s retreat (see kNearestReachable):
+  /// NearestFootholdConfig::retreat_checks points of the segment from the target (not certified) to
+  /// the swing sole's position at x_0, by bisection; the certified one nearest the target (its
+  /// strict trajectory), or none. `totals` and `checked` count every plan it made.
   std::optional<FootstepTransition> planRetreat(const FootstepPlanRequest& r,
                                                 const FootstepPlanRequest& at,
                                                 const FootstepTransition& target,
