@@ -39,6 +39,17 @@ RelaxationMode relaxationFor(OcpPolicy policy, bool reachable) {
   return reachable ? RelaxationMode::kStrict : RelaxationMode::kAuto;
 }
 
+/// A certified candidate standing in for the target of `r` (kNearestReachable): its request,
+/// the target's verdict, its source; `where` (how far from the target, and how found) leads
+/// its reason.
+void standInForTarget(FootstepTransition& step, const FootstepPlanRequest& r,
+                      const FootstepTransition& target, const char* where) {
+  step.request = r;
+  step.target_verdict = target.verdict;
+  step.foothold_source = FootholdSource::kNearestReachable;
+  step.reason = where + step.reason + "; the target: " + target.reason;
+}
+
 /// The witness path x_0 -> x_f as the OCP's initial guess.
 void seedFromWitness(const ReachResult& reach, TransitionRequest& ocp) {
   if (!reach.witness.valid) return;
@@ -139,13 +150,10 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
       totals.add(step);
       if (step.reachable && hasStrictTrajectory(r, step)) {
         carryTotals(step, checked);
-        step.request = r;
-        step.target_verdict = target.verdict;
-        step.foothold_source = FootholdSource::kNearestReachable;
         char where[96];
         std::snprintf(where, sizeof where, "nearest reachable foothold, %.3f m from the target: ",
                       ring * rings.ring_step);
-        step.reason = where + step.reason + "; the target: " + target.reason;
+        standInForTarget(step, r, target, where);
         return step;
       }
       if (!nearest_feasible) nearest_feasible = std::move(step);
@@ -207,14 +215,11 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
     }
   }
   if (!best) return std::nullopt;
-  best->request = r;
-  best->target_verdict = target.verdict;
-  best->foothold_source = FootholdSource::kNearestReachable;
   char where[128];
   std::snprintf(where, sizeof where,
                 "nearest reachable foothold toward the swing sole, %.3f m from the target: ",
                 (best->foothold - r.target.position).head<2>().norm());
-  best->reason = where + best->reason + "; the target: " + target.reason;
+  standInForTarget(*best, r, target, where);
   return best;
 }
 
