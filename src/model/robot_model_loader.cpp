@@ -21,7 +21,7 @@
 namespace reach_trajopt {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
 Eigen::Isometry3d toEigen(const KDL::Frame& f) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -174,9 +174,9 @@ int ModelBuilder::addFloatingBase(const urdf::InertialSharedPtr& root_inertial) 
     j.name = names[i];
     j.is_virtual = true;
     j.is_prismatic = i < 3;
-    j.q_min = -kInf;
-    j.q_max = kInf;
-    j.qd_max = kInf;
+    j.q_min = -kNoLimit;
+    j.q_max = kNoLimit;
+    j.qd_max = kNoLimit;
     j.effort_max = 0.0;
     model_->joints_.push_back(j);
   }
@@ -194,10 +194,10 @@ JointInfo ModelBuilder::jointInfo(const urdf::Joint& uj) const {
   j.name = uj.name;
   j.is_prismatic = uj.type == urdf::Joint::PRISMATIC;
   j.is_continuous = uj.type == urdf::Joint::CONTINUOUS;
-  j.q_min = -kInf;
-  j.q_max = kInf;
-  j.qd_max = kInf;
-  j.effort_max = kInf;
+  j.q_min = -kNoLimit;
+  j.q_max = kNoLimit;
+  j.qd_max = kNoLimit;
+  j.effort_max = kNoLimit;
   if (uj.limits) {
     if (uj.type != urdf::Joint::CONTINUOUS) {
       j.q_min = uj.limits->lower;

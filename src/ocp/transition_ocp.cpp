@@ -10,6 +10,7 @@
 
 #include "reach_trajopt/common/cancelled.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/stopwatch.h"
 #include "reach_trajopt/contact/contact_constraint.h"
 #include "reach_trajopt/ocp/transition_check.h"
 #include "reach_trajopt/ocp/transition_nlp.h"
@@ -480,7 +481,7 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     const Clock::time_point t0 = Clock::now();
     NlpValues probe;
     nlp.evaluate(x, false, probe);
-    reserve_s = 2.0 * std::chrono::duration<double>(Clock::now() - t0).count();
+    reserve_s = 2.0 * secondsSince(t0);
   }
   for (int round = 0;; ++round) {
     const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
@@ -500,7 +501,7 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     nlp.sampleSolution(x, config_.output_dt, res);
     const TransitionCheck check =
         checkTransition(*model_, contact_, request, res, 0.5 * config_.tolerance);
-    reserve_s = 2.0 * std::chrono::duration<double>(Clock::now() - sampled).count();
+    reserve_s = 2.0 * secondsSince(sampled);
     res.violation = check.violation;
     if (!error.empty()) {
       res.status = OcpStatus::kFailed;
@@ -589,7 +590,7 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request,
       break;
     }
   }
-  res.solve_time = std::chrono::duration<double>(Clock::now() - start).count();
+  res.solve_time = secondsSince(start);
   return res;
 }
 

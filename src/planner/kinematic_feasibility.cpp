@@ -9,6 +9,7 @@
 
 #include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/format_number.h"
 #include "reach_trajopt/contact/contact_constraint.h"
 
 namespace reach_trajopt {
@@ -35,13 +36,6 @@ bool rectanglesOverlap(const Eigen::Vector2d& c1, double yaw1, const Eigen::Vect
     }
   }
   return true;
-}
-
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(3);
-  os << v;
-  return os.str();
 }
 
 }  // namespace
@@ -98,14 +92,15 @@ std::string geometricRejection(const KinematicFeasibilityConfig& config,
   if (rectanglesOverlap(current.position.head<2>(), current.yaw, planned.position.head<2>(),
                         planned.yaw, contact.half_length + margin, contact.half_width + margin))
     return "planned " + swing_name + " overlaps the stance sole " + stance_name + " (clearance " +
-           fmt(config.sole_clearance) + " m): one foot would pass through the other";
+           formatNumber(config.sole_clearance) + " m): one foot would pass through the other";
   const Eigen::Vector3d delta = planned.position - current.position;
   const Eigen::Vector2d offset =
       Eigen::Rotation2Dd(-current.yaw) * delta.head<2>();  // stance heading frame
   const double toward_swing = (opposite(stance) == Side::kLeft ? 1.0 : -1.0) * offset.y();
   if (toward_swing < config.min_lateral_offset)
     return "planned " + swing_name + " crosses to the far side of the stance sole " + stance_name +
-           " (lateral offset " + fmt(toward_swing) + " m < " + fmt(config.min_lateral_offset) +
+           " (lateral offset " + formatNumber(toward_swing) + " m < " +
+           formatNumber(config.min_lateral_offset) +
            " m): the swing leg would pass through the stance leg";
   return "";
 }
@@ -217,9 +212,9 @@ std::string infeasibleReason(const RobotModel& model, const KinematicFeasibility
   }
   std::ostringstream os;
   os << "kinematically infeasible: after " << ik.iterations << " IK iterations " << names[worst]
-     << " misses its target by " << fmt(ik.task_pos[worst]) << " m and " << fmt(ik.task_rot[worst])
-     << " rad (tolerances " << config.position_tolerance << " m, " << config.orientation_tolerance
-     << " rad)";
+     << " misses its target by " << formatNumber(ik.task_pos[worst]) << " m and "
+     << formatNumber(ik.task_rot[worst]) << " rad (tolerances " << config.position_tolerance
+     << " m, " << config.orientation_tolerance << " rad)";
   const Eigen::VectorXd q_lo = model.positionLowerLimits();
   const Eigen::VectorXd q_hi = model.positionUpperLimits();
   std::string at_limits;
@@ -275,10 +270,10 @@ KinematicFeasibilityResult KinematicFeasibility::check(
   if (delta.head<2>().norm() > config_.workspace_radius ||
       std::abs(delta.z()) > config_.workspace_height) {
     throw RequestError("KinematicFeasibility: step outside the workspace: planned " + swing_name +
-                       " is " + fmt(delta.head<2>().norm()) + " m from " + stance_name +
-                       " horizontally and " + fmt(delta.z()) + " m vertically (limits " +
-                       fmt(config_.workspace_radius) + " m, " + fmt(config_.workspace_height) +
-                       " m)");
+                       " is " + formatNumber(delta.head<2>().norm()) + " m from " + stance_name +
+                       " horizontally and " + formatNumber(delta.z()) + " m vertically (limits " +
+                       formatNumber(config_.workspace_radius) + " m, " +
+                       formatNumber(config_.workspace_height) + " m)");
   }
 
   KinematicFeasibilityResult result;

@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/format_number.h"
+#include "reach_trajopt/common/stopwatch.h"
 #include "reach_trajopt/reach/reach_context.h"
 #include "reach_trajopt/reach/set_propagation.h"
 #include "reach_trajopt/reach/witness_certificate.h"
@@ -20,16 +22,6 @@ namespace reach_trajopt {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-std::string fmt(double v, int precision = 3) {
-  std::ostringstream os;
-  os.precision(precision);
-  os << v;
-  return os.str();
-}
 
 /// Throws ReachError when (q, qd) violates the limits or the held contacts.
 void validateState(const ReachContext& ctx, const char* which, const Eigen::VectorXd& q,
@@ -44,13 +36,13 @@ void validateState(const ReachContext& ctx, const char* which, const Eigen::Vect
   for (int i : ctx.finite_position)
     if (q[i] < ctx.q_min[i] - tol || q[i] > ctx.q_max[i] + tol)
       throw ReachError(std::string("reachability: ") + which + " violates the position limits of " +
-                       model.joints()[i].name + " (q = " + fmt(q[i], 6) + ", limits [" +
-                       fmt(ctx.q_min[i], 6) + ", " + fmt(ctx.q_max[i], 6) + "])");
+                       model.joints()[i].name + " (q = " + formatNumber(q[i], 6) + ", limits [" +
+                       formatNumber(ctx.q_min[i], 6) + ", " + formatNumber(ctx.q_max[i], 6) + "])");
   for (int i : ctx.finite_velocity)
     if (std::abs(qd[i]) > ctx.qd_max[i] + tol)
       throw ReachError(std::string("reachability: ") + which + " violates the velocity limit of " +
-                       model.joints()[i].name + " (|qd| = " + fmt(std::abs(qd[i]), 6) + " > " +
-                       fmt(ctx.qd_max[i], 6) + ")");
+                       model.joints()[i].name + " (|qd| = " + formatNumber(std::abs(qd[i]), 6) +
+                       " > " + formatNumber(ctx.qd_max[i], 6) + ")");
   Workspace ws(model);
   model.update(ws, q, qd);
   ContactConstraintTerms t(model.nq());
@@ -59,13 +51,13 @@ void validateState(const ReachContext& ctx, const char* which, const Eigen::Vect
     const std::string frame = model.frameNames()[c.frame()];
     if (t.phi.cwiseAbs().maxCoeff() > ctx.config.contact_tolerance)
       throw ReachError(std::string("reachability: ") + which + " violates the contact of " + frame +
-                       " (|phi| = " + fmt(t.phi.cwiseAbs().maxCoeff()) + " > contact_tolerance " +
-                       fmt(ctx.config.contact_tolerance) + ")");
+                       " (|phi| = " + formatNumber(t.phi.cwiseAbs().maxCoeff()) +
+                       " > contact_tolerance " + formatNumber(ctx.config.contact_tolerance) + ")");
     if (t.phidot.cwiseAbs().maxCoeff() > ctx.config.contact_velocity_tolerance)
       throw ReachError(std::string("reachability: ") + which + " moves the held sole " + frame +
-                       " (|J qd| = " + fmt(t.phidot.cwiseAbs().maxCoeff()) +
+                       " (|J qd| = " + formatNumber(t.phidot.cwiseAbs().maxCoeff()) +
                        " > contact_velocity_tolerance " +
-                       fmt(ctx.config.contact_velocity_tolerance) + ")");
+                       formatNumber(ctx.config.contact_velocity_tolerance) + ")");
   }
 }
 
@@ -75,10 +67,10 @@ std::string verdictReason(const SamplingBudget& budget, const std::vector<SliceC
   std::ostringstream os;
   if (w.certified) {
     os << "reachable: certified path x_0 -> x_f, the forward sample at t = "
-       << fmt(w.time[w.bridge_start]) << " s bridged to x_f (largest violation "
-       << fmt(w.violation.max()) << ", x(t_f) - x_f " << fmt(w.terminal_position_gap) << " / "
-       << fmt(w.terminal_velocity_gap) << ", pair " << w.candidates_tried << " of "
-       << budget.certificate_candidates << ")";
+       << formatNumber(w.time[w.bridge_start]) << " s bridged to x_f (largest violation "
+       << formatNumber(w.violation.max()) << ", x(t_f) - x_f "
+       << formatNumber(w.terminal_position_gap) << " / " << formatNumber(w.terminal_velocity_gap)
+       << ", pair " << w.candidates_tried << " of " << budget.certificate_candidates << ")";
     return os.str();
   }
   os << "unreachable (not shown reachable): ";
@@ -93,12 +85,13 @@ std::string verdictReason(const SamplingBudget& budget, const std::vector<SliceC
     os << "no bridge of the " << w.candidates_tried << " best junction pairs reached t_f";
   else
     os << "no bridge of the " << w.candidates_tried << " best junction pairs ended on x_f "
-       << "(closest: x(t_f) - x_f " << fmt(w.terminal_position_gap) << " / "
-       << fmt(w.terminal_velocity_gap) << ", swing sole " << fmt(w.terminal_output_gap)
-       << " m from the target, largest violation " << fmt(w.violation.max()) << ")";
+       << "(closest: x(t_f) - x_f " << formatNumber(w.terminal_position_gap) << " / "
+       << formatNumber(w.terminal_velocity_gap) << ", swing sole "
+       << formatNumber(w.terminal_output_gap) << " m from the target, largest violation "
+       << formatNumber(w.violation.max()) << ")";
   os << "; the output sets " << (sets_meet ? "meet" : "stay apart") << " (closest approach "
-     << fmt(c.distance.closest) << " m at t = " << fmt(c.time) << " s, d_H "
-     << fmt(c.distance.hausdorff) << " m)";
+     << formatNumber(c.distance.closest) << " m at t = " << formatNumber(c.time) << " s, d_H "
+     << formatNumber(c.distance.hausdorff) << " m)";
   return os.str();
 }
 
@@ -157,8 +150,9 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   const double gap = terminalGapInTolerances(config, quick.witness);
   if (schedule.give_up_gap > 0.0 && std::isfinite(gap) && gap > schedule.give_up_gap) {
     quick.gave_up = true;
-    quick.reason = "the quick budget's closest attempt ended " + fmt(gap) +
-                   " terminal tolerances from x_f (give_up_gap " + fmt(schedule.give_up_gap) +
+    quick.reason = "the quick budget's closest attempt ended " + formatNumber(gap) +
+                   " terminal tolerances from x_f (give_up_gap " +
+                   formatNumber(schedule.give_up_gap) +
                    "), the full budget not drawn: " + quick.reason;
     return quick;
   }
@@ -169,7 +163,7 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
   full.budgets = 2;
   full.counts.add(quick_counts);
   full.timings.add(quick_timings);
-  full.reason = "the quick budget certified nothing (closest attempt " + fmt(gap) +
+  full.reason = "the quick budget certified nothing (closest attempt " + formatNumber(gap) +
                 " terminal tolerances from x_f), the full budget: " + full.reason;
   return full;
 }
@@ -241,16 +235,16 @@ ReachResult ReachabilityAnalyzer::checkPass(const ReachProblem& pb, const ReachC
     // ---- the test (14) on the overlap window ----------------------------------------------
     const auto th = Clock::now();
     res.window = compareWindow(config, res.forward, res.backward, i_2, i_1, i_t);
-    res.timings.hausdorff = since(th);
+    res.timings.hausdorff = secondsSince(th);
     // ---- verdict and witness --------------------------------------------------------------
     const auto tw = Clock::now();
     res.best = decidingSlice(res.window, res.sets_meet);
     res.witness = certifyWitness(ctx, res.forward, res.backward, res.window, res.semi_implicit);
     res.reachable = res.witness.certified;
     res.reason = verdictReason(pass.budget, res.window, res.best, res.sets_meet, res.witness);
-    res.timings.witness = since(tw);
+    res.timings.witness = secondsSince(tw);
   }
-  res.timings.total = since(t_start);
+  res.timings.total = secondsSince(t_start);
   return res;
 }
 

@@ -16,6 +16,7 @@
 #include <type_traits>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/stopwatch.h"
 #include "reach_trajopt/reach/backward_step.h"
 #include "reach_trajopt/reach/boundary_selection.h"
 #include "reach_trajopt/reach/counter_rng.h"
@@ -50,9 +51,6 @@ struct SharedRun {
 enum Direction : std::uint64_t { kForward = 1, kBackward = 2 };
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// Fills `out` with draw number `c` of `n_children` from the box [-bound, bound]. The first
 /// vertices(n_children) draws are vertices of the box in antithetic pairs (draw 2k + 1 is the
@@ -246,7 +244,7 @@ class StepRun : public DirectionRun {
           if constexpr (std::is_same<Step, BackwardStep>::value)
             stats_.prefiltered += s->step.prefilterRejects();
         }
-        stats_.propagation_time = since(t0_) - stats_.boundary_time;
+        stats_.propagation_time = secondsSince(t0_) - stats_.boundary_time;
         return;
       }
       const SamplingBudget& budget = ctx_.budget;
@@ -394,7 +392,7 @@ class StepRun : public DirectionRun {
     rounds_.clear();
     const auto tb = Clock::now();
     selectAndStore(ctx_, forward_, prev, next);
-    stats_.boundary_time += since(tb);
+    stats_.boundary_time += secondsSince(tb);
     stats_.samples += next.size();
     slices_.push_back(std::move(next));
     steps_left_.store(root_.steps - (j + 1), std::memory_order_relaxed);

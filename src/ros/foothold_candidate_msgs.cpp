@@ -13,7 +13,7 @@ namespace ros_bridge {
 namespace {
 
 template <typename T>
-void requireSize(const std::vector<T>& v, size_t size, const char* field) {
+void requireEntryPerCandidate(const std::vector<T>& v, size_t size, const char* field) {
   if (v.size() != size)
     throw ReachError(std::string("check_footholds response: ") + field + ": expected " +
                      std::to_string(size) + " entries, got " + std::to_string(v.size()));
@@ -90,17 +90,17 @@ reach_trajopt::CheckFootholds::Response toCheckFootholdsResponseMsg(
 
 std::vector<CandidateOutcome> fromCheckFootholdsResponseMsg(
     const reach_trajopt::CheckFootholds::Response& m, size_t candidates, int nq) {
-  requireSize(m.feasible, candidates, "feasible");
-  requireSize(m.reason, candidates, "reason");
-  requireSize(m.error, candidates, "error");
-  requireSize(m.position_residual, candidates, "position_residual");
-  requireSize(m.orientation_residual, candidates, "orientation_residual");
-  requireSize(m.iterations, candidates, "iterations");
+  requireEntryPerCandidate(m.feasible, candidates, "feasible");
+  requireEntryPerCandidate(m.reason, candidates, "reason");
+  requireEntryPerCandidate(m.error, candidates, "error");
+  requireEntryPerCandidate(m.position_residual, candidates, "position_residual");
+  requireEntryPerCandidate(m.orientation_residual, candidates, "orientation_residual");
+  requireEntryPerCandidate(m.iterations, candidates, "iterations");
   size_t with_ik = 0;
   for (const std::string& e : m.error) with_ik += e.empty();
   const size_t n = static_cast<size_t>(nq);
-  requireSize(m.q_f, with_ik * n, "q_f");
-  requireSize(m.qd_f, with_ik * n, "qd_f");
+  requireEntryPerCandidate(m.q_f, with_ik * n, "q_f");
+  requireEntryPerCandidate(m.qd_f, with_ik * n, "qd_f");
   std::vector<CandidateOutcome> outcomes(candidates);
   size_t row = 0;
   for (size_t i = 0; i < candidates; ++i) {

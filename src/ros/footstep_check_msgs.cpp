@@ -56,7 +56,7 @@ void requireEntries(const std::vector<T>& v, size_t size, const char* field) {
                      std::to_string(size) + " entries, got " + std::to_string(v.size()));
 }
 
-Eigen::VectorXd responseVector(const std::vector<double>& v, size_t size, const char* field) {
+Eigen::VectorXd checkResponseVector(const std::vector<double>& v, size_t size, const char* field) {
   requireEntries(v, size, field);
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
@@ -206,9 +206,9 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
   k.position_residual = m.position_residual;
   k.orientation_residual = m.orientation_residual;
   k.iterations = m.iterations;
-  if (!m.q_f.empty()) k.q_f = responseVector(m.q_f, n, "q_f");
-  if (!m.qd_f.empty()) k.qd_f = responseVector(m.qd_f, n, "qd_f");
-  if (m.kinematically_feasible || !m.qdf.empty()) f.qdf = responseVector(m.qdf, n, "qdf");
+  if (!m.q_f.empty()) k.q_f = checkResponseVector(m.q_f, n, "q_f");
+  if (!m.qd_f.empty()) k.qd_f = checkResponseVector(m.qd_f, n, "qd_f");
+  if (m.kinematically_feasible || !m.qdf.empty()) f.qdf = checkResponseVector(m.qdf, n, "qdf");
   ReachResult& reach = f.reach;
   reach.reachable = m.reach_reachable;
   reach.reason = m.reach_reason;

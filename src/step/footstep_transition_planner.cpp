@@ -10,16 +10,13 @@
 #include <cstdio>
 
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/common/stopwatch.h"
 #include "reach_trajopt/planner/double_support_velocity.h"
 #include "reach_trajopt/step/contact_consistent_state.h"
 #include "reach_trajopt/step/reachable_set_constraint.h"
 
 namespace reach_trajopt {
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 StepVerdict verdictOf(const FootstepCheckResult& check, bool checked) {
   if (!check.kinematically_feasible) return StepVerdict::kKinematicallyInfeasible;

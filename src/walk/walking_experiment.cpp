@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "reach_trajopt/common/config_fields.h"
+#include "reach_trajopt/common/stopwatch.h"
 #include "reach_trajopt/control/com_reference.h"
 #include "reach_trajopt/control/swing_trajectory.h"
 #include "reach_trajopt/control/transition_tracking.h"
@@ -506,8 +507,7 @@ WalkResult WalkingExperiment::Loop::run() {
     references(t);
     if (!controlAndStep(t)) break;
   }
-  result_.wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result_.wall_time = secondsSince(wall_start);
   return result_;
 }
 
@@ -776,8 +776,7 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
                   std::max(0.0, phase_start_ + swing_duration_ - t - wc_.plan_deadline_margin)));
     const FootstepTransition step =
         impl_.plan_footstep ? impl_.plan_footstep(request) : impl_.footsteps->plan(request);
-    const double wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    const double wall_s = secondsSince(wall_start);
     recordCheck(step);
     PendingPlan plan = decidePlan(step, t);
     if (replanning && !plan.track_ocp && tracked_.time.size() > 0) return false;
