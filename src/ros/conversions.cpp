@@ -269,5 +269,11 @@ void requireWorldFrame(const std::string& frame_id, const std::string& field) {
     throw RequestError(field + "unknown frame '" + frame_id + "': positions must be in 'world'");
 }
 
+Eigen::VectorXd responseVector(const std::string& service, const std::vector<double>& v,
+                               size_t size, const char* field) {
+  requireResponseEntries(service, v, size, field);
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
 }  // namespace ros_bridge
 }  // namespace reach_trajopt

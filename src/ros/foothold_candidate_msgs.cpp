@@ -10,17 +10,6 @@
 namespace reach_trajopt {
 namespace ros_bridge {
 
-namespace {
-
-template <typename T>
-void requireEntryPerCandidate(const std::vector<T>& v, size_t size, const char* field) {
-  if (v.size() != size)
-    throw ReachError(std::string("check_footholds response: ") + field + ": expected " +
-                     std::to_string(size) + " entries, got " + std::to_string(v.size()));
-}
-
-}  // namespace
-
 reach_trajopt::CheckFootholds::Request toCheckFootholdsRequestMsg(const FootholdCandidates& batch,
                                                                   uint64_t request_id) {
   reach_trajopt::CheckFootholds::Request m;
@@ -90,17 +79,18 @@ reach_trajopt::CheckFootholds::Response toCheckFootholdsResponseMsg(
 
 std::vector<CandidateOutcome> fromCheckFootholdsResponseMsg(
     const reach_trajopt::CheckFootholds::Response& m, size_t candidates, int nq) {
-  requireEntryPerCandidate(m.feasible, candidates, "feasible");
-  requireEntryPerCandidate(m.reason, candidates, "reason");
-  requireEntryPerCandidate(m.error, candidates, "error");
-  requireEntryPerCandidate(m.position_residual, candidates, "position_residual");
-  requireEntryPerCandidate(m.orientation_residual, candidates, "orientation_residual");
-  requireEntryPerCandidate(m.iterations, candidates, "iterations");
+  requireResponseEntries("check_footholds", m.feasible, candidates, "feasible");
+  requireResponseEntries("check_footholds", m.reason, candidates, "reason");
+  requireResponseEntries("check_footholds", m.error, candidates, "error");
+  requireResponseEntries("check_footholds", m.position_residual, candidates, "position_residual");
+  requireResponseEntries("check_footholds", m.orientation_residual, candidates,
+                         "orientation_residual");
+  requireResponseEntries("check_footholds", m.iterations, candidates, "iterations");
   size_t with_ik = 0;
   for (const std::string& e : m.error) with_ik += e.empty();
   const size_t n = static_cast<size_t>(nq);
-  requireEntryPerCandidate(m.q_f, with_ik * n, "q_f");
-  requireEntryPerCandidate(m.qd_f, with_ik * n, "qd_f");
+  requireResponseEntries("check_footholds", m.q_f, with_ik * n, "q_f");
+  requireResponseEntries("check_footholds", m.qd_f, with_ik * n, "qd_f");
   std::vector<CandidateOutcome> outcomes(candidates);
   size_t row = 0;
   for (size_t i = 0; i < candidates; ++i) {

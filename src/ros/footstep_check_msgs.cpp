@@ -48,19 +48,6 @@ FlatContact flatContact(const std::vector<double>& v, const std::string& field) 
   return c;
 }
 
-// A response field of `size` entries (a malformed answer, not a request).
-template <typename T>
-void requireEntries(const std::vector<T>& v, size_t size, const char* field) {
-  if (v.size() != size)
-    throw ReachError(std::string("check_footstep response: ") + field + ": expected " +
-                     std::to_string(size) + " entries, got " + std::to_string(v.size()));
-}
-
-Eigen::VectorXd checkResponseVector(const std::vector<double>& v, size_t size, const char* field) {
-  requireEntries(v, size, field);
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
-
 }  // namespace
 
 reach_trajopt::CheckFootstep::Request toCheckFootstepRequestMsg(
@@ -206,14 +193,17 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
   k.position_residual = m.position_residual;
   k.orientation_residual = m.orientation_residual;
   k.iterations = m.iterations;
-  if (!m.q_f.empty()) k.q_f = checkResponseVector(m.q_f, n, "q_f");
-  if (!m.qd_f.empty()) k.qd_f = checkResponseVector(m.qd_f, n, "qd_f");
-  if (m.kinematically_feasible || !m.qdf.empty()) f.qdf = checkResponseVector(m.qdf, n, "qdf");
+  if (!m.q_f.empty()) k.q_f = responseVector("check_footstep", m.q_f, n, "q_f");
+  if (!m.qd_f.empty()) k.qd_f = responseVector("check_footstep", m.qd_f, n, "qd_f");
+  if (m.kinematically_feasible || !m.qdf.empty())
+    f.qdf = responseVector("check_footstep", m.qdf, n, "qdf");
   ReachResult& reach = f.reach;
   reach.reachable = m.reach_reachable;
   reach.reason = m.reach_reason;
-  requireEntries(m.window_hausdorff, m.window_time.size(), "window_hausdorff");
-  requireEntries(m.window_overlap, m.window_time.size(), "window_overlap");
+  requireResponseEntries("check_footstep", m.window_hausdorff, m.window_time.size(),
+                         "window_hausdorff");
+  requireResponseEntries("check_footstep", m.window_overlap, m.window_time.size(),
+                         "window_overlap");
   for (size_t i = 0; i < m.window_time.size(); ++i) {
     SliceComparison c;
     c.time = m.window_time[i];
@@ -224,7 +214,7 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
   WitnessPath& w = reach.witness;
   forEachWitnessField(m, w, [](const auto& from, auto& to) { to = from; });
   if (!m.witness_q.empty()) {
-    requireEntries(m.witness_q, n * m.witness_time.size(), "witness_q");
+    requireResponseEntries("check_footstep", m.witness_q, n * m.witness_time.size(), "witness_q");
     w.q = Eigen::Map<const Eigen::MatrixXd>(m.witness_q.data(), nq,
                                             static_cast<Eigen::Index>(m.witness_time.size()));
   }
@@ -233,11 +223,12 @@ FootstepCheckResult fromCheckFootstepResponseMsg(const reach_trajopt::CheckFoots
   if (w.valid) {
     w.violation = pathViolationFromVector(m.witness_violation, "check_footstep");
   }
-  requireEntries(m.constraint_rows, m.constraint_time.size(), "constraint_rows");
+  requireResponseEntries("check_footstep", m.constraint_rows, m.constraint_time.size(),
+                         "constraint_rows");
   size_t rows = 0;
   for (uint32_t r : m.constraint_rows) rows += r;
-  requireEntries(m.constraint_normals, 2 * rows, "constraint_normals");
-  requireEntries(m.constraint_offsets, rows, "constraint_offsets");
+  requireResponseEntries("check_footstep", m.constraint_normals, 2 * rows, "constraint_normals");
+  requireResponseEntries("check_footstep", m.constraint_offsets, rows, "constraint_offsets");
   size_t row = 0;
   for (size_t i = 0; i < m.constraint_time.size(); ++i) {
     ReachableSlice s;

@@ -97,9 +97,7 @@ std::vector<double> pathViolationVector(const PathViolation& v) {
 }
 
 PathViolation pathViolationFromVector(const std::vector<double>& v, const std::string& service) {
-  if (v.size() != 10)
-    throw ReachError(service + " response: witness_violation: expected 10 numbers, got " +
-                     std::to_string(v.size()));
+  requireResponseEntries(service, v, 10, "witness_violation");
   return PathViolation{v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9]};
 }
 

@@ -20,15 +20,6 @@ std::vector<double> pair(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
 
 double finiteNumber(double v, const std::string& field) { return finiteVector({v}, 1, field)[0]; }
 
-// A response field of `size` numbers (a malformed answer, not a request).
-Eigen::VectorXd proposalResponseVector(const std::vector<double>& v, size_t size,
-                                       const char* field) {
-  if (v.size() != size)
-    throw ReachError(std::string("propose_footstep response: ") + field + ": expected " +
-                     std::to_string(size) + " numbers, got " + std::to_string(v.size()));
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
-
 }  // namespace
 
 reach_trajopt::ProposeFootstep::Request toProposeFootstepRequestMsg(const TvrProposalRequest& r,
@@ -87,16 +78,18 @@ reach_trajopt::ProposeFootstep::Response toProposeFootstepResponseMsg(const TvrP
 TvrProposal fromProposeFootstepResponseMsg(const reach_trajopt::ProposeFootstep::Response& m,
                                            const TvrProposalRequest& request) {
   TvrProposal p;
-  p.step.alpha_tvr = proposalResponseVector(m.alpha_tvr, 2, "alpha_tvr");
-  p.step.alpha = proposalResponseVector(m.alpha, 2, "alpha");
-  p.step.offset = proposalResponseVector(m.offset, 2, "offset");
-  p.step.com_velocity_used = proposalResponseVector(m.com_velocity_used, 2, "com_velocity_used");
+  p.step.alpha_tvr = responseVector("propose_footstep", m.alpha_tvr, 2, "alpha_tvr");
+  p.step.alpha = responseVector("propose_footstep", m.alpha, 2, "alpha");
+  p.step.offset = responseVector("propose_footstep", m.offset, 2, "offset");
+  p.step.com_velocity_used =
+      responseVector("propose_footstep", m.com_velocity_used, 2, "com_velocity_used");
   p.step.speed_clipped = m.speed_clipped;
   p.step.offset_clipped = m.offset_clipped;
-  const Eigen::VectorXd com = proposalResponseVector(m.predicted_com, 4, "predicted_com");
+  const Eigen::VectorXd com =
+      responseVector("propose_footstep", m.predicted_com, 4, "predicted_com");
   p.input.com.p = com.head<2>();
   p.input.com.pd = com.tail<2>();
-  p.input.p_des = proposalResponseVector(m.p_des, 2, "p_des");
+  p.input.p_des = responseVector("propose_footstep", m.p_des, 2, "p_des");
   p.input.stance = request.stance;
   p.input.stance_yaw = 0.0;
   p.input.swing = request.swing;

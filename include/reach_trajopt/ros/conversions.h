@@ -24,6 +24,7 @@
 #include "reach_trajopt/ContactPlan.h"
 #include "reach_trajopt/ContactState.h"
 #include "reach_trajopt/StepReport.h"
+#include "reach_trajopt/common/error.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/planner/tvr_planner.h"
 #include "reach_trajopt/walk/walking_experiment.h"
@@ -36,6 +37,20 @@ inline constexpr char kWorldFrame[] = "world";
 /// Throws RequestError "<field>unknown frame '<frame_id>': positions must be in 'world'" unless
 /// `frame_id` (a request's header.frame_id) is empty or kWorldFrame.
 void requireWorldFrame(const std::string& frame_id, const std::string& field = "");
+
+// ---- Responses of remote services -----------------------------------------------------------
+/// Throws ReachError "<service> response: <field>: expected <size> entries, got <n>" unless `v`
+/// has `size` entries: a malformed answer of a remote service (not a bad request).
+template <typename T>
+void requireResponseEntries(const std::string& service, const std::vector<T>& v, size_t size,
+                            const char* field) {
+  if (v.size() != size)
+    throw ReachError(service + " response: " + field + ": expected " + std::to_string(size) +
+                     " entries, got " + std::to_string(v.size()));
+}
+/// Response field `field` of `size` numbers as a vector (requireResponseEntries first).
+Eigen::VectorXd responseVector(const std::string& service, const std::vector<double>& v,
+                               size_t size, const char* field);
 
 // ---- Geometry -------------------------------------------------------------------------------
 geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p);
