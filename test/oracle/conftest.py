@@ -93,8 +93,20 @@ def finite_or_none(x):
 
 
 # Lines a test wants in the run's output even when it passes (e.g. how many robots an oracle
-# checked); printed at the end of the pytest run.
+# checked); printed at the end of the pytest run. With pytest-xdist (scripts/run_tests runs two
+# workers) each worker hands its lines to the controller, which prints them all.
 SUMMARY_LINES = []
+
+
+def pytest_sessionfinish(session):
+    workeroutput = getattr(session.config, "workeroutput", None)
+    if workeroutput is not None:  # an xdist worker
+        workeroutput["summary_lines"] = list(SUMMARY_LINES)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    SUMMARY_LINES.extend(getattr(node, "workeroutput", {}).get("summary_lines", []))
 
 
 def pytest_terminal_summary(terminalreporter):
