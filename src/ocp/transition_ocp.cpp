@@ -20,8 +20,6 @@ namespace reach_trajopt {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 /// SLSQP's answer violates its own rows by more than this many times the tolerance: far from
 /// feasible (TransitionOcp::solveMode refines it only while the violation halves).
 constexpr double kFarFromFeasible = 100.0;
@@ -82,10 +80,10 @@ struct NloptBridge {
   std::string error;
   /// The time limit, checked inside the evaluations (SLSQP's own maxtime test runs only
   /// between them): an evaluation that would start too late stops the run instead.
-  Clock::time_point deadline = Clock::time_point::max();
+  SteadyClock::time_point deadline = SteadyClock::time_point::max();
   double reserve_s = 0.0;     ///< kept free for sampling and checking the answer [s]
   double longest_step_s = 0;  ///< the longest wall time between two gradient evaluations [s]
-  Clock::time_point last_gradient{};
+  SteadyClock::time_point last_gradient{};
   bool timed_out = false;
   /// Anytime: the lowest-cost iterate whose NLP rows all hold within `feasible_tolerance`
   /// (every gradient evaluation is at an iterate SLSQP accepted). Empty when none was.
@@ -100,8 +98,8 @@ struct NloptBridge {
   /// (its dense least-squares subproblem: up to 0.95 s for a 5 s swing) cannot be interrupted,
   /// so the run stops before an iteration it could not finish in time, never after the limit.
   bool outOfTime(bool gradients) {
-    const Clock::time_point now = Clock::now();
-    if (gradients && last_gradient != Clock::time_point{})
+    const SteadyClock::time_point now = SteadyClock::now();
+    if (gradients && last_gradient != SteadyClock::time_point{})
       longest_step_s =
           std::max(longest_step_s, std::chrono::duration<double>(now - last_gradient).count());
     const double left = std::chrono::duration<double>(deadline - now).count() - reserve_s;
@@ -133,7 +131,7 @@ struct NloptBridge {
     valid = true;
     has_gradients = gradients;
     if (gradients) {
-      last_gradient = Clock::now();
+      last_gradient = SteadyClock::now();
       ++gradient_evaluations;
       if (nlpViolation(values) <= feasible_tolerance && values.cost < best_feasible_cost) {
         best_feasible_cost = values.cost;
@@ -192,7 +190,7 @@ struct NloptBridge {
 /// code name (MAXTIME_REACHED when the deadline stopped it); `error` gets callback failures.
 /// \throws ReachCancelled when `progress` returns false.
 std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
-                         Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
+                         SteadyClock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
                          int& evaluations, std::string& error, const OcpProgressCallback& progress,
                          const std::vector<int>* rows) {
   const unsigned n = static_cast<unsigned>(nlp.variableCount());
@@ -206,7 +204,7 @@ std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
   bridge.deadline = deadline;
   bridge.reserve_s = reserve_s;
   bridge.feasible_tolerance = 0.5 * config.tolerance;
-  const double max_time = std::chrono::duration<double>(deadline - Clock::now()).count();
+  const double max_time = secondsUntil(deadline);
   auto toStd = [](const Eigen::VectorXd& v) {
     return std::vector<double>(v.data(), v.data() + v.size());
   };
@@ -271,7 +269,7 @@ std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
 /// full problem's as long as the rows left out stay away; the final check makes the answer hold
 /// every row (TransitionOcpConfig::row_screening). screen <= 0: all rows at once.
 std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
-                     Clock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
+                     SteadyClock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
                      int& evaluations, std::string& error, const OcpProgressCallback& progress) {
   const double screen = config.row_screening;
   if (screen <= 0.0)
@@ -457,7 +455,7 @@ bool TransitionOcp::finalStateOnContacts(const TransitionRequest& r) const {
 }
 
 TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool relaxed,
-                                          Clock::time_point deadline,
+                                          SteadyClock::time_point deadline,
                                           const OcpProgressCallback& progress) const {
   TransitionNlp nlp(model_, config_, contact_, request, relaxed);
   Eigen::VectorXd x = nlp.initialGuess();
@@ -478,13 +476,13 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
   // time, twice (a first guess before any: one evaluation of the NLP, timed here).
   double reserve_s = 0.0;
   {
-    const Clock::time_point t0 = Clock::now();
+    const SteadyClock::time_point t0 = SteadyClock::now();
     NlpValues probe;
     nlp.evaluate(x, false, probe);
     reserve_s = 2.0 * secondsSince(t0);
   }
   for (int round = 0;; ++round) {
-    const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
+    const double remaining = secondsUntil(deadline);
     if (remaining <= reserve_s) {
       res.status = OcpStatus::kFailed;
       res.reason = "time limit reached (the earlier of the caller's deadline and time_limit, " +
@@ -497,7 +495,7 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     ++res.solves;
     res.variables = nlp.variableCount();
     res.constraints = nlp.equalityCount() + nlp.inequalityCount();
-    const Clock::time_point sampled = Clock::now();
+    const SteadyClock::time_point sampled = SteadyClock::now();
     nlp.sampleSolution(x, config_.output_dt, res);
     const TransitionCheck check =
         checkTransition(*model_, contact_, request, res, 0.5 * config_.tolerance);
@@ -551,16 +549,15 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
 
 TransitionResult TransitionOcp::solve(const TransitionRequest& request,
                                       const OcpProgressCallback& progress) const {
-  return solve(request, progress, Clock::time_point::max());
+  return solve(request, progress, SteadyClock::time_point::max());
 }
 
 TransitionResult TransitionOcp::solve(const TransitionRequest& request,
                                       const OcpProgressCallback& progress,
-                                      Clock::time_point step_deadline) const {
-  const Clock::time_point start = Clock::now();
-  const Clock::time_point deadline =
-      std::min(step_deadline, start + std::chrono::duration_cast<Clock::duration>(
-                                          std::chrono::duration<double>(config_.time_limit)));
+                                      SteadyClock::time_point step_deadline) const {
+  const SteadyClock::time_point start = SteadyClock::now();
+  const SteadyClock::time_point deadline =
+      std::min(step_deadline, secondsAfter(start, config_.time_limit));
   validate(request);
   TransitionResult res;
   switch (request.relaxation) {
@@ -575,7 +572,7 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request,
         res = solveMode(request, false, deadline, progress);
         if (res.status != OcpStatus::kFailed) break;
         // Out of time: the strict problem's answer (failed, naming the time limit) stands.
-        if (Clock::now() >= deadline || timedOut(res.nlopt_status)) break;
+        if (SteadyClock::now() >= deadline || timedOut(res.nlopt_status)) break;
         const TransitionResult strict = res;
         res = solveMode(request, true, deadline, progress);
         res.iterations += strict.iterations;

@@ -6,7 +6,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -20,8 +19,6 @@
 namespace reach_trajopt {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 /// Throws ReachError when (q, qd) violates the limits or the held contacts.
 void validateState(const ReachContext& ctx, const char* which, const Eigen::VectorXd& q,
@@ -171,7 +168,7 @@ ReachResult ReachabilityAnalyzer::check(const ReachProblem& pb, const ReachConfi
 ReachResult ReachabilityAnalyzer::checkPass(const ReachProblem& pb, const ReachConfig& config_in,
                                             const CheckPass& pass,
                                             const ReachProgressCallback& progress) const {
-  const auto t_start = Clock::now();
+  const auto t_start = SteadyClock::now();
   ReachConfig config = config_in;
   if (pass.forwardOnly() && pass.forward_until_s >= 0.0 &&
       pass.forward_until_s < config.window_end) {
@@ -233,11 +230,11 @@ ReachResult ReachabilityAnalyzer::checkPass(const ReachProblem& pb, const ReachC
     res.reason = "not checked: the forward set only (PassSets::kForwardOnly, the hull pass)";
   } else {
     // ---- the test (14) on the overlap window ----------------------------------------------
-    const auto th = Clock::now();
+    const auto th = SteadyClock::now();
     res.window = compareWindow(config, res.forward, res.backward, i_2, i_1, i_t);
     res.timings.hausdorff = secondsSince(th);
     // ---- verdict and witness --------------------------------------------------------------
-    const auto tw = Clock::now();
+    const auto tw = SteadyClock::now();
     res.best = decidingSlice(res.window, res.sets_meet);
     res.witness = certifyWitness(ctx, res.forward, res.backward, res.window, res.semi_implicit);
     res.reachable = res.witness.certified;

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -49,8 +48,6 @@ struct SharedRun {
   std::vector<DirectionRun*> directions;  ///< what the workers take items from
 };
 enum Direction : std::uint64_t { kForward = 1, kBackward = 2 };
-
-using Clock = std::chrono::steady_clock;
 
 /// Fills `out` with draw number `c` of `n_children` from the box [-bound, bound]. The first
 /// vertices(n_children) draws are vertices of the box in antithetic pairs (draw 2k + 1 is the
@@ -223,7 +220,7 @@ class StepRun : public DirectionRun {
 
   void start() override {
     guarded([&] {
-      t0_ = Clock::now();
+      t0_ = SteadyClock::now();
       stats_ = PropagationStats();
       slices_.clear();
       slices_.reserve(root_.steps + 1);
@@ -390,7 +387,7 @@ class StepRun : public DirectionRun {
       }
     }
     rounds_.clear();
-    const auto tb = Clock::now();
+    const auto tb = SteadyClock::now();
     selectAndStore(ctx_, forward_, prev, next);
     stats_.boundary_time += secondsSince(tb);
     stats_.samples += next.size();
@@ -438,7 +435,7 @@ class StepRun : public DirectionRun {
   PropagationStats& stats_;
   SharedRun& run_;
   std::vector<std::unique_ptr<Scratch<Step>>> scratch_;
-  Clock::time_point t0_;
+  SteadyClock::time_point t0_;
   int n_children_ = 0, chunks_ = 1;
   std::vector<std::unique_ptr<StepChildren>> rounds_;  ///< the current step's rounds of draws
   long survivors_ = 0;                                 ///< their children kept so far

@@ -4,7 +4,6 @@
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -13,6 +12,7 @@
 #include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/stopwatch.h"
 #include "reach_trajopt/ocp/transition_request.h"
 #include "reach_trajopt/ros/conversions.h"
 #include "reach_trajopt/ros/service_requests.h"
@@ -21,7 +21,6 @@ namespace reach_trajopt {
 namespace ros_bridge {
 
 namespace {
-using Clock = std::chrono::steady_clock;
 constexpr double kMinTimeBudget = 1e-3;  // [s] a deadline already past, as a budget
 constexpr double kMaxTimeBudget = 1e6;   // [s]
 
@@ -144,7 +143,7 @@ reach_trajopt::PlanFootstep::Request toPlanFootstepRequestMsg(const FootstepPlan
   m.ocp_policy = ocpPolicyName(r.ocp_policy);
   m.on_infeasible = infeasibleFootholdPolicyName(r.on_infeasible);
   if (r.deadline) {  // what is left of it now; one already past asks for the quickest answer
-    const double left = std::chrono::duration<double>(*r.deadline - Clock::now()).count();
+    const double left = secondsUntil(*r.deadline);
     m.time_budget = std::max(left, kMinTimeBudget);
   }
   return m;
@@ -223,9 +222,7 @@ FootstepPlanRequest fromPlanFootstepRequestMsg(const reach_trajopt::PlanFootstep
        << m.time_budget;
     throw RequestError(os.str());
   }
-  if (m.time_budget > 0.0)
-    r.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                    std::chrono::duration<double>(m.time_budget));
+  if (m.time_budget > 0.0) r.deadline = secondsAfter(SteadyClock::now(), m.time_budget);
   return r;
 }
 

@@ -5,7 +5,6 @@
 #include "reach_trajopt/step/footstep_transition_planner.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -100,9 +99,7 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   if (target.reachable && hasStrictTrajectory(r, target)) return target;
   // The candidates together keep one OCP's time limit (or the request's earlier deadline):
   // each one's OCP would otherwise have its own (TALOS: 18 s for a step's candidates).
-  const auto search_deadline = std::chrono::steady_clock::now() +
-                               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(config_.ocp.time_limit));
+  const auto search_deadline = secondsAfter(SteadyClock::now(), config_.ocp.time_limit);
   if (!at.deadline || search_deadline < *at.deadline) at.deadline = search_deadline;
   PassTotals totals = PassTotals::of(target);
   auto carryTotals = [&](FootstepTransition& step, int checked) {
@@ -431,7 +428,7 @@ TouchdownPrediction FootstepTransitionPlanner::predictTouchdown(const FootstepPl
 FootstepCheckResult FootstepTransitionPlanner::runCheck(
     const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& pass,
     const ReachProgressCallback& progress, const FootstepTransition& out, double& time_s) const {
-  const auto check_start = std::chrono::steady_clock::now();
+  const auto check_start = SteadyClock::now();
   if (footstep_check_) {
     FootstepCheckResult checked =
         footstep_check_(out.transition, reach, pass, r.check_reachability);
@@ -558,9 +555,8 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
     return;
   }
   seedFromWitness(check.reach, ocp);
-  const auto ocp_start = std::chrono::steady_clock::now();
-  out.trajectory =
-      ocp_.solve(ocp, progress, r.deadline.value_or(std::chrono::steady_clock::time_point::max()));
+  const auto ocp_start = SteadyClock::now();
+  out.trajectory = ocp_.solve(ocp, progress, r.deadline.value_or(SteadyClock::time_point::max()));
   out.ocp_time_s = secondsSince(ocp_start);
   // Without a usable trajectory the swing still goes to the nearest kinematically feasible
   // foothold (the target itself when it is feasible).

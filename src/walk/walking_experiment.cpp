@@ -5,7 +5,6 @@
 #include "reach_trajopt/walk/walking_experiment.h"
 
 #include <Eigen/LU>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -497,7 +496,7 @@ TvrConfig WalkingExperiment::Loop::plannerConfig(const TvrConfig& tvr, const Wal
 }
 
 WalkResult WalkingExperiment::Loop::run() {
-  const auto wall_start = std::chrono::steady_clock::now();
+  const auto wall_start = SteadyClock::now();
   const int max_ticks = static_cast<int>(std::ceil(wc_.max_sim_time / dt_));
   result_.end_reason = "time limit";
   for (int tick = 0; tick < max_ticks; ++tick) {
@@ -763,17 +762,14 @@ void WalkingExperiment::Loop::planStep(double t, double time_in_swing) {
 bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
   checked_ = true;
   try {
-    const auto wall_start = std::chrono::steady_clock::now();
+    const auto wall_start = SteadyClock::now();
     FootstepPlanRequest request = footstepRequest(ts, replanning);
     // Paying for the plan's wall time, the planner knows its deadline: the nominal touchdown,
     // as far away in wall time as it is in sim time (a later plan would be dropped), less the
     // margin its answer needs to take effect before then.
     if (wc_.plan_latency == WalkConfig::PlanLatency::kMeasured)
-      request.deadline =
-          wall_start +
-          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-              std::chrono::duration<double>(
-                  std::max(0.0, phase_start_ + swing_duration_ - t - wc_.plan_deadline_margin)));
+      request.deadline = secondsAfter(
+          wall_start, std::max(0.0, phase_start_ + swing_duration_ - t - wc_.plan_deadline_margin));
     const FootstepTransition step =
         impl_.plan_footstep ? impl_.plan_footstep(request) : impl_.footsteps->plan(request);
     const double wall_s = secondsSince(wall_start);

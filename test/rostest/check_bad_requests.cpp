@@ -6,9 +6,11 @@
 // then a valid one; so does a reachability worker's check_footholds (the request id echoed),
 // reachability_node's check_footstep and tvr_planner_node's propose_footstep.
 
-#include <dirent.h>
 #include <gtest/gtest.h>
+#include <ros/master.h>
+#include <ros/network.h>
 #include <ros/ros.h>
+#include <xmlrpcpp/XmlRpcClient.h>
 
 #include <algorithm>
 #include <chrono>
@@ -52,22 +54,28 @@ constexpr double kMaxSlopeKiB = 200.0;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 
-/// PID of the process whose command line names `node` (__name:=node), -1 if none.
+/// PID of the node `node` of this test's own ROS graph, -1 if none: its URI from the master
+/// (lookupNode), then its pid from the node itself (getPid), as `rosnode info` does. Another
+/// graph's node of the same name (a rostest run beside this one) is not this one.
 int pidOf(const std::string& node) {
-  DIR* proc = opendir("/proc");
-  if (!proc) return -1;
-  int found = -1;
-  while (dirent* e = readdir(proc)) {
-    const std::string name = e->d_name;
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream f("/proc/" + name + "/cmdline");
-    std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    if (cmd.find("__name:=" + node) != std::string::npos &&
-        cmd.find("/" + node) != std::string::npos)
-      found = std::stoi(name);
-  }
-  closedir(proc);
-  return found;
+  XmlRpc::XmlRpcValue args, response, uri;
+  args[0] = ros::this_node::getName();
+  args[1] = "/" + node;
+  if (!ros::master::execute("lookupNode", args, response, uri, false) ||
+      uri.getType() != XmlRpc::XmlRpcValue::TypeString)
+    return -1;
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(static_cast<std::string>(uri), host, port)) return -1;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue caller, answer;
+  caller[0] = ros::this_node::getName();
+  if (!client.execute("getPid", caller, answer) ||
+      answer.getType() != XmlRpc::XmlRpcValue::TypeArray || answer.size() != 3 ||
+      answer[0].getType() != XmlRpc::XmlRpcValue::TypeInt || static_cast<int>(answer[0]) != 1 ||
+      answer[2].getType() != XmlRpc::XmlRpcValue::TypeInt)
+    return -1;
+  return static_cast<int>(answer[2]);
 }
 
 /// Resident memory of `pid` [MiB] (VmRSS), -1 when the process is gone.
