@@ -30,7 +30,13 @@ const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
                "on_fail nearest_reachable, the retreat: checks of points on the segment from "
                "the target to the swing sole at x_0, by bisection for the certified point "
                "nearest the target (0: none); after the rings' candidates, before them for a "
-               "kinematically infeasible target");
+               "kinematically infeasible target")
+          .add("retreat_kinematic_points", &C::retreat_kinematic_points, "",
+               Range::between(0, 1000),
+               "on_fail nearest_reachable, the retreat from a kinematically infeasible target: "
+               "evenly spaced points of the segment the kinematic check alone examines, nearest "
+               "the target first; the retreat's checks start at the first that passes it (0: "
+               "the bisection starts at the middle)");
   return f;
 }
 

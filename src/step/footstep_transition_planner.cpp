@@ -190,20 +190,51 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
   m.update(ws, t.q0, Eigen::VectorXd::Zero(m.nq()));
   Eigen::Vector3d from = m.framePose(ws, m.frameId(contact_.soleFrame(t.moving()))).translation();
   from.z() = r.target.position.z();
+  auto pointAt = [&](double s) {
+    FlatContact p = r.target;
+    p.position = r.target.position + s * (from - r.target.position);
+    return p;
+  };
   // Bisection on the segment target -> from: s = 0 (the target) is not certified; the
   // certified point nearest it is kept.
   double lo = 0.0, hi = 1.0;
+  std::optional<double> first_s;  // where the bisection starts, when not at the middle
+  const int grid_points = config_.nearest_foothold.retreat_kinematic_points;
+  if (!target.kinematically_feasible && grid_points > 0) {
+    // A target beyond the kinematic check (Sec. III-B): so are the points of the segment nearer
+    // it than the first one that passes, and the check decides them before drawing a sample.
+    // The kinematic check alone (an IK each, milliseconds) finds that point among grid_points
+    // points of the segment, nearest the target first; the reachability check starts there
+    // (one check when it certifies that point), then bisects beyond it. One point per batch:
+    // a point outside the workspace fails with an error, which would end a batch's answer.
+    FootholdCandidates point;
+    point.stance = t.stance;
+    point.stance_contact = t.stance_contact;
+    point.q_init = t.q0;
+    point.pelvis_position = t.touchdown.pelvis_position;
+    for (int i = 1; i <= grid_points && !first_s && !at.pastDeadline(); ++i) {
+      point.candidates = {pointAt(static_cast<double>(i) / grid_points)};
+      const std::vector<CandidateOutcome> outcome =
+          candidate_check_ ? candidate_check_(point)
+                           : checkFootholdCandidates(*kinematics_, point, true);
+      if (outcome.empty() || !outcome[0].error.empty() || !outcome[0].kinematics.feasible) continue;
+      lo = static_cast<double>(i - 1) / grid_points;
+      first_s = static_cast<double>(i) / grid_points;
+    }
+    if (!first_s) return std::nullopt;  // no point of the segment passes the kinematic check
+  }
   std::optional<FootstepTransition> best;
   for (int k = 0; k < checks && !at.pastDeadline(); ++k) {
-    const double s = 0.5 * (lo + hi);
+    const double s = k == 0 && first_s ? *first_s : 0.5 * (lo + hi);
     FootstepPlanRequest candidate = at;
-    candidate.target.position = r.target.position + s * (from - r.target.position);
+    candidate.target = pointAt(s);
     FootstepTransition step = planTarget(candidate, progress);
     ++checked;
     totals.add(step);
     if (step.reachable && hasStrictTrajectory(r, step)) {
       hi = s;
       best = std::move(step);
+      if (k == 0 && first_s) break;  // every point nearer the target failed the kinematic check
     } else {
       lo = s;
     }

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -31,10 +33,45 @@ std::vector<FootstepPlanRequest> walkRequests() {
   return pipeline().requests("pushed_walk_requests.jsonl");
 }
 
-FootstepTransition planNearestReachable(FootstepPlanRequest r) {
+FootstepTransition planNearestReachable(FootstepPlanRequest r,
+                                        const FootstepTransitionPlanner* planner = nullptr) {
   r.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
   r.ocp_policy = OcpPolicy::kByVerdict;
-  return pipeline().planner->plan(r);
+  return (planner ? *planner : *pipeline().planner).plan(r);
+}
+
+/// The step's strict trajectory, re-checked at every 1 ms sample with the model: eq. (1) with
+/// both soles' wrenches, the held sole, x(t_f) on the chosen foothold's IK posture, the landing.
+void expectStrictTrajectoryRechecked(const FootstepTransition& step) {
+  ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
+  EXPECT_FALSE(step.trajectory.relaxed);
+  const TransitionRecheck c = recheckTransition(*pipeline().model, pipeline().contact, step);
+  std::cout << "eq. (1) " << c.dynamics << " N, held sole " << c.held_sole << " m, q(t_f) - q_f "
+            << c.end_q << ", landing " << c.landing << " m\n";
+  EXPECT_LE(c.dynamics, 1e-6);
+  EXPECT_LE(c.held_sole, 1e-3);
+  EXPECT_LE(c.end_q, 1e-3);
+  EXPECT_LE(c.landing, 1e-3);
+}
+
+/// The swing sole's position at the request's x_0 (where the retreat's segment ends) [m].
+Eigen::Vector2d swingSoleAtStart(const FootstepPlanRequest& r) {
+  const ShippedPipeline& p = pipeline();
+  Workspace ws(*p.model);
+  p.model->update(ws, r.q0, Eigen::VectorXd::Zero(p.model->nq()));
+  return p.model->framePose(ws, p.model->frameId(p.contact.soleFrame(opposite(r.stance))))
+      .translation()
+      .head<2>();
+}
+
+/// Where `chosen` lies on the segment from `target` (s = 0) to `from` (s = 1); `off_line_m` is
+/// its distance from the segment's line [m].
+double segmentParameter(const Eigen::Vector2d& target, const Eigen::Vector2d& from,
+                        const Eigen::Vector2d& chosen, double& off_line_m) {
+  const Eigen::Vector2d d = from - target;
+  const double s = (chosen - target).dot(d) / d.squaredNorm();
+  off_line_m = (chosen - target - s * d).norm();
+  return s;
 }
 
 }  // namespace
@@ -49,9 +86,13 @@ TEST(NearestReachable, ACertifiedTargetIsKept) {
 }
 
 TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
+  // Step 1, TVR's step through the stance sole, with the rings alone (no retreat).
   const ShippedPipeline& p = pipeline();
-  const FootstepPlanRequest r = walkRequests()[0];  // step 1: TVR's step through the stance sole
-  const FootstepTransition step = planNearestReachable(r);
+  FootstepPlannerConfig rings_only = p.config;
+  rings_only.nearest_foothold.retreat_checks = 0;
+  const FootstepTransitionPlanner planner(p.model, p.contact, rings_only);
+  const FootstepPlanRequest r = walkRequests()[0];
+  const FootstepTransition step = planNearestReachable(r, &planner);
   std::cout << step.reason << "\n";
   ASSERT_TRUE(step.target_verdict.has_value());
   EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
@@ -60,16 +101,7 @@ TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
   EXPECT_LE(step.candidates_checked, p.config.nearest_foothold.max_checked);
   EXPECT_EQ(step.verdict, StepVerdict::kReachable);
   EXPECT_NE(step.certificate, Certificate::kNone);
-  ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
-  EXPECT_FALSE(step.trajectory.relaxed);
-  // The trajectory, re-checked here at every 1 ms sample.
-  const TransitionRecheck c = recheckTransition(*p.model, p.contact, step);
-  std::cout << "eq. (1) " << c.dynamics << " N, held sole " << c.held_sole << " m, q(t_f) - q_f "
-            << c.end_q << ", landing " << c.landing << " m\n";
-  EXPECT_LE(c.dynamics, 1e-6);
-  EXPECT_LE(c.held_sole, 1e-3);
-  EXPECT_LE(c.end_q, 1e-3);
-  EXPECT_LE(c.landing, 1e-3);
+  expectStrictTrajectoryRechecked(step);
   // A ring point: no nearer than the nearest kinematically feasible one, within the search.
   const NearestFeasibleFoothold rings(
       std::make_shared<KinematicFeasibility>(p.model, p.config.kinematics, p.contact),
@@ -84,6 +116,48 @@ TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
   std::cout << "nearest feasible " << nearest_feasible_m << " m, chosen " << chosen_m << " m\n";
   EXPECT_GE(chosen_m, nearest_feasible_m - 1e-3);
   EXPECT_LE(chosen_m, p.config.nearest_foothold.searchRadius() + 1e-3);
+}
+
+TEST(NearestReachable, TheRetreatStartsAtTheFirstPointThatPassesTheKinematicCheck) {
+  // Step 1 again, with the shipped search: the retreat, tried first for a kinematically
+  // infeasible target, checks the first of its evenly spaced points toward the swing sole that
+  // passes the kinematic check; certified, it is the step (one reachability check). Nothing
+  // nearer on the segment passes the kinematic check: the point one spacing nearer the target
+  // fails it here, checked by a KinematicFeasibility of this test's own.
+  const ShippedPipeline& p = pipeline();
+  const FootstepPlanRequest r = walkRequests()[0];
+  const FootstepTransition step = planNearestReachable(r);
+  std::cout << step.reason << "\n";
+  ASSERT_TRUE(step.target_verdict.has_value());
+  EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
+  ASSERT_EQ(step.foothold_source, FootholdSource::kNearestReachable) << step.reason;
+  EXPECT_NE(step.reason.find("toward the swing sole"), std::string::npos) << step.reason;
+  EXPECT_EQ(step.candidates_checked, 1);
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
+  EXPECT_NE(step.certificate, Certificate::kNone);
+  expectStrictTrajectoryRechecked(step);
+  const Eigen::Vector2d target = r.target.position.head<2>(), from = swingSoleAtStart(r);
+  double off_line_m = 0.0;
+  const double s = segmentParameter(target, from, step.foothold.head<2>(), off_line_m);
+  EXPECT_LT(off_line_m, 1e-6);
+  const int n = p.config.nearest_foothold.retreat_kinematic_points;
+  ASSERT_GT(n, 0);
+  const double spacing = 1.0 / n;
+  EXPECT_NEAR(s * n, std::round(s * n), 1e-3) << "a point of the evenly spaced ones";
+  ASSERT_GT(s, spacing / 2) << "the target itself fails the kinematic check";
+  const KinematicFeasibility kinematics(p.model, p.config.kinematics, p.contact);
+  FlatContact nearer = r.target;
+  nearer.position.head<2>() = target + (s - spacing) * (from - target);
+  const KinematicFeasibilityResult before =
+      kinematics.check(step.transition.stance, step.transition.stance_contact, nearer,
+                       step.transition.q0, step.transition.touchdown.pelvis_position);
+  EXPECT_FALSE(before.feasible) << "s = " << s - spacing << " passes the kinematic check";
+  FlatContact chosen = r.target;
+  chosen.position = step.foothold;
+  EXPECT_TRUE(kinematics
+                  .check(step.transition.stance, step.transition.stance_contact, chosen,
+                         step.transition.q0, step.transition.touchdown.pelvis_position)
+                  .feasible);
 }
 
 TEST(NearestReachable, NoCertifiedCandidateSaysSoAndCertifiesNothing) {
@@ -112,12 +186,7 @@ TEST(NearestReachable, ATargetBeyondReachIsReplacedByACertifiedPointTowardTheSwi
   // strict trajectory re-checked here at every 1 ms sample.
   const ShippedPipeline& p = pipeline();
   FootstepPlanRequest r = walkRequests()[2];
-  Workspace ws(*p.model);
-  p.model->update(ws, r.q0, Eigen::VectorXd::Zero(p.model->nq()));
-  const Eigen::Vector2d from =
-      p.model->framePose(ws, p.model->frameId(p.contact.soleFrame(opposite(r.stance))))
-          .translation()
-          .head<2>();
+  const Eigen::Vector2d from = swingSoleAtStart(r);
   const double outward = r.target.position.y() > r.stance_contact.position.y() ? 1.0 : -1.0;
   r.target.position.y() += 0.35 * outward;
   const FootstepTransition step = planNearestReachable(r);
@@ -129,18 +198,12 @@ TEST(NearestReachable, ATargetBeyondReachIsReplacedByACertifiedPointTowardTheSwi
   EXPECT_EQ(step.verdict, StepVerdict::kReachable);
   EXPECT_NE(step.certificate, Certificate::kNone);
   EXPECT_LE(step.candidates_checked, p.config.nearest_foothold.retreat_checks);
-  ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged) << step.trajectory.reason;
-  EXPECT_FALSE(step.trajectory.relaxed);
-  const TransitionRecheck c = recheckTransition(*p.model, p.contact, step);
-  EXPECT_LE(c.dynamics, 1e-6);
-  EXPECT_LE(c.held_sole, 1e-3);
-  EXPECT_LE(c.end_q, 1e-3);
-  EXPECT_LE(c.landing, 1e-3);
+  expectStrictTrajectoryRechecked(step);
   // On the segment, strictly between its ends: off the line by nothing, s in (0, 1).
-  const Eigen::Vector2d target = r.target.position.head<2>(), chosen = step.foothold.head<2>();
-  const Eigen::Vector2d d = from - target;
-  const double s = (chosen - target).dot(d) / d.squaredNorm();
-  EXPECT_LT((chosen - target - s * d).norm(), 1e-6);
+  double off_line_m = 0.0;
+  const double s =
+      segmentParameter(r.target.position.head<2>(), from, step.foothold.head<2>(), off_line_m);
+  EXPECT_LT(off_line_m, 1e-6);
   EXPECT_GT(s, 0.0);
   EXPECT_LT(s, 1.0);
 }

@@ -39,6 +39,10 @@ struct NearestFootholdConfig {
   /// for the certified point nearest the target (0: none); after the rings' candidates, or
   /// before them for a kinematically infeasible target.
   int retreat_checks = 3;
+  /// The retreat from a kinematically infeasible target: evenly spaced points of that segment
+  /// the kinematic check alone (an IK each) examines, nearest the target first, for the first
+  /// that passes it; the reachability checks start there (0: the bisection starts at the middle).
+  int retreat_kinematic_points = 32;
   /// \throws ConfigError naming the first bad field.
   void validate() const;
   /// The YAML keys of section `nearest_foothold:` (the member names), units and meaning.

@@ -294,7 +294,9 @@ class FootstepTransitionPlanner {
   /// planNearestReachable()'s retreat (see kNearestReachable):
   /// NearestFootholdConfig::retreat_checks points of the segment from the target (not certified) to
   /// the swing sole's position at x_0, by bisection; the certified one nearest the target (its
-  /// strict trajectory), or none. `totals` and `checked` count every plan it made.
+  /// strict trajectory), or none. From a kinematically infeasible target the bisection starts at
+  /// the first of retreat_kinematic_points points that passes the kinematic check (and ends there
+  /// when it is certified). `totals` and `checked` count every plan it made.
   std::optional<FootstepTransition> planRetreat(const FootstepPlanRequest& r,
                                                 const FootstepPlanRequest& at,
                                                 const FootstepTransition& target,
