@@ -54,6 +54,18 @@ void expectStrictTrajectoryRechecked(const FootstepTransition& step) {
   EXPECT_LE(c.landing, 1e-3);
 }
 
+/// `step` replaced its kinematically infeasible target by a foothold of the nearest-reachable
+/// search that the check certified; its reason says where that foothold came from (`where`).
+void expectCertifiedStandInForInfeasibleTarget(const FootstepTransition& step,
+                                               const std::string& where) {
+  ASSERT_TRUE(step.target_verdict.has_value());
+  EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
+  ASSERT_EQ(step.foothold_source, FootholdSource::kNearestReachable) << step.reason;
+  EXPECT_NE(step.reason.find(where), std::string::npos) << step.reason;
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
+  EXPECT_NE(step.certificate, Certificate::kNone);
+}
+
 /// The swing sole's position at the request's x_0 (where the retreat's segment ends) [m].
 Eigen::Vector2d swingSoleAtStart(const FootstepPlanRequest& r) {
   const ShippedPipeline& p = pipeline();
@@ -94,13 +106,9 @@ TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {
   const FootstepPlanRequest r = walkRequests()[0];
   const FootstepTransition step = planNearestReachable(r, &planner);
   std::cout << step.reason << "\n";
-  ASSERT_TRUE(step.target_verdict.has_value());
-  EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
-  ASSERT_EQ(step.foothold_source, FootholdSource::kNearestReachable) << step.reason;
+  expectCertifiedStandInForInfeasibleTarget(step, "nearest reachable foothold, ");
   EXPECT_GE(step.candidates_checked, 1);
   EXPECT_LE(step.candidates_checked, p.config.nearest_foothold.max_checked);
-  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
-  EXPECT_NE(step.certificate, Certificate::kNone);
   expectStrictTrajectoryRechecked(step);
   // A ring point: no nearer than the nearest kinematically feasible one, within the search.
   const NearestFeasibleFoothold rings(
@@ -128,13 +136,8 @@ TEST(NearestReachable, TheRetreatStartsAtTheFirstPointThatPassesTheKinematicChec
   const FootstepPlanRequest r = walkRequests()[0];
   const FootstepTransition step = planNearestReachable(r);
   std::cout << step.reason << "\n";
-  ASSERT_TRUE(step.target_verdict.has_value());
-  EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
-  ASSERT_EQ(step.foothold_source, FootholdSource::kNearestReachable) << step.reason;
-  EXPECT_NE(step.reason.find("toward the swing sole"), std::string::npos) << step.reason;
+  expectCertifiedStandInForInfeasibleTarget(step, "toward the swing sole");
   EXPECT_EQ(step.candidates_checked, 1);
-  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
-  EXPECT_NE(step.certificate, Certificate::kNone);
   expectStrictTrajectoryRechecked(step);
   const Eigen::Vector2d target = r.target.position.head<2>(), from = swingSoleAtStart(r);
   double off_line_m = 0.0;
@@ -191,12 +194,7 @@ TEST(NearestReachable, ATargetBeyondReachIsReplacedByACertifiedPointTowardTheSwi
   r.target.position.y() += 0.35 * outward;
   const FootstepTransition step = planNearestReachable(r);
   std::cout << step.reason << "\n";
-  ASSERT_TRUE(step.target_verdict.has_value());
-  EXPECT_EQ(*step.target_verdict, StepVerdict::kKinematicallyInfeasible);
-  ASSERT_EQ(step.foothold_source, FootholdSource::kNearestReachable) << step.reason;
-  EXPECT_NE(step.reason.find("toward the swing sole"), std::string::npos) << step.reason;
-  EXPECT_EQ(step.verdict, StepVerdict::kReachable);
-  EXPECT_NE(step.certificate, Certificate::kNone);
+  expectCertifiedStandInForInfeasibleTarget(step, "toward the swing sole");
   EXPECT_LE(step.candidates_checked, p.config.nearest_foothold.retreat_checks);
   expectStrictTrajectoryRechecked(step);
   // On the segment, strictly between its ends: off the line by nothing, s in (0, 1).
