@@ -107,12 +107,7 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
     step.candidates_checked = checked;
   };
   // The rings around the target, nearest first; each ring's kinematic checks as one batch.
-  const ContactTransition& t = target.transition;
-  FootholdCandidates batch;
-  batch.stance = t.stance;
-  batch.stance_contact = t.stance_contact;
-  batch.q_init = t.q0;
-  batch.pelvis_position = t.touchdown.pelvis_position;
+  FootholdCandidates batch = candidateBatch(target.transition);
   std::optional<FootstepTransition> nearest_feasible;  // the first feasible candidate's plan
   int checked = 0;  // every candidate's check, the rings' and the retreat's
   // A target beyond the leg's reach (kinematically infeasible): its rings' points lie at the
@@ -130,12 +125,10 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   for (int ring = 1; ring <= rings.rings && ring_checked < rings.max_checked && !at.pastDeadline();
        ++ring) {
     batch.candidates = nearest_.ringCandidates(r.target, ring);
-    const std::vector<CandidateOutcome> outcomes =
-        candidate_check_ ? candidate_check_(batch)
-                         : checkFootholdCandidates(*kinematics_, batch, false);
+    const std::vector<CandidateOutcome> outcomes = checkCandidates(batch, false);
     for (std::size_t i = 0;
          i < outcomes.size() && ring_checked < rings.max_checked && !at.pastDeadline(); ++i) {
-      if (!outcomes[i].error.empty() || !outcomes[i].kinematics.feasible) continue;
+      if (!outcomes[i].feasible()) continue;
       FootstepPlanRequest candidate = at;
       candidate.target = batch.candidates[i];
       FootstepTransition step = planTarget(candidate, progress);
@@ -178,6 +171,21 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   return kept;
 }
 
+FootholdCandidates FootstepTransitionPlanner::candidateBatch(const ContactTransition& t) {
+  FootholdCandidates batch;
+  batch.stance = t.stance;
+  batch.stance_contact = t.stance_contact;
+  batch.q_init = t.q0;
+  batch.pelvis_position = t.touchdown.pelvis_position;
+  return batch;
+}
+
+std::vector<CandidateOutcome> FootstepTransitionPlanner::checkCandidates(
+    const FootholdCandidates& batch, bool stop_at_first_decisive) const {
+  return candidate_check_ ? candidate_check_(batch)
+                          : checkFootholdCandidates(*kinematics_, batch, stop_at_first_decisive);
+}
+
 std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
     const FootstepPlanRequest& r, const FootstepPlanRequest& at, const FootstepTransition& target,
     const FootstepPlanProgress& progress, PassTotals& totals, int& checked) const {
@@ -207,17 +215,11 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
     // points of the segment, nearest the target first; the reachability check starts there
     // (one check when it certifies that point), then bisects beyond it. One point per batch:
     // a point outside the workspace fails with an error, which would end a batch's answer.
-    FootholdCandidates point;
-    point.stance = t.stance;
-    point.stance_contact = t.stance_contact;
-    point.q_init = t.q0;
-    point.pelvis_position = t.touchdown.pelvis_position;
+    FootholdCandidates point = candidateBatch(t);
     for (int i = 1; i <= grid_points && !first_s && !at.pastDeadline(); ++i) {
       point.candidates = {pointAt(static_cast<double>(i) / grid_points)};
-      const std::vector<CandidateOutcome> outcome =
-          candidate_check_ ? candidate_check_(point)
-                           : checkFootholdCandidates(*kinematics_, point, true);
-      if (outcome.empty() || !outcome[0].error.empty() || !outcome[0].kinematics.feasible) continue;
+      const std::vector<CandidateOutcome> outcome = checkCandidates(point, true);
+      if (outcome.empty() || !outcome[0].feasible()) continue;
       lo = static_cast<double>(i - 1) / grid_points;
       first_s = static_cast<double>(i) / grid_points;
     }

@@ -391,6 +391,10 @@ struct WalkingExperiment::Loop {
   /// The check's plan as the policy takes it: the foothold, and the OCP's trajectory to track
   /// or not (on_fail); records a failed check's action.
   PendingPlan decidePlan(const FootstepTransition& step, double t);
+  /// The last resort of every policy with a check, when it has no plan to follow (its fallback
+  /// found nothing, or the check threw): the TVR step clipped to the heuristic bounds (whatever
+  /// the policy's `bounds`), reached by interpolation; records it as the foothold's source.
+  PendingPlan clippedToBoundsPlan(double t);
   /// The plan's latency in sim time by WalkConfig::plan_latency [s] (`wall_s`: its wall time).
   double planLatency(double wall_s) const;
   /// The plan in effect from sim time `t` [s]: the swing tracks the OCP's trajectory or goes
@@ -795,12 +799,27 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
     pending_ = std::move(plan);
     return true;
   } catch (const ReachError& e) {
-    // The measured state is outside what the check accepts (e.g. a joint beyond its velocity
-    // limit while the robot is already falling): the step goes on unchecked.
+    // The measured state is outside what the check accepts (e.g. a hip joint beyond its
+    // velocity limit after a push at half swing): no plan of the policy's. Unchecked, the TVR
+    // step of an unbounded policy can be a metre away (0.6 m/s to the left at half swing: 1.06 m
+    // outward, "no touchdown"); the step takes the last resort of a fallback that found nothing.
     current_.verdict = StepVerdict::kCheckError;
     current_.reason = e.what();
-    return !replanning;  // a replan that threw changes nothing
+    if (replanning) return false;  // a replan that threw changes nothing
+    PendingPlan plan = clippedToBoundsPlan(t);
+    current_.planned = plan.foothold;
+    applyPlan(plan, t);
+    return true;
   }
+}
+
+WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::clippedToBoundsPlan(double t) {
+  PendingPlan plan;
+  plan.ask_time = t;
+  plan.foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
+  plan.track_ocp = false;
+  current_.foothold_source = FootholdSource::kClippedToBounds;
+  return plan;
 }
 
 WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
@@ -822,11 +841,8 @@ WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
     // feasible foothold near the target, no trajectory), where the swing would otherwise go to
     // the very foothold the check rejected.
     const bool found_nothing = step.foothold_source == FootholdSource::kTarget && !step.usable();
-    if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds || found_nothing) {
-      plan.foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
-      plan.track_ocp = false;
-      current_.foothold_source = FootholdSource::kClippedToBounds;
-    }
+    if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds || found_nothing)
+      plan = clippedToBoundsPlan(t);
   }
   if (plan.track_ocp) plan.trajectory = step.trajectory;
   return plan;

@@ -2,7 +2,8 @@
 // sim_node ~in_process:=false uses to plan through transition_ocp_node): a plugged planner is
 // asked once per checked step with the policy's request and, planning as the in-process one
 // does, gives the same walk bit for bit; a planner that rejects leaves the steps unchecked
-// ("check_error" with its reason), as the in-process planner's errors do.
+// ("check_error" with its reason), as the in-process planner's errors do, each step sent to the
+// TVR step clipped to the heuristic bounds.
 
 #include <gtest/gtest.h>
 
@@ -63,14 +64,44 @@ TEST(WalkFootstepPlanner, APluggedPlannerIsAskedPerCheckAndGivesTheSameWalk) {
   EXPECT_EQ(again.records.back().executed, in_process.records.back().executed);
 }
 
-TEST(WalkFootstepPlanner, ARejectingPlannerLeavesTheStepsUnchecked) {
-  const std::unique_ptr<WalkingExperiment> e = proposedExperiment(1, Eigen::Vector2d::Zero());
+// A planner that throws (a bad state, a node that is gone) leaves the step without a plan of
+// the policy's: it takes the last resort of a fallback that found nothing, the TVR step clipped
+// to the heuristic bounds box about the stance sole (config/biped.yaml's planner section), not
+// the unbounded TVR step, which after a push can be a metre away.
+TEST(WalkFootstepPlanner, ARejectingPlannerSendsTheStepToTheBoundedTvrStep) {
+  WalkSetup setup =
+      WalkSetup::fromYamlFile(std::string(REACH_TRAJOPT_SOURCE_DIR) + "/config/biped.yaml");
+  const std::unique_ptr<WalkingExperiment> e = proposedExperiment(4, Eigen::Vector2d(0.0, 0.4));
   e->setFootstepPlanner([](const FootstepPlanRequest&) -> FootstepTransition {
     throw RequestError("plan_footstep: no such node");
   });
   const WalkResult r = e->run();
   ASSERT_FALSE(r.records.empty()) << r.summaryLine();
-  EXPECT_EQ(r.records.front().verdict, StepVerdict::kCheckError);
-  EXPECT_EQ(r.records.front().reason, "plan_footstep: no such node");
-  EXPECT_FALSE(r.records.front().ocp_status.has_value());
+  const TvrConfig& box = setup.tvr;
+  int outside = 0;  // TVR steps the box moved
+  for (const StepRecord& s : r.records) {
+    SCOPED_TRACE("step " + std::to_string(s.index));
+    EXPECT_EQ(s.verdict, StepVerdict::kCheckError);
+    EXPECT_EQ(s.reason, "plan_footstep: no such node");
+    EXPECT_FALSE(s.ocp_status.has_value());
+    EXPECT_EQ(s.foothold_source, FootholdSource::kClippedToBounds);
+    // The box: x offset in [x_min, x_max], the y offset toward the swing's side in
+    // [y_min, y_max] (the walk in place keeps heading 0).
+    const double side = s.swing == Side::kLeft ? 1.0 : -1.0;
+    auto inBox = [&](const Eigen::Vector2d& p) {
+      const Eigen::Vector2d d = p - s.stance;
+      const double tol = 1e-9;
+      return d.x() >= box.foot_offset_x_min - tol && d.x() <= box.foot_offset_x_max + tol &&
+             side * d.y() >= box.foot_offset_y_min - tol &&
+             side * d.y() <= box.foot_offset_y_max + tol;
+    };
+    EXPECT_TRUE(inBox(s.planned)) << s.planned.transpose() << " about " << s.stance.transpose();
+    if (inBox(s.planned_tvr)) {
+      EXPECT_TRUE(s.planned.isApprox(s.planned_tvr, 1e-12));
+    } else {
+      ++outside;
+      EXPECT_GT((s.planned - s.planned_tvr).norm(), 1e-6);
+    }
+  }
+  EXPECT_GT(outside, 0) << "no TVR step of this walk left the box: the case tests nothing";
 }

@@ -66,6 +66,8 @@ struct FootholdCandidates {
 struct CandidateOutcome {
   KinematicFeasibilityResult kinematics;
   std::string error;
+  /// The candidate was checked and passed the kinematic check.
+  bool feasible() const { return error.empty() && kinematics.feasible; }
 };
 
 /// Checks a batch of candidates; returns one outcome per candidate in order, or a prefix that

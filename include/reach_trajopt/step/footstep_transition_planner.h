@@ -291,6 +291,14 @@ class FootstepTransitionPlanner {
       step.ocp_time_s = ocp_time_s;
     }
   };
+  /// A batch of candidate footholds for the swing of `t`: its stance sole held where it is, the
+  /// IK started from x_0's posture with the touchdown's pelvis; no candidate yet.
+  static FootholdCandidates candidateBatch(const ContactTransition& t);
+  /// The kinematic check of `batch`'s candidates: through setCandidateCheck()'s function when
+  /// set (the workers), else in this process (`stop_at_first_decisive`: as
+  /// checkFootholdCandidates()).
+  std::vector<CandidateOutcome> checkCandidates(const FootholdCandidates& batch,
+                                                bool stop_at_first_decisive) const;
   /// planNearestReachable()'s retreat (see kNearestReachable):
   /// NearestFootholdConfig::retreat_checks points of the segment from the target (not certified) to
   /// the swing sole's position at x_0, by bisection; the certified one nearest the target (its
