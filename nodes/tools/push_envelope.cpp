@@ -40,11 +40,12 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return out;
 }
 
-// "baseline,proposed" (presets) or "baseline;kinematic,swing=interpolation" (policies).
+// "baseline,proposed" (presets), "baseline;proposed" or "baseline;kinematic,swing=interpolation"
+// (policies; a single policy with parts needs no ';').
 std::vector<WalkingPolicy> parsePolicies(const std::string& text) {
   std::vector<WalkingPolicy> out;
-  const bool has_parts = text.find('=') != std::string::npos;
-  for (const std::string& spec : split(text, has_parts ? ';' : ','))
+  const bool policies = text.find_first_of(";=") != std::string::npos;
+  for (const std::string& spec : split(text, policies ? ';' : ','))
     out.push_back(WalkingPolicy::parse(spec));
   if (out.empty()) throw RequestError("--policies: no policy given");
   return out;

@@ -18,7 +18,7 @@ enum class StepVerdict {
   kReachable,                ///< "reachable": a checked path x_0 -> x_f exists (Certificate)
   kUnreachable,              ///< "unreachable": not shown reachable (no certificate)
   kCheckError,               ///< "check_error": the check threw (bad state, a worker's error);
-                             ///< the step goes on as the policy's on_fail part says
+                             ///< the step goes to the TVR step clipped to the heuristic bounds
 };
 const EnumNames<StepVerdict>& stepVerdictNames();
 inline const char* stepVerdictName(StepVerdict v) { return nameOf(stepVerdictNames(), v); }

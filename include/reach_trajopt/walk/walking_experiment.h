@@ -276,7 +276,8 @@ class WalkingExperiment {
 
   /// Plans one checked footstep (the check, the OCP and their fallbacks) for the loop; it
   /// throws ReachError for a request it rejects (the step then goes on unchecked, verdict
-  /// "check_error", as with the in-process planner).
+  /// "check_error", to the TVR step clipped to the heuristic bounds, as with the in-process
+  /// planner).
   using FootstepPlanFunction = std::function<FootstepTransition(const FootstepPlanRequest&)>;
   /// Who plans the checked footsteps of the next runs: `plan` (e.g. a ROS node, so the
   /// stepping loop runs through the graph), or the in-process FootstepTransitionPlanner when
