@@ -36,7 +36,11 @@ const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
                "on_fail nearest_reachable, the retreat from a kinematically infeasible target: "
                "evenly spaced points of the segment the kinematic check alone examines, nearest "
                "the target first; the retreat's checks start at the first that passes it (0: "
-               "the bisection starts at the middle)");
+               "the bisection starts at the middle)")
+          .add("time_limit", &C::time_limit, "s", Range::positive(),
+               "on_fail nearest_reachable: wall-clock time the candidates (the rings' and the "
+               "retreat's) take together at most, after the target's own plan (or the "
+               "request's deadline when earlier)");
   return f;
 }
 

@@ -97,9 +97,10 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   at.on_infeasible = InfeasibleFootholdPolicy::kNoFallback;
   FootstepTransition target = planTarget(at, progress);
   if (target.reachable && hasStrictTrajectory(r, target)) return target;
-  // The candidates together keep one OCP's time limit (or the request's earlier deadline):
-  // each one's OCP would otherwise have its own (TALOS: 18 s for a step's candidates).
-  const auto search_deadline = secondsAfter(SteadyClock::now(), config_.ocp.time_limit);
+  // The candidates together keep nearest_foothold.time_limit (or the request's earlier
+  // deadline): each one's OCP would otherwise have its own (TALOS: 18 s for a step's candidates).
+  const auto search_deadline =
+      secondsAfter(SteadyClock::now(), config_.nearest_foothold.time_limit);
   if (!at.deadline || search_deadline < *at.deadline) at.deadline = search_deadline;
   PassTotals totals = PassTotals::of(target);
   auto carryTotals = [&](FootstepTransition& step, int checked) {

@@ -33,6 +33,18 @@ std::vector<FootstepPlanRequest> walkRequests() {
   return pipeline().requests("pushed_walk_requests.jsonl");
 }
 
+/// The shipped planner with a candidate search that a loaded machine does not cut short (its
+/// shipped 10 s wall-clock limit, nearest_foothold.time_limit, is the walk's, not the test's).
+const FootstepTransitionPlanner& unhurriedPlanner() {
+  static const FootstepTransitionPlanner planner = [] {
+    const ShippedPipeline& p = pipeline();
+    FootstepPlannerConfig config = p.config;
+    config.nearest_foothold.time_limit = 600.0;
+    return FootstepTransitionPlanner(p.model, p.contact, config);
+  }();
+  return planner;
+}
+
 FootstepTransition planNearestReachable(FootstepPlanRequest r,
                                         const FootstepTransitionPlanner* planner = nullptr) {
   r.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
@@ -134,7 +146,7 @@ TEST(NearestReachable, TheRetreatStartsAtTheFirstPointThatPassesTheKinematicChec
   // fails it here, checked by a KinematicFeasibility of this test's own.
   const ShippedPipeline& p = pipeline();
   const FootstepPlanRequest r = walkRequests()[0];
-  const FootstepTransition step = planNearestReachable(r);
+  const FootstepTransition step = planNearestReachable(r, &unhurriedPlanner());
   std::cout << step.reason << "\n";
   expectCertifiedStandInForInfeasibleTarget(step, "toward the swing sole");
   EXPECT_EQ(step.candidates_checked, 1);
@@ -192,7 +204,7 @@ TEST(NearestReachable, ATargetBeyondReachIsReplacedByACertifiedPointTowardTheSwi
   const Eigen::Vector2d from = swingSoleAtStart(r);
   const double outward = r.target.position.y() > r.stance_contact.position.y() ? 1.0 : -1.0;
   r.target.position.y() += 0.35 * outward;
-  const FootstepTransition step = planNearestReachable(r);
+  const FootstepTransition step = planNearestReachable(r, &unhurriedPlanner());
   std::cout << step.reason << "\n";
   expectCertifiedStandInForInfeasibleTarget(step, "toward the swing sole");
   EXPECT_LE(step.candidates_checked, p.config.nearest_foothold.retreat_checks);
@@ -213,6 +225,22 @@ TEST(NearestReachable, WithoutAReachabilityCheckItIsTheKinematicSearch) {
   EXPECT_EQ(step.verdict, StepVerdict::kKinematicallyInfeasible);
   EXPECT_EQ(step.foothold_source, FootholdSource::kNearestFeasible);
   EXPECT_EQ(step.certificate, Certificate::kNone);
+}
+
+TEST(NearestReachable, TheCandidatesKeepTheSearchTimeLimit) {
+  // Step 1 (its retreat's first point certified with the shipped search, above) with a search
+  // time limit (nearest_foothold.time_limit) spent before the first candidate: no candidate is
+  // checked, and the answer is not a certified stand-in; it says why.
+  const ShippedPipeline& p = pipeline();
+  FootstepPlannerConfig no_time = p.config;
+  no_time.nearest_foothold.time_limit = 1e-9;
+  const FootstepTransitionPlanner planner(p.model, p.contact, no_time);
+  const FootstepTransition step = planNearestReachable(walkRequests()[0], &planner);
+  std::cout << step.reason << "\n";
+  EXPECT_EQ(step.candidates_checked, 0);
+  EXPECT_NE(step.foothold_source, FootholdSource::kNearestReachable);
+  EXPECT_EQ(step.certificate, Certificate::kNone);
+  EXPECT_NE(step.reason.find("deadline reached"), std::string::npos) << step.reason;
 }
 
 TEST(NearestReachable, APastDeadlineEndsThePlanAfterItsFirstPass) {

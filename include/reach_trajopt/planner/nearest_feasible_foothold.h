@@ -43,6 +43,10 @@ struct NearestFootholdConfig {
   /// the kinematic check alone (an IK each) examines, nearest the target first, for the first
   /// that passes it; the reachability checks start there (0: the bisection starts at the middle).
   int retreat_kinematic_points = 32;
+  /// on_fail nearest_reachable: wall-clock seconds the candidates (the rings' and the
+  /// retreat's) may take together after the target's own plan, or the request's deadline when
+  /// earlier [s]. TALOS: a step whose candidates are all not shown reachable spends it whole.
+  double time_limit = 10.0;
   /// \throws ConfigError naming the first bad field.
   void validate() const;
   /// The YAML keys of section `nearest_foothold:` (the member names), units and meaning.
