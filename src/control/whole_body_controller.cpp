@@ -61,7 +61,10 @@ const ConfigFields<WbcConfig>& WbcConfig::fields() {
                "the barrier's stiffness")
           .add("kd_leg_clearance", &C::kd_leg_clearance, "1/s", Range::nonNegative(),
                "its damping: the barrier acts from about kd / kp * (closing speed) before the "
-               "margin");
+               "margin")
+          .add("min_normal_force", &C::min_normal_force, "N", Range::nonNegative(),
+               "double support: each sole's wrench is at least this normal force at its centre "
+               "plus a wrench of its cone (both soles stay loaded)");
   return f;
 }
 
@@ -228,7 +231,12 @@ void WholeBodyController::addConstraints(const ContactMode& mode, const Eigen::V
     Ain.block(t0 + nu, col, nu, 6) = -J_sole_[s].rightCols(nu).transpose();
     ++k;
   }
-  b_in_.head(t_barrier).setZero();
+  // C (lambda - lambda_min) >= 0, lambda_min the sole-frame normal force min_normal_force at
+  // the sole centre (double support): C blkdiag(R^T, R^T) lambda_min = C e_z f_min.
+  const double f_min = nc == 2 ? config_.min_normal_force : 0.0;
+  for (int c = 0; c < nc; ++c)
+    b_in_.segment(ContactWrenchCone::kRows * c, ContactWrenchCone::kRows) =
+        f_min * cone_.soleMatrix().col(2);
   const Eigen::VectorXd& u_max = u_max_;
   Ain.block(t0, 0, nu, n) = -M_.bottomRows(nu);  // u <= u_max
   b_in_.segment(t0, nu) = b_.tail(nu) - u_max;

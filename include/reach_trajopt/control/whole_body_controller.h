@@ -56,6 +56,10 @@ struct WbcConfig {
   bool leg_clearance = true;
   double leg_clearance_margin = 0.005, leg_clearance_activation = 0.15;  ///< [m]
   double kp_leg_clearance = 400.0, kd_leg_clearance = 40.0;
+  /// Double support: each sole's wrench is a normal force of this much at the sole centre plus
+  /// a wrench of its cone, C (lambda - lambda_min) >= 0 [N]: both soles stay loaded (0: the cone
+  /// alone, a sole may be unloaded to nothing and lift off the ground under contact noise).
+  double min_normal_force = 0.0;
   /// Frame whose orientation the pelvis task holds; "" is the URDF root link. Not a YAML key:
   /// the robot's pelvis is kinematic_feasibility.pelvis_frame, which WalkingExperiment copies.
   std::string pelvis_frame;
