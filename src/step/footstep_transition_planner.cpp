@@ -17,6 +17,10 @@
 namespace reach_trajopt {
 namespace {
 
+/// The retreat's kinematic scan: points per candidate batch (a message to the workers carries
+/// at most 360; retreat_kinematic_points may be up to 1000).
+constexpr int kRetreatPointsPerBatch = 64;
+
 StepVerdict verdictOf(const FootstepCheckResult& check, bool checked) {
   if (!check.kinematically_feasible) return StepVerdict::kKinematicallyInfeasible;
   if (!checked) return StepVerdict::kKinematicallyFeasible;  // the kinematic check only
@@ -214,15 +218,26 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
     // it than the first one that passes, and the check decides them before drawing a sample.
     // The kinematic check alone (an IK each, milliseconds) finds that point among grid_points
     // points of the segment, nearest the target first; the reachability check starts there
-    // (one check when it certifies that point), then bisects beyond it. One point per batch:
-    // a point outside the workspace fails with an error, which would end a batch's answer.
-    FootholdCandidates point = candidateBatch(t);
-    for (int i = 1; i <= grid_points && !first_s && !at.pastDeadline(); ++i) {
-      point.candidates = {pointAt(static_cast<double>(i) / grid_points)};
-      const std::vector<CandidateOutcome> outcome = checkCandidates(point, true);
-      if (outcome.empty() || !outcome[0].feasible()) continue;
-      lo = static_cast<double>(i - 1) / grid_points;
-      first_s = static_cast<double>(i) / grid_points;
+    // (one check when it certifies that point), then bisects beyond it. The points not yet
+    // decided go as one batch (one round trip to the workers), whose answer ends at its first
+    // feasible or failed point (a point outside the workspace fails with an error); the next
+    // batch starts after a failed one.
+    FootholdCandidates batch = candidateBatch(t);
+    int next = 1;  // the first point not decided yet
+    while (next <= grid_points && !first_s && !at.pastDeadline()) {
+      batch.candidates.clear();
+      for (int i = next; i <= std::min(grid_points, next + kRetreatPointsPerBatch - 1); ++i)
+        batch.candidates.push_back(pointAt(static_cast<double>(i) / grid_points));
+      const std::vector<CandidateOutcome> outcomes = checkCandidates(batch, true);
+      if (outcomes.empty()) ++next;  // nothing decided: that point counts as failed
+      for (const CandidateOutcome& o : outcomes) {
+        if (o.feasible()) {
+          lo = static_cast<double>(next - 1) / grid_points;
+          first_s = static_cast<double>(next) / grid_points;
+          break;
+        }
+        ++next;
+      }
     }
     if (!first_s) return std::nullopt;  // no point of the segment passes the kinematic check
   }

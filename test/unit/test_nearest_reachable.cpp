@@ -194,6 +194,37 @@ TEST(NearestReachable, NoCertifiedCandidateSaysSoAndCertifiesNothing) {
   EXPECT_NE(step.reason.find("no reachable foothold among the"), std::string::npos) << step.reason;
 }
 
+TEST(NearestReachable, TheRetreatsKinematicScanAsksTheCandidateCheckInBatches) {
+  // Step 1 planned with a candidate check plugged in (what the workers do): the same foothold
+  // as in this process, the scan's points sent together, one batch answering up to the first
+  // point that passes or fails with an error, not one batch per point.
+  const ShippedPipeline& p = pipeline();
+  FootstepPlannerConfig config = p.config;
+  config.nearest_foothold.time_limit = 600.0;
+  FootstepTransitionPlanner plugged(p.model, p.contact, config);
+  const KinematicFeasibility kinematics(p.model, p.config.kinematics, p.contact);
+  int batches = 0;
+  std::size_t points = 0;
+  plugged.setCandidateCheck([&](const FootholdCandidates& batch) {
+    ++batches;
+    points += batch.candidates.size();
+    return checkFootholdCandidates(kinematics, batch, true);
+  });
+  const FootstepPlanRequest r = walkRequests()[0];
+  const FootstepTransition in_process = planNearestReachable(r, &unhurriedPlanner());
+  const FootstepTransition step = planNearestReachable(r, &plugged);
+  std::cout << batches << " batches, " << points << " points sent\n";
+  expectCertifiedStandInForInfeasibleTarget(step, "toward the swing sole");
+  EXPECT_TRUE(step.foothold.isApprox(in_process.foothold, 1e-12))
+      << step.foothold.transpose() << " vs " << in_process.foothold.transpose();
+  // The retreat's first point is certified (TheRetreatStarts...): the scan is every batch.
+  const double s_steps = (step.foothold - r.target.position).head<2>().norm() /
+                         (swingSoleAtStart(r) - r.target.position.head<2>()).norm() *
+                         p.config.nearest_foothold.retreat_kinematic_points;
+  ASSERT_GT(std::lround(s_steps), 1) << "the first point passes: one batch either way";
+  EXPECT_EQ(batches, 1);
+}
+
 TEST(NearestReachable, ATargetBeyondReachIsReplacedByACertifiedPointTowardTheSwingSole) {
   // The walk's step 5 (certified as planned) with its target moved 0.35 m further out, away
   // from the stance sole: beyond the leg's reach. The retreat's bisection on the segment
