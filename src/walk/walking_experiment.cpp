@@ -397,8 +397,8 @@ struct WalkingExperiment::Loop {
   PendingPlan clippedToBoundsPlan(double t);
   /// The plan's latency in sim time by WalkConfig::plan_latency [s] (`wall_s`: its wall time).
   double planLatency(double wall_s) const;
-  /// The plan in effect from sim time `t` [s]: the swing tracks the OCP's trajectory or goes
-  /// to the foothold.
+  /// The plan in effect from sim time `t` [s]: the step aims at its foothold (the record's
+  /// `planned`), the swing tracks the OCP's trajectory or goes to the foothold.
   void applyPlan(PendingPlan& plan, double t);
   /// A pending plan whose time has come takes effect (each single-support tick).
   void applyPendingPlan(double t);
@@ -783,9 +783,8 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
     const double latency = planLatency(wall_s);
     current_.plan_latency_s = latency;
     if (latency <= 0.0) {  // the simulation waited for the plan
-      current_.planned = plan.foothold;
-      if (on_check_) on_check_(current_, step);
       applyPlan(plan, t);
+      if (on_check_) on_check_(current_, step);
       return true;
     }
     if (on_check_) on_check_(current_, step);
@@ -807,7 +806,6 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
     current_.reason = e.what();
     if (replanning) return false;  // a replan that threw changes nothing
     PendingPlan plan = clippedToBoundsPlan(t);
-    current_.planned = plan.foothold;
     applyPlan(plan, t);
     return true;
   }
@@ -861,6 +859,7 @@ double WalkingExperiment::Loop::planLatency(double wall_s) const {
 }
 
 void WalkingExperiment::Loop::applyPlan(PendingPlan& plan, double t) {
+  current_.planned = plan.foothold;
   if (plan.track_ocp) {
     tracked_ = std::move(plan.trajectory);
     tracked_start_ = plan.ask_time;
@@ -872,7 +871,6 @@ void WalkingExperiment::Loop::applyPlan(PendingPlan& plan, double t) {
 
 void WalkingExperiment::Loop::applyPendingPlan(double t) {
   if (!pending_.active || t < pending_.apply_at) return;
-  current_.planned = pending_.foothold;
   applyPlan(pending_, t);
   pending_ = PendingPlan();
 }

@@ -35,13 +35,15 @@ std::vector<FootstepPlanRequest> walkRequests() {
 
 /// The shipped planner with a candidate search that a loaded machine does not cut short (its
 /// shipped 10 s wall-clock limit, nearest_foothold.time_limit, is the walk's, not the test's).
+FootstepPlannerConfig unhurriedConfig() {
+  FootstepPlannerConfig config = pipeline().config;
+  config.nearest_foothold.time_limit = 600.0;
+  return config;
+}
+
 const FootstepTransitionPlanner& unhurriedPlanner() {
-  static const FootstepTransitionPlanner planner = [] {
-    const ShippedPipeline& p = pipeline();
-    FootstepPlannerConfig config = p.config;
-    config.nearest_foothold.time_limit = 600.0;
-    return FootstepTransitionPlanner(p.model, p.contact, config);
-  }();
+  static const FootstepTransitionPlanner planner(pipeline().model, pipeline().contact,
+                                                 unhurriedConfig());
   return planner;
 }
 
@@ -199,9 +201,7 @@ TEST(NearestReachable, TheRetreatsKinematicScanAsksTheCandidateCheckInBatches) {
   // as in this process, the scan's points sent together, one batch answering up to the first
   // point that passes or fails with an error, not one batch per point.
   const ShippedPipeline& p = pipeline();
-  FootstepPlannerConfig config = p.config;
-  config.nearest_foothold.time_limit = 600.0;
-  FootstepTransitionPlanner plugged(p.model, p.contact, config);
+  FootstepTransitionPlanner plugged(p.model, p.contact, unhurriedConfig());
   const KinematicFeasibility kinematics(p.model, p.config.kinematics, p.contact);
   int batches = 0;
   std::size_t points = 0;
@@ -218,10 +218,11 @@ TEST(NearestReachable, TheRetreatsKinematicScanAsksTheCandidateCheckInBatches) {
   EXPECT_TRUE(step.foothold.isApprox(in_process.foothold, 1e-12))
       << step.foothold.transpose() << " vs " << in_process.foothold.transpose();
   // The retreat's first point is certified (TheRetreatStarts...): the scan is every batch.
-  const double s_steps = (step.foothold - r.target.position).head<2>().norm() /
-                         (swingSoleAtStart(r) - r.target.position.head<2>()).norm() *
-                         p.config.nearest_foothold.retreat_kinematic_points;
-  ASSERT_GT(std::lround(s_steps), 1) << "the first point passes: one batch either way";
+  double off_line_m = 0.0;
+  const double s = segmentParameter(r.target.position.head<2>(), swingSoleAtStart(r),
+                                    step.foothold.head<2>(), off_line_m);
+  ASSERT_GT(std::lround(s * p.config.nearest_foothold.retreat_kinematic_points), 1)
+      << "the first point passes: one batch either way";
   EXPECT_EQ(batches, 1);
 }
 
