@@ -82,6 +82,14 @@ void addTimingFields(ConfigFields<C>& t) {
       .add("lift_off_exit_margin", &C::lift_off_exit_margin, "m", Range::nonNegative(),
            "lift_off capture_point: the capture point beyond the soles' box shrunk by this "
            "margin has left the soles (lift-off at once); 0: their edges")
+      .add("lift_off_unloaded_force", &C::lift_off_unloaded_force, "N", Range::nonNegative(),
+           "lift_off capture_point: after double_support_duration the sole in turn also lifts "
+           "off once its measured normal force is below this (unloaded) and the capture point "
+           "is within lift_off_unloaded_capture_tolerance of its lift-off point; 0: off")
+      .add("lift_off_unloaded_capture_tolerance", &C::lift_off_unloaded_capture_tolerance, "m",
+           Range::positive(),
+           "lift_off_unloaded_force: the capture point this close to its lift-off point lets "
+           "an unloaded sole lift off")
       .add("stepping_com_xy_weight", &C::stepping_com_xy_weight, "", Range::nonNegative(),
            "weight of the controller's horizontal CoM task while stepping (after the settle "
            "phase); 0: wbc.w_com_xy, the standing robot's")
@@ -584,7 +592,15 @@ std::optional<Side> WalkingExperiment::Loop::liftOff(double time_in_double) cons
   }
   const Eigen::Vector2d target = liftOffCapturePoint();
   const double dx = std::isfinite(target.x()) ? capture.x() - target.x() : 0.0;
-  if (std::hypot(dx, capture.y() - target.y()) <= wc_.lift_off_capture_tolerance) return in_turn;
+  const double gap = std::hypot(dx, capture.y() - target.y());
+  if (gap <= wc_.lift_off_capture_tolerance) return in_turn;
+  // A sole the double support has emptied (a contact event) lifts off with the capture point
+  // near enough: held on, it carries nothing and can leave the ground under the QP.
+  if (!initiating_ && wc_.lift_off_unloaded_force > 0.0 &&
+      gap <= wc_.lift_off_unloaded_capture_tolerance) {
+    const SoleContact& sole = world_->soleContacts()[static_cast<int>(in_turn)];
+    if (!sole.in_contact || sole.wrench[2] < wc_.lift_off_unloaded_force) return in_turn;
+  }
   return std::nullopt;
 }
 

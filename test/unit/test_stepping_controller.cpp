@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "reach_trajopt/walk/walk_setup.h"
 
@@ -112,4 +114,43 @@ TEST(SteppingController, APushForwardOrBackwardMidSwingKeepsTheSolesAlternating)
       EXPECT_NE(r.records[k].swing, r.records[k - 1].swing)
           << "push vx=" << vx << ": steps " << k << " and " << k + 1 << " swing the same sole";
   }
+}
+
+TEST(SteppingController, ADoubleSupportDoesNotHoldAnEmptiedSole) {
+  // After a 0.6 m/s push backward (beyond what the standing robot absorbs) the step back
+  // lands and the double support steers the capture point toward the next stance sole; the
+  // other sole empties before the capture point is within lift_off_capture_tolerance. Held
+  // on, it carries nothing, leaves the ground under the QP and the walk falls; with
+  // lift_off_unloaded_force it lifts off once the capture point is near its lift-off point
+  // (an emptied sole is still held while it is farther). Measured on Bullet's sole forces of
+  // every tick: the longest run of double-support ticks holding a sole below that force.
+  const auto longestEmptiedHold = [](WalkSetup setup, bool& fell) {
+    setup.walk.policy = WalkingPolicy::parse("baseline");
+    setup.walk.steps = 20;
+    setup.walk.initial_com_velocity = Eigen::Vector2d(-0.6, 0.0);
+    const double force = 30.0;
+    int run = 0, longest = 0;
+    const WalkResult r = setup.experiment()->run([&](const WalkTick& tick) {
+      bool emptied = false;
+      if (tick.mode == ContactMode::doubleSupport() && tick.soles)
+        for (const SoleContact& s : *tick.soles) emptied |= s.wrench[2] < force;
+      run = emptied ? run + 1 : 0;
+      longest = std::max(longest, run);
+    });
+    fell = r.fell;
+    return longest;
+  };
+  WalkSetup off = shipped();
+  off.walk.lift_off_unloaded_force = 0.0;
+  WalkSetup on = shipped();
+  on.walk.lift_off_unloaded_force = 30.0;
+  bool fell_off = false, fell_on = false;
+  const int held_off = longestEmptiedHold(off, fell_off);
+  const int held_on = longestEmptiedHold(on, fell_on);
+  const double dt = on.sim.time_step;  // one tick per simulator step [s]
+  EXPECT_FALSE(fell_on);
+  EXPECT_GT(held_off * dt, 0.05) << "without it an emptied sole is held for long";
+  EXPECT_LT(held_on, held_off) << "ticks holding an emptied sole in one double support";
+  std::printf("longest emptied hold: off %d ticks (fell %d), on %d ticks (fell %d)\n", held_off,
+              fell_off, held_on, fell_on);
 }

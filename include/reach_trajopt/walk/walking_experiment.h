@@ -70,6 +70,14 @@ struct WalkConfig {
   /// once) when it is beyond their box shrunk by this margin [m]; 0: the sole edges, where the
   /// soles can no longer hold it.
   double lift_off_exit_margin = 0.0;
+  /// lift_off kCapturePoint: after double_support_duration, the sole in turn also lifts off
+  /// once its measured normal force is below this [N] (the double support has emptied it: a
+  /// contact event, as touchdown_force is at the other end of the swing) while the capture
+  /// point is within lift_off_unloaded_capture_tolerance of its lift-off point; 0: off. A sole
+  /// emptied while the capture point stalls short of lift_off_capture_tolerance otherwise stays
+  /// a held contact that carries nothing, and can leave the ground under the QP.
+  double lift_off_unloaded_force = 30.0;
+  double lift_off_unloaded_capture_tolerance = 0.05;  ///< [m]
   /// Weight of the whole-body controller's horizontal CoM task while stepping (every phase
   /// after the settle phase); 0: WbcConfig::w_com_xy (the standing robot's). Large enough that
   /// the QP realizes the reference's pivot instead of trading it for the posture.
