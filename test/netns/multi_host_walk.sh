@@ -62,6 +62,9 @@ cleanup() {
   for p in "${pids[@]}"; do kill -INT "$p" 2>/dev/null; done
   sleep 2
   for p in "${pids[@]}"; do kill -KILL "$p" 2>/dev/null; done
+  # Whatever still runs in a host's namespace (the watcher's rospy ignores SIGINT and outlived
+  # its wrapper's kill, holding the caller's output open): killed with its namespace.
+  for n in "${hosts[@]}"; do ip netns pids "$n" 2>/dev/null | xargs -r kill -KILL 2>/dev/null; done
   for n in "${hosts[@]}" "$sw"; do ip netns del "$n" 2>/dev/null; done
 }
 trap cleanup EXIT
@@ -144,7 +147,7 @@ mkdir -p "$work/h0"
 ip netns exec "${hosts[0]}" env ROS_IP=10.43.0.1 ROS_MASTER_URI="$master" ROS_HOME="$work/h0" \
   "$BIN/check_walk_nodes" __name:=check_walk_nodes _config:="$REPO/config/biped.yaml" \
   _sim_config:="$REPO/config/sim.yaml" _policy:=kinematic _steps:=$steps _seed:=1 \
-  _push_vx:=-0.3 _push_vy:=-0.6 _timeout:=400 _workers:=2 \
+  _push_vx:=-0.2 _push_vy:=-0.6 _timeout:=400 _workers:=2 \
   --gtest_output="xml:$results/netns-check_walk_nodes.xml" >"$work/checker.log" 2>&1 &
 checker=$!
 pids+=($checker)
