@@ -379,6 +379,9 @@ struct WalkingExperiment::Loop {
   /// The box around both soles the double support's pivot stays in [m].
   void supportBox(Eigen::Vector2d& box_min, Eigen::Vector2d& box_max) const;
   Eigen::Vector2d soleXy(Side side) const;
+  /// The simulator reports `side`'s sole in contact with a normal force above `force_n` [N]
+  /// (the contact events: a touchdown, a sole the double support has not emptied).
+  bool soleCarries(Side side, double force_n) const;
   /// The measured instantaneous capture point, CoM + CoM velocity / omega (eq. 9) [m].
   Eigen::Vector2d capturePoint() const;
   /// Applies WalkConfig::midswing_push (once per run) and measures the pushed state.
@@ -598,8 +601,7 @@ std::optional<Side> WalkingExperiment::Loop::liftOff(double time_in_double) cons
   // near enough: held on, it carries nothing and can leave the ground under the QP.
   if (!initiating_ && wc_.lift_off_unloaded_force > 0.0 &&
       gap <= wc_.lift_off_unloaded_capture_tolerance) {
-    const SoleContact& sole = world_->soleContacts()[static_cast<int>(in_turn)];
-    if (!sole.in_contact || sole.wrench[2] < wc_.lift_off_unloaded_force) return in_turn;
+    if (!soleCarries(in_turn, wc_.lift_off_unloaded_force)) return in_turn;
   }
   return std::nullopt;
 }
@@ -638,6 +640,11 @@ Eigen::Vector2d WalkingExperiment::Loop::soleXy(Side side) const {
   return xy(m_.framePose(ws_, sole_[static_cast<int>(side)]).translation());
 }
 
+bool WalkingExperiment::Loop::soleCarries(Side side, double force_n) const {
+  const SoleContact& sole = world_->soleContacts()[static_cast<int>(side)];
+  return sole.in_contact && sole.wrench[2] > force_n;
+}
+
 Side WalkingExperiment::Loop::firstSwingSide() const {
   // The capture point's lateral offset from the soles' midpoint, in the stance heading (the
   // walk starts facing +x).
@@ -660,8 +667,7 @@ bool WalkingExperiment::Loop::singleSupport(double t) {
   applyPendingPlan(t);
   if (current_.index == wc_.midswing_push_step && ts >= 0.5 * swing_duration_) pushOnce();
   if (disturbed(t, ts)) replan(t, ts);
-  const SoleContact& sc = world_->soleContacts()[static_cast<int>(swing_)];
-  if (ts > 0.5 * swing_duration_ && sc.in_contact && sc.wrench[2] > wc_.touchdown_force) {
+  if (ts > 0.5 * swing_duration_ && soleCarries(swing_, wc_.touchdown_force)) {
     touchdown(t);
   } else if (ts > swing_duration_ + wc_.late_touchdown) {
     fall("no touchdown of the swing sole");

@@ -124,11 +124,13 @@ TEST(SteppingController, ADoubleSupportDoesNotHoldAnEmptiedSole) {
   // lift_off_unloaded_force it lifts off once the capture point is near its lift-off point
   // (an emptied sole is still held while it is farther). Measured on Bullet's sole forces of
   // every tick: the longest run of double-support ticks holding a sole below that force.
-  const auto longestEmptiedHold = [](WalkSetup setup, bool& fell) {
+  const WalkSetup on = shipped();  // lift_off_unloaded_force as shipped
+  ASSERT_GT(on.walk.lift_off_unloaded_force, 0.0);
+  const double force = on.walk.lift_off_unloaded_force;  // [N]
+  const auto longestEmptiedHold = [force](WalkSetup setup, bool& fell) {
     setup.walk.policy = WalkingPolicy::parse("baseline");
     setup.walk.steps = 20;
     setup.walk.initial_com_velocity = Eigen::Vector2d(-0.6, 0.0);
-    const double force = 30.0;
     int run = 0, longest = 0;
     const WalkResult r = setup.experiment()->run([&](const WalkTick& tick) {
       bool emptied = false;
@@ -140,10 +142,8 @@ TEST(SteppingController, ADoubleSupportDoesNotHoldAnEmptiedSole) {
     fell = r.fell;
     return longest;
   };
-  WalkSetup off = shipped();
+  WalkSetup off = on;
   off.walk.lift_off_unloaded_force = 0.0;
-  WalkSetup on = shipped();
-  on.walk.lift_off_unloaded_force = 30.0;
   bool fell_off = false, fell_on = false;
   const int held_off = longestEmptiedHold(off, fell_off);
   const int held_on = longestEmptiedHold(on, fell_on);
