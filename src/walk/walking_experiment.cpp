@@ -406,6 +406,9 @@ struct WalkingExperiment::Loop {
   /// found nothing, or the check threw): the TVR step clipped to the heuristic bounds (whatever
   /// the policy's `bounds`), reached by interpolation; records it as the foothold's source.
   PendingPlan clippedToBoundsPlan(double t);
+  /// A plan that arrives after the nominal touchdown is dropped: the step goes on to where its
+  /// swing goes (swingTarget()), and its record says so.
+  void dropLatePlan();
   /// The plan's latency in sim time by WalkConfig::plan_latency [s] (`wall_s`: its wall time).
   double planLatency(double wall_s) const;
   /// The plan in effect from sim time `t` [s]: the step aims at its foothold (the record's
@@ -423,6 +426,21 @@ struct WalkingExperiment::Loop {
   void fall(const std::string& reason);
   Eigen::Vector3d target3() const {
     return Eigen::Vector3d(current_.planned.x(), current_.planned.y(), ground_z_);
+  }
+  /// The TVR step clipped to the heuristic bounds: every policy's last resort.
+  Eigen::Vector2d clippedToBounds() const {
+    return planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
+  }
+  /// Where the swing goes until its plan takes effect. Paying for the plan's latency, a
+  /// checked policy's swing goes to its last resort (the TVR step clipped to the heuristic
+  /// bounds), not to an unchecked TVR step that can be out of the leg's reach: the plan arrives
+  /// late in the swing (0.16 s of 0.22 s in the demo walk), too late to bring a sole back from
+  /// there (after half-swing pushes of 0.6 m/s, "no touchdown" at the next step). Pausing,
+  /// the plan takes effect when it is asked for: the proposal.
+  Eigen::Vector3d swingTarget() const {
+    if (wc_.plan_latency == WalkConfig::PlanLatency::kPause || !impl_.footsteps) return target3();
+    const Eigen::Vector2d last_resort = clippedToBounds();
+    return Eigen::Vector3d(last_resort.x(), last_resort.y(), ground_z_);
   }
 
   const WalkingExperiment::Impl& impl_;
@@ -660,7 +678,7 @@ bool WalkingExperiment::Loop::singleSupport(double t) {
   const double ts = t - phase_start_;
   if (ts < wc_.replan_fraction * swing_duration_) {
     planStep(t, ts);
-    swing_traj_->retarget(target3(), ts);
+    swing_traj_->retarget(swingTarget(), ts);
   }
   if (impl_.footsteps && !checked_ && ts >= swing_duration_ - impl_.footsteps->horizon())
     checkStep(t, ts);
@@ -693,7 +711,7 @@ void WalkingExperiment::Loop::beginSingleSupport(double t) {
   swing_duration_ = swingDuration(t);
   current_.swing_duration = swing_duration_;
   planStep(t, 0.0);
-  swing_traj_ = std::make_unique<SwingTrajectory>(swing_pos, target3(), swing_duration_,
+  swing_traj_ = std::make_unique<SwingTrajectory>(swing_pos, swingTarget(), swing_duration_,
                                                   wc_.swing_height, wc_.touchdown_depth);
   com_ref_.startSingleSupport(current_.com_at_plan, current_.stance);
   checked_ = false;
@@ -702,8 +720,7 @@ void WalkingExperiment::Loop::beginSingleSupport(double t) {
 }
 
 bool WalkingExperiment::Loop::disturbed(double t, double ts) const {
-  if (wc_.replan_tolerance <= 0.0 || current_.replans >= wc_.max_replans || pending_.active)
-    return false;
+  if (wc_.replan_tolerance <= 0.0 || current_.replans >= wc_.max_replans) return false;
   // After the swing's first plan: the check's, or the end of the replan_fraction window.
   if (impl_.footsteps ? !checked_ : ts < wc_.replan_fraction * swing_duration_) return false;
   const double remaining = swing_duration_ - ts;
@@ -725,6 +742,15 @@ void WalkingExperiment::Loop::replan(double t, double ts) {
   }
   const StepRecord before = current_;
   planStep(t, ts);
+  // Paying for its latency, the swing goes where it goes before a step's first plan (now from
+  // the new proposal) until the checked plan arrives, and the plan it waited for, computed
+  // before the disturbance, is superseded: kept, it would take the swing back there.
+  const bool interim =
+      wc_.plan_latency != WalkConfig::PlanLatency::kPause && tracked_.time.size() == 0;
+  if (interim) {
+    pending_ = PendingPlan();
+    swing_traj_->retarget(swingTarget(), ts);
+  }
   // A swing that tracks an OCP trajectory keeps it when the new plan has none to track (its
   // check or OCP failed: the interpolated swing cannot start from the tracked sole's state),
   // and any swing keeps its plan when the check threw.
@@ -732,6 +758,7 @@ void WalkingExperiment::Loop::replan(double t, double ts) {
     const std::string why = current_.reason;
     current_ = before;
     current_.reason += "; replanned " + std::to_string(ts) + " s into the swing, not taken: " + why;
+    if (interim) swing_traj_->retarget(swingTarget(), ts);
   }
 }
 
@@ -813,7 +840,7 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
     plan.apply_at = t + latency;
     // Its deadline is the nominal touchdown: a later plan is dropped.
     if (plan.apply_at > phase_start_ + swing_duration_) {
-      current_.plan_late = true;
+      dropLatePlan();
       return true;
     }
     plan.active = true;
@@ -836,10 +863,19 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
 WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::clippedToBoundsPlan(double t) {
   PendingPlan plan;
   plan.ask_time = t;
-  plan.foothold = planner_.boundedContact(current_.planned_tvr, current_.stance, 0.0, swing_);
+  plan.foothold = clippedToBounds();
   plan.track_ocp = false;
   current_.foothold_source = FootholdSource::kClippedToBounds;
   return plan;
+}
+
+void WalkingExperiment::Loop::dropLatePlan() {
+  current_.plan_late = true;
+  pending_ = PendingPlan();
+  current_.planned = xy(swingTarget());
+  current_.foothold_source = current_.planned == current_.planned_tvr
+                                 ? FootholdSource::kTarget
+                                 : FootholdSource::kClippedToBounds;
 }
 
 WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
@@ -882,6 +918,13 @@ double WalkingExperiment::Loop::planLatency(double wall_s) const {
 
 void WalkingExperiment::Loop::applyPlan(PendingPlan& plan, double t) {
   current_.planned = plan.foothold;
+  // A plan that paid its latency takes its foothold, not its trajectory: the OCP starts from
+  // the state at the check's start, which the robot left while it followed the swing it had.
+  // Tracked from where it would have been by now, its joint feed-forward pulls the whole body
+  // to another state: the pushed demo walk fell within 12 steps with 0.05 s of fixed latency
+  // (88 failed controller QPs; blending the references into the trajectory over 0.05-0.1 s did
+  // not help), and walks its 20 steps, no failed QP, when the swing goes to the plan's foothold.
+  if (t > plan.ask_time) plan.track_ocp = false;
   if (plan.track_ocp) {
     tracked_ = std::move(plan.trajectory);
     tracked_start_ = plan.ask_time;
@@ -966,10 +1009,7 @@ void WalkingExperiment::Loop::recordCheck(const FootstepTransition& step) {
 }
 
 void WalkingExperiment::Loop::touchdown(double t) {
-  if (pending_.active) {  // the sole landed before the plan arrived
-    current_.plan_late = true;
-    pending_ = PendingPlan();
-  }
+  if (pending_.active) dropLatePlan();  // the sole landed before the plan arrived
   current_.touched_down = true;
   current_.touchdown_time = t;
   current_.executed = m_.framePose(ws_, sole_[static_cast<int>(swing_)]).translation();
