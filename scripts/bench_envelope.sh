@@ -6,6 +6,7 @@
 # cores. Prints one `BENCH walk.envelope` line per preset and protocol (preset=standing: the
 # reference) and writes the polar figures and every walk to report/
 # (push_envelope_<protocol>.svg, push_envelope_<protocol>.csv).
+# Then the proposed preset in both protocols paying for its plans' time (plan_latency=measured).
 # Then TALOS (config/talos.yaml) in the standing protocol: the baseline and the standing robot at
 # 0.2 and 0.4 m/s, its lines marked robot=talos (report/push_envelope_talos_standing.*).
 #   scripts/bench_envelope.sh [--fine]      (--fine: magnitudes 0.1 to 1.0 m/s by 0.1, 2 seeds)
@@ -27,6 +28,16 @@ for protocol in standing midswing; do
     | grep '^BENCH'
   echo "figure: $(cd "$out" && pwd)/push_envelope_$protocol.svg"
 done
+# The proposed preset paying for its plans' wall time (walk.plan_latency measured: the simulation
+# goes on while it plans), one walk at a time so that no other walk lengthens its plans; its
+# lines end with plan_latency=measured (about 70 s per protocol).
+if [ "${1:-}" != "--smoke" ]; then
+  for protocol in standing midswing; do
+    "$BIN/push_envelope" --jobs 1 --plan-latency measured --protocol "$protocol" \
+      --policies proposed "${grid[@]}" --csv "$out/push_envelope_${protocol}_measured.csv" \
+      | grep '^BENCH'
+  done
+fi
 # TALOS (config/talos.yaml), standing protocol, the baseline beside the standing robot at 0.2 and
 # 0.4 m/s (about 10 s); its lines carry robot=talos.
 if [ "${1:-}" != "--smoke" ]; then

@@ -5,13 +5,16 @@
 ///                 [--policies baseline,unbounded,kinematic,proposed] [--directions 8]
 ///                 [--magnitudes 0.2,0.4,0.6] [--seeds 1,2] [--steps 20] [--jobs 2] [--fine]
 ///                 [--protocol standing|midswing] [--forward-speed V] [--standing]
-///                 [--svg FILE.svg] [--csv FILE.csv] [--force]
+///                 [--plan-latency pause|measured|SECONDS] [--svg FILE.svg] [--csv FILE.csv]
+///                 [--force]
 ///
 /// --policies: walking policies separated by ';' or presets by ',' (a policy with parts:
 /// --policies "baseline;kinematic,swing=interpolation"). --fine: magnitudes 0.1 to 1.0 m/s by
 /// 0.1. --protocol: the push at t = 0 with the feet still (standing) or at half swing of the
 /// 4th step (midswing). --standing: first the standing robot's envelope (the reference). --jobs:
-/// walks run side by side, each on one thread. Prints one line per walk and one `BENCH
+/// walks run side by side, each on one thread. --plan-latency: walk.plan_latency of every walk
+/// (measured: the plan's wall time; side by side walks would lengthen each other's, so --jobs 1);
+/// its BENCH lines then end with plan_latency=<it>. Prints one line per walk and one `BENCH
 /// walk.envelope preset=<p> protocol=<standing|midswing> pushes=N survived=K max_lateral_mps=..
 /// max_forward_mps=..` per policy; --svg writes the polar figure, --csv every walk. A sweep of more
 /// than 20000 footsteps in all is refused unless --force, and --steps whose walks cannot end within
@@ -72,6 +75,10 @@ const CliTool kTool("push_envelope", "",
                      {"--seeds", "LIST", "seeds of each push", "1,2"},
                      {"--steps", "N", "steps per walk, 1..1000", "20"},
                      {"--jobs", "N", "walks run side by side, each on one thread", "2"},
+                     {"--plan-latency", "L",
+                      "when a step's plan takes effect: pause, measured (its wall time later; "
+                      "run with --jobs 1) or a latency in seconds (walk.plan_latency)",
+                      ""},
                      {"--svg", "FILE.svg", "write the polar figure", ""},
                      {"--csv", "FILE.csv", "write every walk", ""},
                      {"--force", "", "run a sweep over 20000 footsteps in all", ""}});
@@ -194,7 +201,9 @@ int main(int argc, char** argv) {
     const int jobs =
         static_cast<int>(parseIntOption("--jobs", args.value("--jobs"), 1, hardwareThreads()));
     const std::vector<WalkingPolicy> list = parsePolicies(args.value("--policies"));
-    const WalkSetup setup = WalkSetup::fromYamlFile(args.value("--config"));
+    WalkSetup setup = WalkSetup::fromYamlFile(args.value("--config"));
+    if (args.given("--plan-latency"))
+      setup.walk.setPlanLatency(args.value("--plan-latency"), "--plan-latency");
     requireFeasibleSweep(grid, setup.walk, list.size(), args.given("--force"),
                          args.value("--config"));
     Outputs out = openOutputs(args);

@@ -126,6 +126,8 @@ std::string PushEnvelope::benchLine() const {
     os << (m ? "/" : "") << grid.magnitudes[m];
   os << " seeds=" << grid.seeds.size() << " steps=" << (grid.standing ? 0 : grid.steps)
      << " walks_wall_s=" << wall;
+  // Paying for the plans' time: marked, beside the reference's lines (pause, unmarked).
+  if (plan_latency != "pause" && !grid.standing) os << " plan_latency=" << plan_latency;
   if (!grid.standing) os << " " << policy.definition();
   return os.str();
 }
@@ -138,6 +140,7 @@ PushEnvelope sweepPushes(const WalkSetup& setup, const std::string& urdf_path,
   PushEnvelope env;
   env.policy = policy;
   env.grid = grid;
+  env.plan_latency = setup.walk.planLatencyName();
   const CaptureModel capture_model =
       CaptureModel::fromConfigs(setup.tvr, setup.contact, setup.walk.single_support_duration);
   for (int d = 0; d < grid.directions; ++d)

@@ -218,6 +218,20 @@ void WalkConfig::setPlanLatency(const std::string& value, const std::string& key
   fixed_plan_latency = seconds;
 }
 
+std::string WalkConfig::planLatencyName() const {
+  switch (plan_latency) {
+    case PlanLatency::kPause:
+      return "pause";
+    case PlanLatency::kMeasured:
+      return "measured";
+    case PlanLatency::kFixed:
+      break;
+  }
+  std::ostringstream os;
+  os << fixed_plan_latency;
+  return os.str();
+}
+
 std::string WalkResult::summaryLine() const {
   std::ostringstream os;
   os.precision(4);

@@ -105,6 +105,29 @@ def test_the_envelope_figures_are_the_bipeds(tmp_path):
         "5 / 4 / 2 of 10", "yes"]
 
 
+def test_the_envelope_paying_for_its_plans_is_compared_with_the_paused_one(tmp_path):
+    # The measured line comes last: the pause figures stay the reference lines' (5 > 4), and the
+    # measured row compares 4 with 5 (at most one fewer: met), then 3 with 5 (not met).
+    def table(measured_survived):
+        log = "\n".join([
+            "BENCH walk.envelope preset=baseline protocol=midswing pushes=10 survived=2 radii_mps=0.6",
+            "BENCH walk.envelope preset=kinematic protocol=midswing pushes=10 survived=4 radii_mps=0.6",
+            "BENCH walk.envelope preset=proposed protocol=midswing pushes=10 survived=5 radii_mps=0.6",
+            "BENCH walk.envelope preset=proposed protocol=midswing pushes=10 survived=%d "
+            "radii_mps=0.2 plan_latency=measured bounds=off" % measured_survived,
+        ])
+        r, text = run(tmp_path, log)
+        assert r.returncode == 0, r.stderr
+        return rows(text)
+    t = table(4)
+    assert t["pushes survived, proposed / kinematic / baseline (midswing)"][0::2] == [
+        "5 / 4 / 2 of 10", "yes"]
+    assert t["envelope radius of the proposed preset (midswing)"][0].startswith("0.6 m/s")
+    key = "pushes survived by the proposed preset, plan latency measured vs pause (midswing)"
+    assert t[key][0::2] == ["4 vs 5 of 10", "yes"]
+    assert table(3)[key][0::2] == ["3 vs 5 of 10", "**no**"]
+
+
 def test_bad_input_is_named(tmp_path):
     r, _ = run(tmp_path, "no benchmark lines here\n")
     assert r.returncode == 2 and "holds no BENCH line" in r.stderr

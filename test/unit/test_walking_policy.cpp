@@ -149,6 +149,16 @@ TEST(PushEnvelope, RadiusIsTheLargestPushBelowTheFirstFall) {
   EXPECT_NE(with_capture.find(" capture1_mps=0.8/0.8/0.8/0.8 "), std::string::npos) << with_capture;
   EXPECT_NE(with_capture.find(" fraction_of_capture1=0.5/0/0.75/0 "), std::string::npos)
       << with_capture;
+  EXPECT_EQ(with_capture.find("plan_latency="), std::string::npos) << "pause: the reference";
+  // Paying for its plans' time, the line says so (beside the reference's, which does not).
+  WalkConfig paying;
+  paying.setPlanLatency("measured", "--plan-latency");
+  e.plan_latency = paying.planLatencyName();
+  EXPECT_NE(e.benchLine().find(" plan_latency=measured "), std::string::npos) << e.benchLine();
+  paying.setPlanLatency("0.05", "--plan-latency");
+  EXPECT_EQ(paying.planLatencyName(), "0.05");
+  paying.setPlanLatency(paying.planLatencyName(), "--plan-latency");  // its own form reads back
+  EXPECT_DOUBLE_EQ(paying.fixed_plan_latency, 0.05);
   const std::string svg = envelopeSvg({e});
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("15/24 survived"), std::string::npos);

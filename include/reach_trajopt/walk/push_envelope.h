@@ -58,6 +58,8 @@ struct PushEnvelope {
   /// The LIPM capture limits of each direction (planner/capture_limits.h), from the walk's
   /// configs: what any stepping strategy could recover, beside what this policy did.
   std::vector<CaptureLimits> capture;
+  /// When the walks' plans took effect (WalkConfig::planLatencyName(); "pause": the reference).
+  std::string plan_latency = "pause";
   int pushes() const { return static_cast<int>(walks.size()); }
   int survived() const;
   /// The envelope radius of a direction [m/s] (0 when its smallest push fell).

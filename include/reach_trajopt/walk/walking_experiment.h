@@ -160,6 +160,8 @@ struct WalkConfig {
   /// in [0, 10] s (kFixed with that fixed_plan_latency). \throws ConfigError naming `key` and
   /// the value otherwise.
   void setPlanLatency(const std::string& value, const std::string& key);
+  /// plan_latency in that form ("pause", "measured", the fixed latency in seconds).
+  std::string planLatencyName() const;
   /// The YAML keys of section `walk:` (the member names), their units and meaning.
   static const ConfigFields<WalkConfig>& fields();
   /// Reads fields() from a YAML section, then validates.
