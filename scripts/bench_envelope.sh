@@ -37,10 +37,8 @@ if [ "${1:-}" != "--smoke" ]; then
       --policies proposed "${grid[@]}" --csv "$out/push_envelope_${protocol}_measured.csv" \
       | grep '^BENCH'
   done
-fi
-# TALOS (config/talos.yaml), standing protocol, the baseline beside the standing robot at 0.2 and
-# 0.4 m/s (about 10 s); its lines carry robot=talos.
-if [ "${1:-}" != "--smoke" ]; then
+  # TALOS (config/talos.yaml), standing protocol, the baseline beside the standing robot at 0.2
+  # and 0.4 m/s (about 10 s); its lines carry robot=talos.
   "$BIN/push_envelope" --config config/talos.yaml --jobs 2 --standing --protocol standing \
     --policies baseline --magnitudes 0.2,0.4 --seeds 1 \
     --svg "$out/push_envelope_talos_standing.svg" --csv "$out/push_envelope_talos_standing.csv" \

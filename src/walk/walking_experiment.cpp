@@ -851,6 +851,14 @@ bool WalkingExperiment::Loop::checkStep(double t, double ts, bool replanning) {
       return true;
     }
     if (on_check_) on_check_(current_, step);
+    // A plan that pays its latency gives its foothold, not its trajectory: the OCP starts from
+    // the state at the check's start, which the robot leaves while it follows the swing it has.
+    // Tracked from where it would be by then, its joint feed-forward pulls the whole body to
+    // another state: the pushed demo walk fell within 12 steps with 0.05 s of fixed latency (88
+    // failed controller QPs; blending the references into the trajectory over 0.05-0.1 s did
+    // not help), and walks its 20 steps, no failed QP, when the swing goes to the foothold.
+    plan.track_ocp = false;
+    plan.trajectory = TransitionResult();
     plan.apply_at = t + latency;
     // Its deadline is the nominal touchdown: a later plan is dropped.
     if (plan.apply_at > phase_start_ + swing_duration_) {
@@ -932,13 +940,6 @@ double WalkingExperiment::Loop::planLatency(double wall_s) const {
 
 void WalkingExperiment::Loop::applyPlan(PendingPlan& plan, double t) {
   current_.planned = plan.foothold;
-  // A plan that paid its latency takes its foothold, not its trajectory: the OCP starts from
-  // the state at the check's start, which the robot left while it followed the swing it had.
-  // Tracked from where it would have been by now, its joint feed-forward pulls the whole body
-  // to another state: the pushed demo walk fell within 12 steps with 0.05 s of fixed latency
-  // (88 failed controller QPs; blending the references into the trajectory over 0.05-0.1 s did
-  // not help), and walks its 20 steps, no failed QP, when the swing goes to the plan's foothold.
-  if (t > plan.ask_time) plan.track_ocp = false;
   if (plan.track_ocp) {
     tracked_ = std::move(plan.trajectory);
     tracked_start_ = plan.ask_time;
