@@ -7,8 +7,9 @@
 # reference) and writes the polar figures and every walk to report/
 # (push_envelope_<protocol>.svg, push_envelope_<protocol>.csv).
 # Then the proposed preset in both protocols paying for its plans' time (plan_latency=measured).
-# Then TALOS (config/talos.yaml) in the standing protocol: the baseline and the standing robot at
-# 0.2 and 0.4 m/s, its lines marked robot=talos (report/push_envelope_talos_standing.*).
+# Then TALOS (config/talos.yaml) in the standing protocol: the baseline, kinematic and proposed
+# presets and the standing robot at 0.2 and 0.4 m/s, its lines marked robot=talos
+# (report/push_envelope_talos_standing.*).
 #   scripts/bench_envelope.sh [--fine]      (--fine: magnitudes 0.1 to 1.0 m/s by 0.1, 2 seeds)
 #   scripts/bench_envelope.sh --smoke DIR   (make test: the baseline, one push, 5 steps)
 set -euo pipefail
@@ -37,10 +38,10 @@ if [ "${1:-}" != "--smoke" ]; then
       --policies proposed "${grid[@]}" --csv "$out/push_envelope_${protocol}_measured.csv" \
       | grep '^BENCH'
   done
-  # TALOS (config/talos.yaml), standing protocol, the baseline beside the standing robot at 0.2
-  # and 0.4 m/s (about 10 s); its lines carry robot=talos.
+  # TALOS (config/talos.yaml), standing protocol, the baseline, kinematic and proposed presets
+  # beside the standing robot at 0.2 and 0.4 m/s (about 3 minutes); its lines carry robot=talos.
   "$BIN/push_envelope" --config config/talos.yaml --jobs 2 --standing --protocol standing \
-    --policies baseline --magnitudes 0.2,0.4 --seeds 1 \
+    --policies baseline,kinematic,proposed --magnitudes 0.2,0.4 --seeds 1 \
     --svg "$out/push_envelope_talos_standing.svg" --csv "$out/push_envelope_talos_standing.csv" \
     | grep '^BENCH' | sed 's/^BENCH walk.envelope /BENCH walk.envelope robot=talos /'
   echo "figure: $(cd "$out" && pwd)/push_envelope_talos_standing.svg"

@@ -144,16 +144,20 @@ def envelope(protocol):
     return get
 
 
-def envelope_radius(protocol):
+def envelope_radius(protocol, robot=None, least_mps=0.6):
+    """The proposed preset's smallest radius over the directions (the biped's lines, or those
+    marked robot=`robot`), met at >= least_mps."""
     def get(lines):
         sel = {} if protocol is None else {"protocol": protocol}
-        kv = find(lines, "walk.envelope", preset="proposed", **sel, **PAUSED)
+        which = PAUSED if robot is None else {"robot": robot, "plan_latency": None}
+        kv = find(lines, "walk.envelope", preset="proposed", **sel, **which)
         if kv is None or not kv.get("radii_mps"):
             return None
         radii = [num(r) for r in kv["radii_mps"].split("/")]
         if None in radii or not radii:
             return None
-        return "%s m/s (min of %d directions)" % (fmt(min(radii)), len(radii)), min(radii) >= 0.6
+        return ("%s m/s (min of %d directions)" % (fmt(min(radii)), len(radii)),
+                min(radii) >= least_mps)
     return get
 
 
@@ -249,6 +253,10 @@ def figures(lines):
                   ">= 0.6 m/s in every direction", "scripts/bench_envelope.sh"))
         F.append(("pushes survived by the proposed preset, plan latency measured vs pause" + tag,
                   envelope_measured(p), ">= pause - 1", "scripts/bench_envelope.sh"))
+    if find(lines, "walk.envelope", robot="talos", preset="proposed") is not None:
+        F.append(("envelope radius of the proposed preset on TALOS (standing)",
+                  envelope_radius("standing", "talos", 0.4), ">= 0.4 m/s in every direction",
+                  "scripts/bench_envelope.sh"))
     F += [
         ("node-wired walk, wall time / in process",
          single("ros.walk_overhead", "ratio", "", lambda x: x <= 1.1), "<= 1.1",

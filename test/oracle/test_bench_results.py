@@ -105,6 +105,24 @@ def test_the_envelope_figures_are_the_bipeds(tmp_path):
         "5 / 4 / 2 of 10", "yes"]
 
 
+def test_the_talos_radius_is_its_proposed_presets_against_0_4(tmp_path):
+    # TALOS's lines (robot=talos) give their own row: the proposed preset's smallest radius,
+    # 0.2 of 0.4/0.2/0.4 (not met), then 0.4 of 0.4/0.6 (met); its baseline's 0.6 is not read,
+    # nor the biped's 0.1.
+    def table(talos_radii):
+        log = "\n".join([
+            "BENCH walk.envelope preset=proposed protocol=standing pushes=10 survived=5 radii_mps=0.1/0.6",
+            "BENCH walk.envelope robot=talos preset=baseline protocol=standing pushes=16 survived=16 radii_mps=0.6/0.6",
+            "BENCH walk.envelope robot=talos preset=proposed protocol=standing pushes=16 survived=9 "
+            "radii_mps=" + talos_radii,
+        ])
+        r, text = run(tmp_path, log)
+        assert r.returncode == 0, r.stderr
+        return rows(text)["envelope radius of the proposed preset on TALOS (standing)"][0::2]
+    assert table("0.4/0.2/0.4") == ["0.2 m/s (min of 3 directions)", "**no**"]
+    assert table("0.4/0.6") == ["0.4 m/s (min of 2 directions)", "yes"]
+
+
 def test_the_envelope_paying_for_its_plans_is_compared_with_the_paused_one(tmp_path):
     # The measured line comes last: the pause figures stay the reference lines' (5 > 4), and the
     # measured row compares 4 with 5 (at most one fewer: met), then 3 with 5 (not met).
