@@ -101,6 +101,15 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   at.on_infeasible = InfeasibleFootholdPolicy::kNoFallback;
   FootstepTransition target = planTarget(at, progress);
   if (target.reachable && hasStrictTrajectory(r, target)) return target;
+  // A certified target whose strict OCP failed in every pass stays the foothold: its
+  // certificate's witness is a path x_0 -> x_f checked at every 1 ms step, so the target is
+  // reachable; a candidate would step elsewhere for a trajectory only (TALOS's demo walk: 0.5 s
+  // of candidates for a step 2 cm away). The swing goes there without a trajectory.
+  if (target.reachable) {
+    target.reason = "certified, no strict trajectory (the target kept, no candidate checked): " +
+                    target.reason;
+    return target;
+  }
   // The candidates together keep nearest_foothold.time_limit (or the request's earlier
   // deadline): each one's OCP would otherwise have its own (TALOS: 18 s for a step's candidates).
   const auto search_deadline =

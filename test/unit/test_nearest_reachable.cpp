@@ -1,7 +1,7 @@
 // The sets choose the foothold (InfeasibleFootholdPolicy::kNearestReachable,
 // step/footstep_transition_planner.h) on footsteps of the demo's pushed walk
 // (test/fixtures/pushed_walk_requests.jsonl, its steps 1, 2 and 5) and on bench/reach's case:
-// a target the check certifies is kept; one it does not is replaced by a ring point that it
+// a target the check certifies is kept, with or without a strict trajectory; one it does not is replaced by a ring point that it
 // certifies, whose strict trajectory this test re-checks at every 1 ms sample with the model
 // (eq. 1 with both soles' wrenches, the held sole, x(t_f) on the ring point's IK posture), no
 // nearer than the nearest kinematically feasible ring point found by the kinematic search
@@ -109,6 +109,27 @@ TEST(NearestReachable, ACertifiedTargetIsKept) {
   EXPECT_EQ(step.candidates_checked, 0);
   EXPECT_FALSE(step.target_verdict.has_value());
   EXPECT_LT((step.foothold - step.request.target.position).head<2>().norm(), 0.01);
+}
+
+TEST(NearestReachable, ACertifiedTargetWithoutAStrictTrajectoryIsKept) {
+  // The OCP stopped after one evaluation cannot converge: the certified target (the walk's
+  // step 5, certified by the bridge) has no strict trajectory in any pass. Its certificate
+  // stands, so it stays the foothold, no candidate checked; the swing goes there without a
+  // trajectory.
+  FootstepPlannerConfig config = unhurriedConfig();
+  config.ocp.max_evaluations = 1;
+  const FootstepTransitionPlanner planner(pipeline().model, pipeline().contact, config);
+  const FootstepTransition step = planNearestReachable(walkRequests()[2], &planner);
+  std::cout << step.reason << "\n";
+  EXPECT_EQ(step.verdict, StepVerdict::kReachable) << step.reason;
+  EXPECT_EQ(step.certificate, Certificate::kBridge);
+  EXPECT_TRUE(step.check.reach.witness.certified);
+  EXPECT_EQ(step.trajectory.status, OcpStatus::kFailed) << step.trajectory.reason;
+  EXPECT_EQ(step.foothold_source, FootholdSource::kTarget);
+  EXPECT_EQ(step.candidates_checked, 0);
+  EXPECT_FALSE(step.target_verdict.has_value());
+  EXPECT_LT((step.foothold - step.request.target.position).head<2>().norm(), 1e-9);
+  EXPECT_NE(step.reason.find("certified, no strict trajectory"), std::string::npos);
 }
 
 TEST(NearestReachable, AFootThroughTheOtherIsReplacedByACertifiedRingPoint) {

@@ -70,8 +70,9 @@ enum class InfeasibleFootholdPolicy {
   kRelaxTowardTarget,  ///< the relaxed OCP toward the target, the IK's best posture as x_f
   kReject,             ///< a ReachError naming the IK's reason
   kNoFallback,         ///< no OCP; the foothold stays the target (the caller decides)
-  /// Not only for an infeasible foothold: whenever the target is not certified with a strict
-  /// trajectory, the nearest point of the rings of planner/nearest_feasible_foothold.h that is
+  /// Not only for an infeasible foothold: whenever the target is not certified (a certified
+  /// target whose strict OCP fails stays the foothold, without a trajectory: its certificate's
+  /// witness is the checked path), the nearest point of the rings of planner/nearest_feasible_foothold.h that is
   /// kinematically feasible and that the reachability check (steps 2-4, every pass) certifies
   /// with a strict trajectory, nearest first, at most NearestFootholdConfig::max_checked
   /// candidates checked, all of them within one ocp.time_limit (or the request's earlier
