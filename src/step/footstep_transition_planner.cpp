@@ -106,8 +106,8 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   // reachable; a candidate would step elsewhere for a trajectory only (TALOS's demo walk: 0.5 s
   // of candidates for a step 2 cm away). The swing goes there without a trajectory.
   if (target.reachable) {
-    target.reason = "certified, no strict trajectory (the target kept, no candidate checked): " +
-                    target.reason;
+    target.reason =
+        "certified, no strict trajectory (the target kept, no candidate checked): " + target.reason;
     return target;
   }
   // The candidates together keep nearest_foothold.time_limit (or the request's earlier

@@ -1,13 +1,13 @@
 // The sets choose the foothold (InfeasibleFootholdPolicy::kNearestReachable,
 // step/footstep_transition_planner.h) on footsteps of the demo's pushed walk
 // (test/fixtures/pushed_walk_requests.jsonl, its steps 1, 2 and 5) and on bench/reach's case:
-// a target the check certifies is kept, with or without a strict trajectory; one it does not is replaced by a ring point that it
-// certifies, whose strict trajectory this test re-checks at every 1 ms sample with the model
-// (eq. 1 with both soles' wrenches, the held sole, x(t_f) on the ring point's IK posture), no
-// nearer than the nearest kinematically feasible ring point found by the kinematic search
-// alone; a target beyond the leg's reach is replaced by a certified point of the segment toward
-// the swing sole (the retreat, tried before the rings for such a target); when none of the
-// candidates is certified the answer says so and carries no certificate.
+// a target the check certifies is kept, with or without a strict trajectory; one it does not is
+// replaced by a ring point that it certifies, whose strict trajectory this test re-checks at every
+// 1 ms sample with the model (eq. 1 with both soles' wrenches, the held sole, x(t_f) on the ring
+// point's IK posture), no nearer than the nearest kinematically feasible ring point found by the
+// kinematic search alone; a target beyond the leg's reach is replaced by a certified point of the
+// segment toward the swing sole (the retreat, tried before the rings for such a target); when none
+// of the candidates is certified the answer says so and carries no certificate.
 #include <gtest/gtest.h>
 
 #include <chrono>
