@@ -149,7 +149,7 @@ def envelope_radius(protocol, robot=None, least_mps=0.6):
     marked robot=`robot`), met at >= least_mps."""
     def get(lines):
         sel = {} if protocol is None else {"protocol": protocol}
-        which = PAUSED if robot is None else {"robot": robot, "plan_latency": None}
+        which = PAUSED if robot is None else dict(PAUSED, robot=robot)
         kv = find(lines, "walk.envelope", preset="proposed", **sel, **which)
         if kv is None or not kv.get("radii_mps"):
             return None
