@@ -145,7 +145,12 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
       if (!outcomes[i].feasible()) continue;
       FootstepPlanRequest candidate = at;
       candidate.target = batch.candidates[i];
-      FootstepTransition step = planTarget(candidate, progress);
+      // Only a certified strict trajectory ends the search; a relaxed one is used only as the
+      // first feasible candidate's, kept for a kinematically infeasible target (below).
+      const bool may_be_kept = !target.kinematically_feasible && !nearest_feasible;
+      FootstepTransition step =
+          planTarget(candidate, progress,
+                     may_be_kept ? RelaxedFallback::kAsRequested : RelaxedFallback::kNever);
       ++checked;
       ++ring_checked;
       totals.add(step);
@@ -255,7 +260,8 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
     const double s = k == 0 && first_s ? *first_s : 0.5 * (lo + hi);
     FootstepPlanRequest candidate = at;
     candidate.target = pointAt(s);
-    FootstepTransition step = planTarget(candidate, progress);
+    // Only a certified strict trajectory is kept: no relaxed OCP for a retreat point.
+    FootstepTransition step = planTarget(candidate, progress, RelaxedFallback::kNever);
     ++checked;
     totals.add(step);
     if (step.reachable && hasStrictTrajectory(r, step)) {
@@ -275,8 +281,9 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
   return best;
 }
 
-FootstepTransition FootstepTransitionPlanner::planTarget(
-    const FootstepPlanRequest& r, const FootstepPlanProgress& progress) const {
+FootstepTransition FootstepTransitionPlanner::planTarget(const FootstepPlanRequest& r,
+                                                         const FootstepPlanProgress& progress,
+                                                         RelaxedFallback relaxed_fallback) const {
   const RobotModel& m = *model_;
   m.checkState(r.q0, r.qd0);
   requireFinite("FootstepTransitionPlanner: target", r.target.position);
@@ -291,7 +298,8 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
   const PassSchedule schedule = PassSchedule::forStepPlanner(reach, r.check_reachability);
   const ScheduledPass& first = schedule.passes.front();
   if (progress.pass) progress.pass(1);
-  if (first.kind != PassKind::kQuick) return planWith(r, reach, first.check, progress);
+  if (first.kind != PassKind::kQuick)
+    return planWith(r, reach, first.check, progress, relaxed_fallback);
   // The quick pass first. It is final when it certified the step and (when asked for) its
   // strict OCP converged: the sparser forward set's hulls (eq. 23) can leave a certified step
   // without a trajectory. A kinematically infeasible foothold is decided before any sample is
@@ -301,9 +309,11 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
   std::vector<ReachableSlice> quick_slices;
   // An uncertified quick pass is final only when its strict OCP converges (the local solve):
   // a relaxed trajectory of it would be replaced by the passes that follow.
-  FootstepTransition quick =
-      planWith(r, reach, first.check, progress, RelaxedFallback::kWhenCertified,
-               keep_slices ? &quick_slices : nullptr);
+  const RelaxedFallback quick_fallback = relaxed_fallback == RelaxedFallback::kNever
+                                             ? RelaxedFallback::kNever
+                                             : RelaxedFallback::kWhenCertified;
+  FootstepTransition quick = planWith(r, reach, first.check, progress, quick_fallback,
+                                      keep_slices ? &quick_slices : nullptr);
   if (!quick.kinematically_feasible || (quick.reachable && hasStrictTrajectory(r, quick)))
     return quick;
   if (r.pastDeadline()) {
@@ -324,7 +334,8 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
   ++totals.passes;
   if (progress.pass) progress.pass(totals.passes);
   // The full budget alone: its check does not draw the quick budget again (and never gives up).
-  FootstepTransition full = planWith(r, reach, schedule.passes.back().check, progress);
+  FootstepTransition full =
+      planWith(r, reach, schedule.passes.back().check, progress, relaxed_fallback);
   // A certificate is never given up: when only the quick pass found one, its plan stands.
   FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;
   const char* why = quick.reachable ? "the quick pass's certified step has no strict trajectory"

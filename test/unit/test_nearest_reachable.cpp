@@ -217,6 +217,45 @@ TEST(NearestReachable, NoCertifiedCandidateSaysSoAndCertifiesNothing) {
   EXPECT_NE(step.reason.find("no reachable foothold among the"), std::string::npos) << step.reason;
 }
 
+TEST(NearestReachable, OnlyTheTargetSolvesARelaxedOcpForAFeasibleTarget) {
+  // bench/reach's case (a kinematically feasible target the check does not certify), one ring
+  // candidate and one retreat point: only a certified strict trajectory ends the search, and the
+  // answer without one is the target's own plan, so the relaxed problem (eq. 23) is solved for
+  // the target alone, never for a candidate. Each plan of the search starts with pass 1.
+  const ShippedPipeline& p = pipeline();
+  FootstepPlannerConfig two_candidates = unhurriedConfig();
+  two_candidates.nearest_foothold.max_checked = 1;
+  two_candidates.nearest_foothold.retreat_checks = 1;
+  const FootstepTransitionPlanner planner(p.model, p.contact, two_candidates);
+  FootstepPlanRequest r = benchSwingCase(p.model, p.config, p.contact);
+  r.on_infeasible = InfeasibleFootholdPolicy::kNearestReachable;
+  r.ocp_policy = OcpPolicy::kByVerdict;
+  int plans = 0;
+  std::vector<int> relaxed_evaluations;  // per plan: the target's, then each candidate's
+  FootstepPlanProgress progress;
+  progress.pass = [&](int pass) {
+    if (pass == 1) {
+      ++plans;
+      relaxed_evaluations.push_back(0);
+    }
+  };
+  progress.ocp = [&](const OcpProgress& o) {
+    if (o.relaxed && !relaxed_evaluations.empty()) ++relaxed_evaluations.back();
+    return true;
+  };
+  const FootstepTransition step = planner.plan(r, progress);
+  std::cout << step.reason << "\n";
+  ASSERT_NE(step.verdict, StepVerdict::kReachable) << "the case's target must not be certified";
+  ASSERT_GE(step.candidates_checked, 1);
+  ASSERT_EQ(plans, 1 + step.candidates_checked);
+  for (int i = 1; i < plans; ++i)
+    EXPECT_EQ(relaxed_evaluations[i], 0) << "candidate " << i << " solved the relaxed OCP";
+  if (step.foothold_source != FootholdSource::kNearestReachable) {
+    // The target's own plan is the answer: its relaxed trajectory, solved once.
+    EXPECT_GT(relaxed_evaluations[0], 0);
+  }
+}
+
 TEST(NearestReachable, TheRetreatsKinematicScanAsksTheCandidateCheckInBatches) {
   // Step 1 planned with a candidate check plugged in (what the workers do): the same foothold
   // as in this process, the scan's points sent together, one batch answering up to the first

@@ -223,9 +223,21 @@ class FootstepTransitionPlanner {
   const FootstepReachability& footstepReachability() const { return footsteps_; }
 
  private:
-  /// plan() without the nearest-reachable search: the pass schedule for one target.
-  FootstepTransition planTarget(const FootstepPlanRequest& r,
-                                const FootstepPlanProgress& progress) const;
+  /// When a pass's OCP for a kinematically feasible foothold may fall back to the relaxed
+  /// problem (its OcpPolicy's choice) after the strict one fails.
+  enum class RelaxedFallback {
+    kAsRequested,    ///< as the request's OcpPolicy says
+    kWhenCertified,  ///< only when the check certified the step (the quick pass: otherwise the
+                     ///< passes that follow replace its trajectory)
+    kNever,          ///< strict only (the retries and the nearest-reachable
+                     ///< search's candidates, which only a strict trajectory ends)
+  };
+  /// plan() without the nearest-reachable search: the pass schedule for one target; its last
+  /// pass's OCP falls back to the relaxed problem as `relaxed_fallback` says (the quick pass's
+  /// only when certified, and never under kNever).
+  FootstepTransition planTarget(
+      const FootstepPlanRequest& r, const FootstepPlanProgress& progress,
+      RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested) const;
   /// InfeasibleFootholdPolicy::kNearestReachable (see there); the times and passes of every
   /// plan it made are summed in the answer.
   FootstepTransition planNearestReachable(const FootstepPlanRequest& r,
@@ -235,14 +247,6 @@ class FootstepTransitionPlanner {
   /// pose as measured (the OCP's).
   Eigen::Isometry3d startPass(const FootstepPlanRequest& r, double horizon,
                               FootstepTransition& out) const;
-  /// When a pass's OCP for a kinematically feasible foothold may fall back to the relaxed
-  /// problem (its OcpPolicy's choice) after the strict one fails.
-  enum class RelaxedFallback {
-    kAsRequested,    ///< as the request's OcpPolicy says
-    kWhenCertified,  ///< only when the check certified the step (the quick pass: otherwise the
-                     ///< passes that follow replace its trajectory)
-    kNever,          ///< strict only (the retries, which only a strict trajectory ends)
-  };
   /// Steps 1-5 with the check's configuration `reach` (one pass of plan()); the OCP's eq. (23)
   /// slices into `slices_used` when given.
   FootstepTransition planWith(const FootstepPlanRequest& r, const ReachConfig& reach,
