@@ -40,7 +40,8 @@ const ConfigFields<NearestFootholdConfig>& NearestFootholdConfig::fields() {
           .add("time_limit", &C::time_limit, "s", Range::positive(),
                "on_fail nearest_reachable: wall-clock time the candidates (the rings' and the "
                "retreat's) take together at most, after the target's own plan (or the "
-               "request's deadline when earlier)");
+               "request's deadline when earlier); a safety net, the counts end the search "
+               "first");
   return f;
 }
 

@@ -453,6 +453,38 @@ TEST(WalkingPolicy, AFallbackThatFindsNothingIsClippedToTheBoundsNotTheRejectedT
   }
 }
 
+TEST(WalkingPolicy, AnUncertifiedStandInForAnInfeasibleTargetIsClippedToTheBounds) {
+  // The same first step (its target through the stance foot), the search limited to one ring
+  // candidate, no retreat, an OCP of one evaluation and terminal tolerances no path meets (no
+  // strict trajectory, no bridge: nothing certified): the nearest-reachable search found a
+  // kinematically feasible ring
+  // point but no reachable foothold. With the reachability check that point is nothing found
+  // (at the edge of the leg's reach beside the rejected target, its landing a relaxed guess):
+  // the step is the TVR step clipped to the heuristic bounds. The kinematic preset's answer
+  // is that ring point itself (its fallback is the kinematic search).
+  for (const std::string policy : {"proposed", "kinematic"}) {
+    WalkSetup setup = shippedSetup(policy, 1, Eigen::Vector2d(0, 0.4));
+    setup.walk.first_swing = WalkConfig::FirstSwing::kRight;
+    setup.footsteps.nearest_foothold.max_checked = 1;
+    setup.footsteps.nearest_foothold.retreat_checks = 0;
+    setup.footsteps.ocp.max_evaluations = 1;
+    // No bridge ends on x_f within these: a certified path must end there exactly.
+    setup.footsteps.reach.terminal_position_tolerance = 1e-14;
+    setup.footsteps.reach.terminal_velocity_tolerance = 1e-14;
+    setup.footsteps.reach.budgets.full.initial_samples = 300;
+    const WalkResult r = setup.experiment(kUrdf)->run();
+    ASSERT_FALSE(r.records.empty()) << r.summaryLine();
+    const StepRecord& first = r.records[0];
+    EXPECT_EQ(first.verdict, StepVerdict::kKinematicallyInfeasible) << first.reason;
+    if (policy == "proposed") {
+      EXPECT_EQ(first.foothold_source, FootholdSource::kClippedToBounds) << first.reason;
+      expectInsideHeuristicBounds(first);
+    } else {
+      EXPECT_EQ(first.foothold_source, FootholdSource::kNearestFeasible) << first.reason;
+    }
+  }
+}
+
 TEST(WalkingPolicy, CrossedLegsEndTheWalkAsAFall) {
   // TVR alone under a 0.4 m/s push to the left, the right leg swinging first (toward the
   // stance leg: the first leg not chosen from the push), puts the first swing sole into the
