@@ -34,7 +34,7 @@ std::vector<FootstepPlanRequest> walkRequests() {
 }
 
 /// The shipped planner with a candidate search that a loaded machine does not cut short (its
-/// shipped 60 s wall-clock limit, nearest_foothold.time_limit, is a safety net of the walk).
+/// shipped 120 s wall-clock limit, nearest_foothold.time_limit, is a safety net of the walk).
 FootstepPlannerConfig unhurriedConfig() {
   FootstepPlannerConfig config = pipeline().config;
   config.nearest_foothold.time_limit = 600.0;

@@ -45,10 +45,11 @@ struct NearestFootholdConfig {
   int retreat_kinematic_points = 32;
   /// on_fail nearest_reachable: wall-clock seconds the candidates (the rings' and the
   /// retreat's) may take together after the target's own plan, or the request's deadline when
-  /// earlier [s]. A safety net: the counts above end the search first (the shipped robots'
-  /// slowest searches take a few seconds), so that a walk that pauses for its plans does not
-  /// depend on the machine; a walk that pays for them has the step's deadline.
-  double time_limit = 60.0;
+  /// earlier [s]. A safety net: the counts above end the search first (the biped's slowest
+  /// steps of its push envelope plan for up to about 30 s on one thread: a target and 7
+  /// candidates, none certified), so that a walk that pauses for its plans does not depend on
+  /// the machine; a walk that pays for them has the step's deadline.
+  double time_limit = 120.0;
   /// \throws ConfigError naming the first bad field.
   void validate() const;
   /// The YAML keys of section `nearest_foothold:` (the member names), units and meaning.
