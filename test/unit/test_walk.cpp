@@ -424,6 +424,14 @@ TEST(WalkingPolicy, AFailedCheckClippedToTheBoundsLandsInsideThem) {
   EXPECT_GT(clipped, 0) << r.summaryLine();
 }
 
+/// `policy` walking `steps` steps pushed 0.4 m/s to the left with the right leg swinging first:
+/// the TVR puts the first swing sole into the stance foot (kinematically infeasible).
+WalkSetup intoTheStanceFootSetup(const std::string& policy, int steps) {
+  WalkSetup setup = shippedSetup(policy, steps, Eigen::Vector2d(0, 0.4));
+  setup.walk.first_swing = WalkConfig::FirstSwing::kRight;
+  return setup;
+}
+
 TEST(WalkingPolicy, AFallbackThatFindsNothingIsClippedToTheBoundsNotTheRejectedTarget) {
   // Pushed 0.4 m/s to the left with the right leg swinging first, the TVR puts the first swing
   // sole into the stance foot (kinematically infeasible); the nearest-foothold search is cut
@@ -432,8 +440,7 @@ TEST(WalkingPolicy, AFallbackThatFindsNothingIsClippedToTheBoundsNotTheRejectedT
   // it is the TVR step clipped to the heuristic bounds of config/biped.yaml (|x| <= 0.42 m, 0.25 <=
   // |y| <= 0.65 m towards the swing side from the stance sole), as the baseline's.
   for (const std::string policy : {"proposed", "kinematic"}) {
-    WalkSetup setup = shippedSetup(policy, 2, Eigen::Vector2d(0, 0.4));
-    setup.walk.first_swing = WalkConfig::FirstSwing::kRight;
+    WalkSetup setup = intoTheStanceFootSetup(policy, 2);
     setup.footsteps.nearest_foothold.rings = 1;
     setup.footsteps.nearest_foothold.ring_step = 0.001;
     setup.footsteps.nearest_foothold.retreat_checks = 0;  // no point toward the swing sole
@@ -463,8 +470,7 @@ TEST(WalkingPolicy, AnUncertifiedStandInForAnInfeasibleTargetIsClippedToTheBound
   // the step is the TVR step clipped to the heuristic bounds. The kinematic preset's answer
   // is that ring point itself (its fallback is the kinematic search).
   for (const std::string policy : {"proposed", "kinematic"}) {
-    WalkSetup setup = shippedSetup(policy, 1, Eigen::Vector2d(0, 0.4));
-    setup.walk.first_swing = WalkConfig::FirstSwing::kRight;
+    WalkSetup setup = intoTheStanceFootSetup(policy, 1);
     setup.footsteps.nearest_foothold.max_checked = 1;
     setup.footsteps.nearest_foothold.retreat_checks = 0;
     setup.footsteps.ocp.max_evaluations = 1;
