@@ -552,12 +552,41 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request,
   return solve(request, progress, SteadyClock::time_point::max());
 }
 
+SteadyClock::time_point TransitionOcp::deadlineOf(SteadyClock::time_point start,
+                                                  SteadyClock::time_point step_deadline) const {
+  return std::min(step_deadline, secondsAfter(start, config_.time_limit));
+}
+
+TransitionResult TransitionOcp::relaxedAfter(const TransitionRequest& request,
+                                             const TransitionResult& strict,
+                                             SteadyClock::time_point deadline,
+                                             const OcpProgressCallback& progress) const {
+  // Out of time: the strict problem's answer (failed, naming the time limit) stands.
+  if (SteadyClock::now() >= deadline || timedOut(strict.nlopt_status)) return strict;
+  TransitionResult res = solveMode(request, true, deadline, progress);
+  res.iterations += strict.iterations;
+  res.solves += strict.solves;
+  const std::string note = "strict problem failed (" + strict.reason + ")";
+  res.reason = res.reason.empty() ? note : note + "; relaxed: " + res.reason;
+  return res;
+}
+
+TransitionResult TransitionOcp::solveRelaxedAfter(const TransitionRequest& request,
+                                                  const TransitionResult& strict,
+                                                  const OcpProgressCallback& progress,
+                                                  SteadyClock::time_point step_deadline) const {
+  const SteadyClock::time_point start = SteadyClock::now();
+  validate(request);
+  TransitionResult res = relaxedAfter(request, strict, deadlineOf(start, step_deadline), progress);
+  res.solve_time = strict.solve_time + secondsSince(start);
+  return res;
+}
+
 TransitionResult TransitionOcp::solve(const TransitionRequest& request,
                                       const OcpProgressCallback& progress,
                                       SteadyClock::time_point step_deadline) const {
   const SteadyClock::time_point start = SteadyClock::now();
-  const SteadyClock::time_point deadline =
-      std::min(step_deadline, secondsAfter(start, config_.time_limit));
+  const SteadyClock::time_point deadline = deadlineOf(start, step_deadline);
   validate(request);
   TransitionResult res;
   switch (request.relaxation) {
@@ -571,14 +600,7 @@ TransitionResult TransitionOcp::solve(const TransitionRequest& request,
       if (finalStateOnContacts(request)) {
         res = solveMode(request, false, deadline, progress);
         if (res.status != OcpStatus::kFailed) break;
-        // Out of time: the strict problem's answer (failed, naming the time limit) stands.
-        if (SteadyClock::now() >= deadline || timedOut(res.nlopt_status)) break;
-        const TransitionResult strict = res;
-        res = solveMode(request, true, deadline, progress);
-        res.iterations += strict.iterations;
-        res.solves += strict.solves;
-        const std::string note = "strict problem failed (" + strict.reason + ")";
-        res.reason = res.reason.empty() ? note : note + "; relaxed: " + res.reason;
+        res = relaxedAfter(request, res, deadline, progress);
       } else {
         res = solveMode(request, true, deadline, progress);
         const std::string note = "x_f is off its contacts: solved the relaxed problem";

@@ -99,13 +99,17 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
     const FootstepPlanRequest& r, const FootstepPlanProgress& progress) const {
   FootstepPlanRequest at = r;
   at.on_infeasible = InfeasibleFootholdPolicy::kNoFallback;
-  FootstepTransition target = planTarget(at, progress);
+  // The target's relaxed OCP is solved only when its plan is the answer (deferred): a certified
+  // candidate makes it useless (TALOS's demo walk: 0.8 of a step's 1.8 s of OCPs).
+  std::optional<TransitionRequest> target_ocp;
+  FootstepTransition target = planTarget(at, progress, RelaxedFallback::kNever, &target_ocp);
   if (target.reachable && hasStrictTrajectory(r, target)) return target;
   // A certified target whose strict OCP failed in every pass stays the foothold: its
   // certificate's witness is a path x_0 -> x_f checked at every 1 ms step, so the target is
   // reachable; a candidate would step elsewhere for a trajectory only (TALOS's demo walk: 0.5 s
   // of candidates for a step 2 cm away). The swing goes there without a trajectory.
   if (target.reachable) {
+    solveDeferredRelaxed(at, target_ocp, progress, target);
     target.reason =
         "certified, no strict trajectory (the target kept, no candidate checked): " + target.reason;
     return target;
@@ -177,6 +181,11 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   // feasible candidate's; both uncertified.
   const bool from_candidate = !target.kinematically_feasible && nearest_feasible;
   FootstepTransition kept = from_candidate ? std::move(*nearest_feasible) : std::move(target);
+  if (!from_candidate) {
+    FootstepPlanRequest own = at;
+    own.deadline = r.deadline;  // the target's own plan, not the candidates' search
+    totals.ocp_time_s += solveDeferredRelaxed(own, target_ocp, progress, kept);
+  }
   carryTotals(kept, checked);
   kept.request = r;
   if (from_candidate) {
@@ -281,9 +290,10 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
   return best;
 }
 
-FootstepTransition FootstepTransitionPlanner::planTarget(const FootstepPlanRequest& r,
-                                                         const FootstepPlanProgress& progress,
-                                                         RelaxedFallback relaxed_fallback) const {
+FootstepTransition FootstepTransitionPlanner::planTarget(
+    const FootstepPlanRequest& r, const FootstepPlanProgress& progress,
+    RelaxedFallback relaxed_fallback, std::optional<TransitionRequest>* full_pass_ocp) const {
+  if (full_pass_ocp) full_pass_ocp->reset();
   const RobotModel& m = *model_;
   m.checkState(r.q0, r.qd0);
   requireFinite("FootstepTransitionPlanner: target", r.target.position);
@@ -299,7 +309,7 @@ FootstepTransition FootstepTransitionPlanner::planTarget(const FootstepPlanReque
   const ScheduledPass& first = schedule.passes.front();
   if (progress.pass) progress.pass(1);
   if (first.kind != PassKind::kQuick)
-    return planWith(r, reach, first.check, progress, relaxed_fallback);
+    return planWith(r, reach, first.check, progress, relaxed_fallback, nullptr, full_pass_ocp);
   // The quick pass first. It is final when it certified the step and (when asked for) its
   // strict OCP converged: the sparser forward set's hulls (eq. 23) can leave a certified step
   // without a trajectory. A kinematically infeasible foothold is decided before any sample is
@@ -334,10 +344,11 @@ FootstepTransition FootstepTransitionPlanner::planTarget(const FootstepPlanReque
   ++totals.passes;
   if (progress.pass) progress.pass(totals.passes);
   // The full budget alone: its check does not draw the quick budget again (and never gives up).
-  FootstepTransition full =
-      planWith(r, reach, schedule.passes.back().check, progress, relaxed_fallback);
+  FootstepTransition full = planWith(r, reach, schedule.passes.back().check, progress,
+                                     relaxed_fallback, nullptr, full_pass_ocp);
   // A certificate is never given up: when only the quick pass found one, its plan stands.
   FootstepTransition& kept = quick.reachable && !full.reachable ? quick : full;
+  if (&kept == &quick && full_pass_ocp) full_pass_ocp->reset();
   const char* why = quick.reachable ? "the quick pass's certified step has no strict trajectory"
                                     : "the quick pass certified nothing";
   totals.check_time_s += full.check_time_s;
@@ -432,12 +443,13 @@ FootstepTransition FootstepTransitionPlanner::solveInGrownHulls(
 FootstepTransition FootstepTransitionPlanner::planWith(
     const FootstepPlanRequest& r, const ReachConfig& reach, const CheckPass& pass,
     const FootstepPlanProgress& progress, RelaxedFallback relaxed_fallback,
-    std::vector<ReachableSlice>* slices_used) const {
+    std::vector<ReachableSlice>* slices_used, std::optional<TransitionRequest>* solved_ocp) const {
   FootstepTransition out;
   const Eigen::Isometry3d held = startPass(r, r.horizon > 0.0 ? r.horizon : reach.horizon, out);
   std::vector<ReachableSlice> set_constraint = checkFoothold(r, reach, pass, progress.check, out);
   if (slices_used) *slices_used = set_constraint;
-  solveTransition(r, held, std::move(set_constraint), progress.ocp, out, relaxed_fallback);
+  solveTransition(r, held, std::move(set_constraint), progress.ocp, out, relaxed_fallback,
+                  solved_ocp);
   return out;
 }
 
@@ -560,12 +572,11 @@ void FootstepTransitionPlanner::recordCheck(FootstepCheckResult check, bool chec
                                  : std::min(out.hausdorff_distance, w.distance.hausdorff);
 }
 
-void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
-                                                const Eigen::Isometry3d& held,
-                                                std::vector<ReachableSlice> set_constraint,
-                                                const OcpProgressCallback& progress,
-                                                FootstepTransition& out,
-                                                RelaxedFallback relaxed_fallback) const {
+void FootstepTransitionPlanner::solveTransition(
+    const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
+    std::vector<ReachableSlice> set_constraint, const OcpProgressCallback& progress,
+    FootstepTransition& out, RelaxedFallback relaxed_fallback,
+    std::optional<TransitionRequest>* solved_ocp) const {
   const RobotModel& m = *model_;
   const FootstepCheckResult& check = out.check;
   const TouchdownPrediction& td = out.transition.touchdown;
@@ -627,12 +638,44 @@ void FootstepTransitionPlanner::solveTransition(const FootstepPlanRequest& r,
   const auto ocp_start = SteadyClock::now();
   out.trajectory = ocp_.solve(ocp, progress, r.deadline.value_or(SteadyClock::time_point::max()));
   out.ocp_time_s = secondsSince(ocp_start);
+  if (solved_ocp) *solved_ocp = std::move(ocp);
+  finishTransition(r, nearest_feasible, out);
+}
+
+void FootstepTransitionPlanner::finishTransition(const FootstepPlanRequest& r,
+                                                 const Eigen::Vector3d& fallback_foothold,
+                                                 FootstepTransition& out) const {
   // Without a usable trajectory the swing still goes to the nearest kinematically feasible
   // foothold (the target itself when it is feasible).
-  out.foothold = out.usable() ? out.trajectory.landing_position : nearest_feasible;
+  out.foothold = out.usable() ? out.trajectory.landing_position : fallback_foothold;
   if (out.usable() && out.trajectory.relaxed) out.foothold_source = FootholdSource::kRelaxed;
   if (!out.trajectory.reason.empty()) out.reason += "; OCP: " + out.trajectory.reason;
-  if (r.check_reachability && check.kinematically_feasible) certify(out);
+  if (r.check_reachability && out.check.kinematically_feasible) certify(out);
+}
+
+double FootstepTransitionPlanner::solveDeferredRelaxed(const FootstepPlanRequest& r,
+                                                       const std::optional<TransitionRequest>& ocp,
+                                                       const FootstepPlanProgress& progress,
+                                                       FootstepTransition& step) const {
+  if (!ocp || !r.solve_ocp || !step.check.kinematically_feasible ||
+      step.trajectory.status != OcpStatus::kFailed ||
+      relaxationFor(r.ocp_policy, step.check.reachable) != RelaxationMode::kAuto)
+    return 0.0;
+  // The pass's strict answer is replaced by the merged one: its reason's OCP part too.
+  const std::string strict_part = "; OCP: " + step.trajectory.reason;
+  if (step.reason.size() >= strict_part.size() &&
+      step.reason.compare(step.reason.size() - strict_part.size(), strict_part.size(),
+                          strict_part) == 0)
+    step.reason.resize(step.reason.size() - strict_part.size());
+  TransitionRequest relaxed = *ocp;
+  relaxed.relaxation = RelaxationMode::kAuto;
+  const auto ocp_start = SteadyClock::now();
+  step.trajectory = ocp_.solveRelaxedAfter(relaxed, step.trajectory, progress.ocp,
+                                           r.deadline.value_or(SteadyClock::time_point::max()));
+  const double ocp_time_s = secondsSince(ocp_start);
+  step.ocp_time_s += ocp_time_s;
+  finishTransition(r, step.foothold, step);
+  return ocp_time_s;
 }
 
 void FootstepTransitionPlanner::certify(FootstepTransition& out) const {

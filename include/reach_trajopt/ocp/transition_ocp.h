@@ -64,6 +64,16 @@ class TransitionOcp {
   TransitionResult solve(const TransitionRequest& request, const OcpProgressCallback& progress,
                          std::chrono::steady_clock::time_point deadline) const;
 
+  /// RelaxationMode::kAuto's second half for a caller that decides after the strict solve
+  /// whether it needs it: the relaxed problem of `request` after `strict` (that request's
+  /// strict solve, failed), merged as solve() merges them under kAuto (iterations and solves
+  /// summed, the reason "strict problem failed (..); relaxed: .."), within `deadline` and
+  /// time_limit from this call; `strict` itself when it ran out of time.
+  TransitionResult solveRelaxedAfter(const TransitionRequest& request,
+                                     const TransitionResult& strict,
+                                     const OcpProgressCallback& progress,
+                                     std::chrono::steady_clock::time_point deadline) const;
+
   /// Throws ReachError naming the problem: wrong sizes or non-finite values, a horizon that is
   /// not positive or shorter than two output samples, slice / seed times outside [0, horizon],
   /// malformed hulls or seeds, invalid poses, x_0 off its stance contact (|phi_s| or
@@ -78,6 +88,14 @@ class TransitionOcp {
   const RobotModel& model() const { return *model_; }
 
  private:
+  /// A solve's deadline: the earlier of the caller's and time_limit after `start`.
+  std::chrono::steady_clock::time_point deadlineOf(
+      std::chrono::steady_clock::time_point start,
+      std::chrono::steady_clock::time_point step_deadline) const;
+  /// kAuto after the strict solve `strict` failed: see solveRelaxedAfter().
+  TransitionResult relaxedAfter(const TransitionRequest& request, const TransitionResult& strict,
+                                std::chrono::steady_clock::time_point deadline,
+                                const OcpProgressCallback& progress) const;
   TransitionResult solveMode(const TransitionRequest& request, bool relaxed,
                              std::chrono::steady_clock::time_point deadline,
                              const OcpProgressCallback& progress) const;

@@ -234,10 +234,20 @@ class FootstepTransitionPlanner {
   };
   /// plan() without the nearest-reachable search: the pass schedule for one target; its last
   /// pass's OCP falls back to the relaxed problem as `relaxed_fallback` says (the quick pass's
-  /// only when certified, and never under kNever).
-  FootstepTransition planTarget(
-      const FootstepPlanRequest& r, const FootstepPlanProgress& progress,
-      RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested) const;
+  /// only when certified, and never under kNever). `full_pass_ocp`, when given, gets the OCP
+  /// request of the full pass when the answer is that pass's plan (else it is left empty), for
+  /// solveDeferredRelaxed().
+  FootstepTransition planTarget(const FootstepPlanRequest& r, const FootstepPlanProgress& progress,
+                                RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested,
+                                std::optional<TransitionRequest>* full_pass_ocp = nullptr) const;
+  /// The relaxed OCP that `step`'s plan left out (planned with RelaxedFallback::kNever) and its
+  /// OcpPolicy asks for after a failed strict solve: solved now from `ocp` (the request of
+  /// the pass `step` comes from) and merged into `step` as that pass would have (trajectory,
+  /// foothold, its source, reason, certificate); nothing when `ocp` is empty or the policy
+  /// does not ask for it. Returns the OCP's wall time it took [s].
+  double solveDeferredRelaxed(const FootstepPlanRequest& r,
+                              const std::optional<TransitionRequest>& ocp,
+                              const FootstepPlanProgress& progress, FootstepTransition& step) const;
   /// InfeasibleFootholdPolicy::kNearestReachable (see there); the times and passes of every
   /// plan it made are summed in the answer.
   FootstepTransition planNearestReachable(const FootstepPlanRequest& r,
@@ -252,7 +262,8 @@ class FootstepTransitionPlanner {
   FootstepTransition planWith(const FootstepPlanRequest& r, const ReachConfig& reach,
                               const CheckPass& pass, const FootstepPlanProgress& progress,
                               RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested,
-                              std::vector<ReachableSlice>* slices_used = nullptr) const;
+                              std::vector<ReachableSlice>* slices_used = nullptr,
+                              std::optional<TransitionRequest>* solved_ocp = nullptr) const;
   /// Step 1: x_0, the held sole and the target into `t`; returns the held stance sole pose.
   Eigen::Isometry3d initialState(const FootstepPlanRequest& r, ContactTransition& t) const;
   /// The LIPM's prediction at touchdown from x_0 of `t`: the pelvis position to hold [m] and
@@ -338,11 +349,17 @@ class FootstepTransitionPlanner {
                                        double extra_margin,
                                        const FootstepPlanProgress& progress) const;
   /// Steps 4-5 of out.transition into out.trajectory and out.foothold, the stance sole held at
-  /// `held`, the swing sole in `set_constraint`.
+  /// `held`, the swing sole in `set_constraint`; the OCP request solved into `solved_ocp` when
+  /// given (left as it is when no OCP is solved).
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
                        std::vector<ReachableSlice> set_constraint,
                        const OcpProgressCallback& progress, FootstepTransition& out,
-                       RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested) const;
+                       RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested,
+                       std::optional<TransitionRequest>* solved_ocp = nullptr) const;
+  /// The end of solveTransition() after the OCP: out.foothold and its source from
+  /// out.trajectory (else `fallback_foothold`), the OCP's reason appended, the certificate.
+  void finishTransition(const FootstepPlanRequest& r, const Eigen::Vector3d& fallback_foothold,
+                        FootstepTransition& out) const;
   /// The verdict of a checked, kinematically feasible step from its witness and its OCP.
   void certify(FootstepTransition& out) const;
 
