@@ -667,10 +667,8 @@ double FootstepTransitionPlanner::solveDeferredRelaxed(const FootstepPlanRequest
       step.reason.compare(step.reason.size() - strict_part.size(), strict_part.size(),
                           strict_part) == 0)
     step.reason.resize(step.reason.size() - strict_part.size());
-  TransitionRequest relaxed = *ocp;
-  relaxed.relaxation = RelaxationMode::kAuto;
   const auto ocp_start = SteadyClock::now();
-  step.trajectory = ocp_.solveRelaxedAfter(relaxed, step.trajectory, progress.ocp,
+  step.trajectory = ocp_.solveRelaxedAfter(*ocp, step.trajectory, progress.ocp,
                                            r.deadline.value_or(SteadyClock::time_point::max()));
   const double ocp_time_s = secondsSince(ocp_start);
   step.ocp_time_s += ocp_time_s;

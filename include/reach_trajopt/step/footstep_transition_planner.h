@@ -75,12 +75,14 @@ enum class InfeasibleFootholdPolicy {
   /// witness is the checked path), the nearest point of the rings of
   /// planner/nearest_feasible_foothold.h that is kinematically feasible and that the reachability
   /// check (steps 2-4, every pass) certifies with a strict trajectory, nearest first, at most
-  /// NearestFootholdConfig::max_checked candidates checked, all of them within one ocp.time_limit
-  /// (or the request's earlier deadline), then NearestFootholdConfig::retreat_checks points toward
-  /// the swing sole (the certified one nearest the target; before the rings for a kinematically
-  /// infeasible target, whose ring points lie at the edge of the leg's reach). None certified: the
-  /// target's own plan when it is kinematically feasible (its relaxed OCP), else the nearest
-  /// feasible candidate's (uncertified, its OCP strict then relaxed). Without a reachability check:
+  /// NearestFootholdConfig::max_checked candidates checked, then
+  /// NearestFootholdConfig::retreat_checks points toward the swing sole (the certified one
+  /// nearest the target; before the rings for a kinematically infeasible target, whose ring
+  /// points lie at the edge of the leg's reach), all of them within
+  /// NearestFootholdConfig::time_limit (or the request's earlier deadline); a candidate solves no
+  /// relaxed OCP unless it may be the answer. None certified: the target's own plan when it is
+  /// kinematically feasible (its relaxed OCP, solved only then), else the nearest feasible
+  /// candidate's (uncertified, its OCP strict then relaxed). Without a reachability check:
   /// kNearestFeasible.
   kNearestReachable,
 };
