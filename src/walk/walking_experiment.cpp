@@ -914,19 +914,7 @@ WalkingExperiment::Loop::PendingPlan WalkingExperiment::Loop::decidePlan(
   plan.track_ocp = policy.swing == WalkingPolicy::SwingSource::kOcp && step.usable();
   if (failed) {
     current_.failed_check_action = policy.on_failed_check;
-    // The TVR step clipped to the heuristic bounds, reached by interpolation: the policy's
-    // fallback, and the last resort of every other one when it found nothing (no kinematically
-    // feasible foothold near the target, no trajectory), where the swing would otherwise go to
-    // the very foothold the check rejected. For a reachability check, a ring point that stands
-    // in for a kinematically infeasible target without a certificate is nothing found either:
-    // it lies at the edge of the leg's reach beside the rejected target, and the relaxed OCP's
-    // landing there only guesses (docs/walking.md, "the last resort").
-    const bool found_nothing =
-        (step.foothold_source == FootholdSource::kTarget && !step.usable()) ||
-        (policy.check == WalkingPolicy::FootholdCheck::kReachability &&
-         step.foothold_source == FootholdSource::kNearestFeasible && !step.reachable);
-    if (policy.on_failed_check == WalkingPolicy::OnFailedCheck::kClipToBounds || found_nothing)
-      plan = clippedToBoundsPlan(t);
+    if (policy.clipsFailedStep(step)) plan = clippedToBoundsPlan(t);
   }
   if (plan.track_ocp) plan.trajectory = step.trajectory;
   return plan;

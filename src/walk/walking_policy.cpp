@@ -8,6 +8,7 @@
 
 #include "reach_trajopt/common/enum_names.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 
 namespace reach_trajopt {
 namespace {
@@ -134,6 +135,18 @@ std::string WalkingPolicy::definition() const {
      << " on_fail=" << (checksFoothold() ? nameOf(onFailNames(), on_failed_check) : "-")
      << " swing=" << nameOf(swingNames(), swing);
   return os.str();
+}
+
+bool WalkingPolicy::clipsFailedStep(const FootstepTransition& step) const {
+  if (on_failed_check == OnFail::kClipToBounds) return true;
+  if (step.foothold_source == FootholdSource::kTarget && !step.usable()) return true;
+  if (check != Check::kReachability || step.reachable) return false;
+  // The planner's fields are the stand-in's; the target's own verdict is kept beside them
+  // (nearest_reachable), or they are the target's (nearest_feasible's kinematic ring search).
+  const bool target_kinematically_infeasible =
+      !step.kinematically_feasible || step.target_verdict == StepVerdict::kKinematicallyInfeasible;
+  return step.foothold_source == FootholdSource::kNearestFeasible ||
+         (step.foothold_source == FootholdSource::kRelaxed && target_kinematically_infeasible);
 }
 
 void WalkingPolicy::validate() const {

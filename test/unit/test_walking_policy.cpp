@@ -1,10 +1,12 @@
 // Walking policies (walk/walking_policy.h): the presets' parts, the "<preset>[,part=value]"
 // grammar, a changed preset named "custom" unless it equals another preset, errors that name
-// the bad token, the combination the loop cannot run; the push grid of the envelope sweep.
+// the bad token, the combination the loop cannot run, which failed steps take the last resort
+// (the TVR step clipped to the bounds); the push grid of the envelope sweep.
 
 #include <gtest/gtest.h>
 
 #include "reach_trajopt/common/config_yaml.h"
+#include "reach_trajopt/step/footstep_transition_planner.h"
 #include "reach_trajopt/walk/push_envelope.h"
 #include "reach_trajopt/walk/walking_policy.h"
 
@@ -89,6 +91,59 @@ TEST(WalkingPolicy, ErrorsNameTheToken) {
     ADD_FAILURE() << "no error";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("walk.policy"), std::string::npos) << e.what();
+  }
+}
+
+namespace {
+
+// A planner's answer for a step whose target failed its check.
+FootstepTransition answer(FootholdSource source, bool kinematically_feasible, bool reachable,
+                          bool usable, std::optional<StepVerdict> target_verdict) {
+  FootstepTransition step;
+  step.foothold_source = source;
+  step.kinematically_feasible = kinematically_feasible;
+  step.reachable = reachable;
+  step.trajectory.status = usable ? OcpStatus::kConverged : OcpStatus::kFailed;
+  step.target_verdict = target_verdict;
+  return step;
+}
+
+}  // namespace
+
+TEST(WalkingPolicy, TheLastResortTakesEveryUncertifiedStandInForAnInfeasibleTarget) {
+  // The rule of docs/walking.md ("the last resort"), case by case: which answers of the
+  // planner to a failed check are "nothing found", so that the loop takes the TVR step clipped
+  // to the bounds instead.
+  const WalkingPolicy proposed = WalkingPolicy::preset("proposed");
+  const WalkingPolicy kinematic = WalkingPolicy::preset("kinematic");
+  const WalkingPolicy clip = WalkingPolicy::parse("proposed,on_fail=clip_to_bounds");
+  const auto infeasible = StepVerdict::kKinematicallyInfeasible;
+  const auto unreachable = StepVerdict::kUnreachable;
+  struct Case {
+    const char* what;
+    FootstepTransition step;
+    bool proposed_clips, kinematic_clips;
+  };
+  const std::vector<Case> cases = {
+      {"the target itself, no usable plan",
+       answer(FootholdSource::kTarget, false, false, false, std::nullopt), true, true},
+      {"the target's relaxed landing (Sec. III-E)",
+       answer(FootholdSource::kRelaxed, true, false, true, std::nullopt), false, false},
+      {"a certified ring point",
+       answer(FootholdSource::kNearestReachable, true, true, true, infeasible), false, false},
+      {"an uncertified ring point for an infeasible target",
+       answer(FootholdSource::kNearestFeasible, true, false, true, infeasible), true, false},
+      {"the relaxed landing moved from the ring point of an infeasible target",
+       answer(FootholdSource::kRelaxed, true, false, true, infeasible), true, false},
+      {"the same from the kinematic ring search (fields of the infeasible target)",
+       answer(FootholdSource::kRelaxed, false, false, true, std::nullopt), true, false},
+      {"the relaxed landing of an unreachable target's stand-in",
+       answer(FootholdSource::kRelaxed, true, false, true, unreachable), false, false},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(proposed.clipsFailedStep(c.step), c.proposed_clips) << c.what;
+    EXPECT_EQ(kinematic.clipsFailedStep(c.step), c.kinematic_clips) << c.what;
+    EXPECT_TRUE(clip.clipsFailedStep(c.step)) << c.what;
   }
 }
 

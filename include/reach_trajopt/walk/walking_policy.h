@@ -41,6 +41,8 @@
 
 namespace reach_trajopt {
 
+struct FootstepTransition;
+
 /// @brief One walking policy: bounds, foothold check, failure handling, swing source.
 struct WalkingPolicy {
   enum class FootholdCheck { kNone, kKinematic, kReachability };
@@ -68,6 +70,16 @@ struct WalkingPolicy {
   static const char* actionName(OnFailedCheck action);
   /// "bounds=on check=none on_fail=- swing=interpolation" (the WALK line's definition).
   std::string definition() const;
+  /// For a step whose check failed (`step` the planner's answer): true when the loop takes the
+  /// TVR step clipped to the heuristic bounds, reached by interpolation. That is the
+  /// clip_to_bounds fallback, and the last resort of every other one when it found nothing,
+  /// where the swing would otherwise go to the very foothold the check rejected: no usable
+  /// plan for the target itself; or, with the reachability check, an uncertified stand-in for
+  /// the target (a ring point, or the relaxed OCP's landing moved from the ring point that
+  /// stands in for a kinematically infeasible target): it lies at the edge of the leg's reach
+  /// beside the rejected target, and the relaxed landing there only guesses (docs/walking.md,
+  /// "the last resort").
+  bool clipsFailedStep(const FootstepTransition& step) const;
   /// \throws ConfigError on a combination the loop cannot run (an OCP swing without a check).
   void validate() const;
   bool checksFoothold() const { return check != FootholdCheck::kNone; }
