@@ -370,7 +370,8 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::retryQuickOcp(
     if (!retry.reachable || !hasStrictTrajectory(r, retry)) return false;
     totals.stampOn(retry);
     retry.reason =
-        "the quick pass's strict OCP failed in its hulls, solved in " + how + ": " + retry.reason;
+        "the quick pass's strict OCP failed in its hulls, solved from its last iterate in " + how +
+        ": " + retry.reason;
     return true;
   };
   if (pass.kind == PassKind::kWideHullRetry) {
@@ -424,7 +425,7 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
   out.check_time_s = check_time_s;
   if (!forward.kinematically_feasible) return out;  // not the quick pass's IK: no retry
   solveTransition(r, held, slicesUpToJunction(std::move(forward.set_constraint), witness),
-                  progress.ocp, out, RelaxedFallback::kNever);
+                  progress.ocp, out, RelaxedFallback::kNever, nullptr, &quick.trajectory);
   return out;
 }
 
@@ -436,7 +437,7 @@ FootstepTransition FootstepTransitionPlanner::solveInGrownHulls(
   const Eigen::Isometry3d held = startPass(r, quick.transition.horizon, out);
   recordCheck(quick.check, true, out);  // the quick pass's check stands; no sample is drawn
   solveTransition(r, held, grownSlices(std::move(quick_slices), extra_margin), progress.ocp, out,
-                  RelaxedFallback::kNever);
+                  RelaxedFallback::kNever, nullptr, &quick.trajectory);
   return out;
 }
 
@@ -576,7 +577,7 @@ void FootstepTransitionPlanner::solveTransition(
     const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
     std::vector<ReachableSlice> set_constraint, const OcpProgressCallback& progress,
     FootstepTransition& out, RelaxedFallback relaxed_fallback,
-    std::optional<TransitionRequest>* solved_ocp) const {
+    std::optional<TransitionRequest>* solved_ocp, const TransitionResult* warm_start) const {
   const RobotModel& m = *model_;
   const FootstepCheckResult& check = out.check;
   const TouchdownPrediction& td = out.transition.touchdown;
@@ -634,7 +635,12 @@ void FootstepTransitionPlanner::solveTransition(
     if (r.check_reachability && check.kinematically_feasible) certify(out);
     return;
   }
-  seedFromWitness(check.reach, ocp);
+  if (warm_start && warm_start->time.size() > 1) {
+    ocp.seed.time = warm_start->time;
+    ocp.seed.q = warm_start->q;
+  } else {
+    seedFromWitness(check.reach, ocp);
+  }
   const auto ocp_start = SteadyClock::now();
   out.trajectory = ocp_.solve(ocp, progress, r.deadline.value_or(SteadyClock::time_point::max()));
   out.ocp_time_s = secondsSince(ocp_start);
@@ -690,8 +696,7 @@ void FootstepTransitionPlanner::certify(FootstepTransition& out) const {
   } else if (certifies) {
     out.certificate = Certificate::kLocalSolve;
     out.reason =
-        "reachable: certified by the local solve, the strict OCP seeded with the "
-        "check's closest bridged path (" +
+        "reachable: certified by the local solve, the strict OCP's converged path (the check: " +
         out.check.reason + ")";
   }
   out.reachable = out.certificate != Certificate::kNone;
