@@ -370,8 +370,7 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::retryQuickOcp(
     if (!retry.reachable || !hasStrictTrajectory(r, retry)) return false;
     totals.stampOn(retry);
     retry.reason =
-        "the quick pass's strict OCP failed in its hulls, solved from its last iterate in " + how +
-        ": " + retry.reason;
+        "the quick pass's strict OCP failed in its hulls, solved in " + how + ": " + retry.reason;
     return true;
   };
   if (pass.kind == PassKind::kWideHullRetry) {
@@ -425,7 +424,7 @@ FootstepTransition FootstepTransitionPlanner::solveInFullHulls(
   out.check_time_s = check_time_s;
   if (!forward.kinematically_feasible) return out;  // not the quick pass's IK: no retry
   solveTransition(r, held, slicesUpToJunction(std::move(forward.set_constraint), witness),
-                  progress.ocp, out, RelaxedFallback::kNever, nullptr, &quick.trajectory);
+                  progress.ocp, out, RelaxedFallback::kNever);
   return out;
 }
 
@@ -437,7 +436,7 @@ FootstepTransition FootstepTransitionPlanner::solveInGrownHulls(
   const Eigen::Isometry3d held = startPass(r, quick.transition.horizon, out);
   recordCheck(quick.check, true, out);  // the quick pass's check stands; no sample is drawn
   solveTransition(r, held, grownSlices(std::move(quick_slices), extra_margin), progress.ocp, out,
-                  RelaxedFallback::kNever, nullptr, &quick.trajectory);
+                  RelaxedFallback::kNever);
   return out;
 }
 
@@ -577,7 +576,7 @@ void FootstepTransitionPlanner::solveTransition(
     const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
     std::vector<ReachableSlice> set_constraint, const OcpProgressCallback& progress,
     FootstepTransition& out, RelaxedFallback relaxed_fallback,
-    std::optional<TransitionRequest>* solved_ocp, const TransitionResult* warm_start) const {
+    std::optional<TransitionRequest>* solved_ocp) const {
   const RobotModel& m = *model_;
   const FootstepCheckResult& check = out.check;
   const TouchdownPrediction& td = out.transition.touchdown;
@@ -635,12 +634,7 @@ void FootstepTransitionPlanner::solveTransition(
     if (r.check_reachability && check.kinematically_feasible) certify(out);
     return;
   }
-  if (warm_start && warm_start->time.size() > 1) {
-    ocp.seed.time = warm_start->time;
-    ocp.seed.q = warm_start->q;
-  } else {
-    seedFromWitness(check.reach, ocp);
-  }
+  seedFromWitness(check.reach, ocp);
   const auto ocp_start = SteadyClock::now();
   out.trajectory = ocp_.solve(ocp, progress, r.deadline.value_or(SteadyClock::time_point::max()));
   out.ocp_time_s = secondsSince(ocp_start);
@@ -696,7 +690,8 @@ void FootstepTransitionPlanner::certify(FootstepTransition& out) const {
   } else if (certifies) {
     out.certificate = Certificate::kLocalSolve;
     out.reason =
-        "reachable: certified by the local solve, the strict OCP's converged path (the check: " +
+        "reachable: certified by the local solve, the strict OCP seeded with the "
+        "check's closest bridged path (" +
         out.check.reason + ")";
   }
   out.reachable = out.certificate != Certificate::kNone;

@@ -235,9 +235,8 @@ TEST(FootstepVerdict, HullPassSolvesTheQuickPassesOcpInTheFullBudgetsForwardHull
   // one (test/fixtures/hull_pass_requests.jsonl, `walk_experiment --push 0,0.25|0,0
   // --plan-requests`): the quick pass's strict OCP fails in its sparse hulls (seeded with its
   // bridge's witness in the first, with its closest bridged path, the local solve, in the
-  // second); the hull pass keeps the quick pass's check and witness and solves the OCP again,
-  // from the quick pass's last iterate, in the hull pass's denser forward hulls, converged and
-  // strict, without the full pass. A bridge's
+  // second); the hull pass keeps the quick pass's check and witness and solves the OCP in the
+  // hull pass's denser forward hulls, converged and strict, without the full pass. A bridge's
   // certificate passes the same model re-check as every other.
   // The wide hull retry (reach.quick_retry_constraint_margin) is off here (as shipped): it
   // would end these steps before the hull pass (WideHullRetry... below).
@@ -276,9 +275,9 @@ TEST(FootstepVerdict, WideHullRetrySolvesTheQuickPassesOcpInItsGrownHulls) {
   // reach.quick_retry_constraint_margin on the hull pass's fixtures: the quick pass's strict
   // OCP fails in its hulls (seeded with its bridge's witness in the first, with its closest
   // bridged path, the local solve, in the second). The retry keeps the quick pass's check (no
-  // sample drawn) and solves the strict OCP again, from the quick pass's last iterate, in the
-  // quick forward hulls grown to the retry's margin: converged and strict in the second pass. The
-  // trajectory is re-checked here on the model, eq. (1) sample by sample.
+  // sample drawn) and solves the strict OCP again in the quick forward hulls grown to the retry's
+  // margin: converged and strict in the second pass. The trajectory is re-checked here on the
+  // model, eq. (1) sample by sample.
   const std::vector<FootstepPlanRequest> requests = hullPassRequests(0.04);  // off as shipped
   ASSERT_EQ(requests.size(), 2u);
   int second_passes = 0;
@@ -291,7 +290,7 @@ TEST(FootstepVerdict, WideHullRetrySolvesTheQuickPassesOcpInItsGrownHulls) {
     ++second_passes;
     const FootstepTransition& quick = *quick_pass;
     const FootstepTransition step = planStrict(request, planner);
-    expectSecondPassEndsStrict(step, "from its last iterate in them grown to");
+    expectSecondPassEndsStrict(step, "solved in them grown to");
     ASSERT_EQ(step.trajectory.status, OcpStatus::kConverged);
     // No sample drawn after the quick pass: its check, its time.
     EXPECT_EQ(step.check.reach.counts.forward_qps, quick.check.reach.counts.forward_qps);

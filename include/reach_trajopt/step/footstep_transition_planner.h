@@ -19,9 +19,8 @@
 /// ReachConfig::quick_pass, steps 1-5 run first with budgets.quick and again with budgets.full
 /// only when the quick pass certified nothing or its certified step got no strict trajectory
 /// (a quick certificate is kept when the full pass finds none; most of the walk's steps end
-/// after the quick pass). Between the two, the quick pass's strict OCP is solved again from
-/// its last iterate (a warm start; the quick pass's check and witness kept): first in its own
-/// hulls grown to
+/// after the quick pass). Between the two, the quick pass's strict OCP is solved again, its
+/// check and witness kept: first in its own hulls grown to
 /// ReachConfig::quick_retry_constraint_margin (one OCP, no sampling), then
 /// (ReachConfig::hull_pass) in the eq. (23) hulls of a forward set alone drawn with
 /// budgets.hull.
@@ -337,14 +336,14 @@ class FootstepTransitionPlanner {
       const CheckPass& quick_pass, const FootstepTransition& quick,
       std::vector<ReachableSlice>& quick_slices, const FootstepPlanProgress& progress,
       PassTotals& totals) const;
-  /// The hull pass (ReachConfig::hull_pass): the quick pass's check, its OCP solved again
-  /// from its last iterate in the hulls of a forward set alone drawn with `hull_pass` (budgets.hull
-  /// over the full budget), propagated up to the quick witness's junction.
+  /// The hull pass (ReachConfig::hull_pass): the quick pass's check and seed, its OCP solved
+  /// again in the hulls of a forward set alone drawn with `hull_pass` (budgets.hull over the
+  /// full budget), propagated up to the quick witness's junction.
   FootstepTransition solveInFullHulls(const FootstepPlanRequest& r, const ReachConfig& reach,
                                       const CheckPass& hull_pass, const FootstepTransition& quick,
                                       const FootstepPlanProgress& progress) const;
-  /// The wide hull retry (ReachConfig::quick_retry_constraint_margin): the quick pass's check,
-  /// its strict OCP solved again from its last iterate in its own slices `quick_slices` grown by
+  /// The wide hull retry (ReachConfig::quick_retry_constraint_margin): the quick pass's check
+  /// and seed, its strict OCP solved again in its own slices `quick_slices` grown by
   /// `extra_margin` [m]; no sample is drawn.
   FootstepTransition solveInGrownHulls(const FootstepPlanRequest& r,
                                        const FootstepTransition& quick,
@@ -353,14 +352,12 @@ class FootstepTransitionPlanner {
                                        const FootstepPlanProgress& progress) const;
   /// Steps 4-5 of out.transition into out.trajectory and out.foothold, the stance sole held at
   /// `held`, the swing sole in `set_constraint`; the OCP request solved into `solved_ocp` when
-  /// given (left as it is when no OCP is solved). The OCP starts from `warm_start`'s path when
-  /// it has one (a retry: the quick pass's last iterate), else from the check's witness.
+  /// given (left as it is when no OCP is solved).
   void solveTransition(const FootstepPlanRequest& r, const Eigen::Isometry3d& held,
                        std::vector<ReachableSlice> set_constraint,
                        const OcpProgressCallback& progress, FootstepTransition& out,
                        RelaxedFallback relaxed_fallback = RelaxedFallback::kAsRequested,
-                       std::optional<TransitionRequest>* solved_ocp = nullptr,
-                       const TransitionResult* warm_start = nullptr) const;
+                       std::optional<TransitionRequest>* solved_ocp = nullptr) const;
   /// The end of solveTransition() after the OCP: out.foothold and its source from
   /// out.trajectory (else `fallback_foothold`), the OCP's reason appended, the certificate.
   void finishTransition(const FootstepPlanRequest& r, const Eigen::Vector3d& fallback_foothold,
