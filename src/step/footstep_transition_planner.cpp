@@ -109,7 +109,7 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   // reachable; a candidate would step elsewhere for a trajectory only (TALOS's demo walk: 0.5 s
   // of candidates for a step 2 cm away). The swing goes there without a trajectory.
   if (target.reachable) {
-    solveDeferredRelaxed(at, target_ocp, progress, target);
+    solveDeferredRelaxed(r, target_ocp, progress, target);
     target.reason =
         "certified, no strict trajectory (the target kept, no candidate checked): " + target.reason;
     return target;
@@ -181,11 +181,8 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   // feasible candidate's; both uncertified.
   const bool from_candidate = !target.kinematically_feasible && nearest_feasible;
   FootstepTransition kept = from_candidate ? std::move(*nearest_feasible) : std::move(target);
-  if (!from_candidate) {
-    FootstepPlanRequest own = at;
-    own.deadline = r.deadline;  // the target's own plan, not the candidates' search
-    totals.ocp_time_s += solveDeferredRelaxed(own, target_ocp, progress, kept);
-  }
+  // The target's own plan: within the request's deadline, not the candidates' search's.
+  if (!from_candidate) totals.ocp_time_s += solveDeferredRelaxed(r, target_ocp, progress, kept);
   carryTotals(kept, checked);
   kept.request = r;
   if (from_candidate) {
