@@ -51,6 +51,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,7 @@
 #include "reach_trajopt/common/cli_options.h"
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/json_reader.h"
+#include "reach_trajopt/common/text_file.h"
 #include "reach_trajopt/step/footstep_plan_request_json.h"
 #include "reach_trajopt/step/footstep_planner_setup.h"
 #include "reach_trajopt/step/footstep_transition_planner.h"
@@ -169,8 +171,8 @@ GridStates loadStates(const GridOptions& o, const GridSetup& g) {
     out.sources.push_back("--bench-case");
   }
   if (!o.requests_path.empty()) {
-    std::ifstream in(o.requests_path);
-    if (!in) throw ReachError("cannot read --requests file '" + o.requests_path + "'");
+    std::istringstream in(readTextFile<RequestError>(
+        o.requests_path, "--requests file '" + o.requests_path + "'", kMaxJsonRequestBytes));
     std::string line;
     int n = 0;
     while (std::getline(in, line) && static_cast<long long>(states.size()) < o.max_states) {

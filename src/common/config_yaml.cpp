@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include "reach_trajopt/common/text_file.h"
+
 namespace reach_trajopt {
 
 struct YamlSection::Impl {
@@ -125,10 +127,7 @@ YamlSection::YamlSection(std::shared_ptr<const Impl> impl) : impl_(std::move(imp
 
 YamlSection YamlSection::loadFile(const std::string& path) {
   YAML::Node root;
-  std::ifstream in(path);
-  if (!in) throw ConfigError("cannot open YAML file '" + path + "'");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw ConfigError("cannot read YAML file '" + path + "'");
+  const std::string text = readTextFile<ConfigError>(path, "YAML file '" + path + "'");
   try {
     root = parseWithoutAliases(text, "YAML file '" + path + "'");
   } catch (const YAML::Exception& e) {

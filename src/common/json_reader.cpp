@@ -11,6 +11,8 @@
 #include <limits>
 #include <sstream>
 
+#include "reach_trajopt/common/text_file.h"
+
 namespace reach_trajopt {
 
 using nlohmann::json;
@@ -35,15 +37,10 @@ json JsonReader::parse(const std::string& text, const std::string& source) {
 }
 
 json JsonReader::parseFile(const std::string& path) {
-  std::string text;
-  if (path == "-") {
-    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-    return parse(text, "<stdin>");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw RequestError("cannot open request file '" + path + "'");
-  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return parse(text, path);
+  if (path == "-")
+    return parse(readBounded<RequestError>(std::cin, "<stdin>", kMaxJsonRequestBytes), "<stdin>");
+  return parse(
+      readTextFile<RequestError>(path, "request file '" + path + "'", kMaxJsonRequestBytes), path);
 }
 
 JsonReader::JsonReader(const json& value, std::string source, std::string path)

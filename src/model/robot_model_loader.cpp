@@ -12,6 +12,7 @@
 #include <optional>
 #include <sstream>
 
+#include "reach_trajopt/common/text_file.h"
 #include "reach_trajopt/model/collision_shape.h"
 #include "reach_trajopt/model/model_tree.h"
 #include "reach_trajopt/model/robot_model.h"
@@ -286,11 +287,8 @@ std::shared_ptr<const RobotModel> RobotModel::fromUrdfString(const std::string& 
 
 std::shared_ptr<const RobotModel> RobotModel::fromUrdfFile(const std::string& path,
                                                            const ModelOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw ModelError("cannot open URDF file '" + path + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return fromUrdfString(ss.str(), options, path);
+  return fromUrdfString(readTextFile<ModelError>(path, "URDF file '" + path + "'", kMaxUrdfBytes),
+                        options, path);
 }
 
 }  // namespace reach_trajopt

@@ -8,8 +8,10 @@
 #include <sstream>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/common/text_file.h"
 #include "reach_trajopt/model/collision_shape.h"
 #include "reach_trajopt/model/joint_locking.h"
+#include "reach_trajopt/model/urdf_validation.h"
 
 namespace reach_trajopt {
 
@@ -162,11 +164,8 @@ class Builder {
 }  // namespace
 
 SimBodyTree SimBodyTree::fromUrdfFile(const std::string& path, const LockedJoints& locked) {
-  std::ifstream in(path);
-  if (!in) throw ModelError("cannot open URDF file '" + path + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return fromUrdfString(ss.str(), path, locked);
+  return fromUrdfString(readTextFile<ModelError>(path, "URDF file '" + path + "'", kMaxUrdfBytes),
+                        path, locked);
 }
 
 SimBodyTree SimBodyTree::fromUrdfString(const std::string& xml, const std::string& source,

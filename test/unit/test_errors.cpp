@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/json_reader.h"
+#include "reach_trajopt/common/text_file.h"
 #include "reach_trajopt/contact/contact_config.h"
 #include "reach_trajopt/model/robot_model.h"
 #include "reach_trajopt/planner/lipm.h"
@@ -125,6 +127,24 @@ TEST(Errors, RequestsAndParametersHaveTheirCategories) {
   EXPECT_NE(thrownMessage<ModelError>([&] {
               BulletWorld::fromUrdfFile("/nonexistent/sim_xyz.urdf", *model, SimConfig{});
             }).find("sim_xyz.urdf"),
+            std::string::npos);
+}
+
+TEST(Errors, AnEndlessInputFileIsAnErrorNotAnUnboundedRead) {
+  // /dev/zero never ends: every file reader stops at its bound and names the file.
+  for (const std::string& msg :
+       {thrownMessage<ConfigError>([] { YamlSection::loadFile("/dev/zero"); }),
+        thrownMessage<ModelError>([] { RobotModel::fromUrdfFile("/dev/zero"); })}) {
+    EXPECT_NE(msg.find("/dev/zero"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("larger than"), std::string::npos) << msg;
+  }
+  // The bound itself: a stream of exactly max_bytes is read, one byte more is refused.
+  const std::string text(1000, 'x');
+  std::istringstream exact(text), over(text + "y");
+  EXPECT_EQ(readBounded<RequestError>(exact, "exact", text.size()), text);
+  EXPECT_NE(thrownMessage<RequestError>([&] {
+              readBounded<RequestError>(over, "the stream", text.size());
+            }).find("the stream: larger than 1000 bytes"),
             std::string::npos);
 }
 
