@@ -21,12 +21,15 @@ const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {
       ConfigFields<C>("TransitionOcpConfig", "ocp", "include/reach_trajopt/ocp/ocp_config.h",
                       "Transition OCP (eq. 22-23) on NLopt SLSQP; the header says what each knob "
                       "trades.")
-          .add("segments", &C::segments, "", Range::atLeast(2),
-               "cubic B-spline segments over the horizon (variables 12 (N - 1) + 6 strict)")
-          .add("check_interval", &C::check_interval, "s", Range::positive(),
-               "NLP samples for cones, torque bounds, hulls, cost; smaller: more rows, slower")
-          .add("output_dt", &C::output_dt, "s", Range::positive(),
-               "output and re-check sampling (controller rate)")
+          .add("segments", &C::segments, "", Range::between(2, 200),
+               "cubic B-spline segments over the horizon (variables 12 (N - 1) + 6 strict; "
+               "SLSQP's dense matrices grow as their square)")
+          .add("check_interval", &C::check_interval, "s", Range::atLeast(1e-3),
+               "NLP samples for cones, torque bounds, hulls, cost; smaller: more rows, slower "
+               "(at least 1 ms: the 5 s longest horizon then has 5000)")
+          .add("output_dt", &C::output_dt, "s", Range::atLeast(1e-4),
+               "output and re-check sampling (controller rate; at least 0.1 ms: the 5 s "
+               "longest horizon then has 50000 samples)")
           .add("w_torque", &C::w_torque, "", Range::nonNegative(), "weight of |u / u_max|^2")
           .add("w_wrench", &C::w_wrench, "", Range::nonNegative(), "weight of |lambda / (m g)|^2")
           .add("w_position", &C::w_position, "1/rad^2, 1/m^2", Range::nonNegative(),

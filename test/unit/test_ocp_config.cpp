@@ -33,6 +33,21 @@ TEST(TransitionOcpConfig, RejectsBadValues) {
   c = TransitionOcpConfig();
   c.time_limit = -1.0;
   EXPECT_THROW(c.validate(), ReachError);
+  // Sizes that would allocate without bound (a 1e-9 s output grid: 5e9 samples over the longest
+  // horizon) are refused by name.
+  const auto refusedNaming = [](const std::string& key, const auto& set) {
+    TransitionOcpConfig bad;
+    set(bad);
+    try {
+      bad.validate();
+      ADD_FAILURE() << key << " accepted";
+    } catch (const ReachError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  refusedNaming("segments", [](TransitionOcpConfig& b) { b.segments = 201; });
+  refusedNaming("check_interval", [](TransitionOcpConfig& b) { b.check_interval = 1e-6; });
+  refusedNaming("output_dt", [](TransitionOcpConfig& b) { b.output_dt = 1e-9; });
   try {
     TransitionOcpConfig::fromYaml(YamlSection::loadString("segmentz: 3\n", "test.yaml"));
     ADD_FAILURE() << "unknown key accepted";

@@ -47,9 +47,9 @@ enum class ChainDerivatives { kAnalytic, kFiniteDifferences };
 /// i.e. Qu = w_torque diag(u_max)^-2 / T, Ql = w_wrench / (m g)^2 / T, Qx = diag(w_position,
 /// w_velocity) / T, integrated by the trapezoid rule over the check samples.
 struct TransitionOcpConfig {
-  int segments = 4;              ///< cubic B-spline segments over the horizon (>= 2)
-  double check_interval = 0.02;  ///< NLP sample spacing [s]
-  double output_dt = 0.001;      ///< output / verification sample spacing [s] (controller)
+  int segments = 4;              ///< cubic B-spline segments over the horizon (2 .. 200)
+  double check_interval = 0.02;  ///< NLP sample spacing [s] (>= 1 ms)
+  double output_dt = 0.001;      ///< output / verification sample spacing [s] (>= 0.1 ms)
   double w_torque = 1.0;         ///< weight of |u / u_max|^2
   double w_wrench = 0.1;         ///< weight of |lambda / (m g)|^2
   double w_position = 0.1;       ///< weight of |q - q_f|^2 [1/rad^2, 1/m^2]
