@@ -28,7 +28,8 @@ const ConfigFields<SimConfig>& SimConfig::fields() {
       ConfigFields<C>("SimConfig", "sim", "include/reach_trajopt/sim/sim_config.h",
                       "Bullet multibody world (config/sim.yaml); its sole frames are those of "
                       "`contact:`.")
-          .add("time_step", &C::time_step, "s", Range::positive(), "fixed step (1 kHz)")
+          .add("time_step", &C::time_step, "s", Range::between(1e-4, 0.01),
+               "fixed step (1 kHz; 0.1 to 10 ms)")
           .add("mu", &C::mu, "", Range::positive(), "Coulomb friction with the ground")
           .add("gravity", &C::gravity, "m/s^2", "world frame, finite")
           .add("contacts", &C::contacts, "", "false removes the ground (free-fall checks)")

@@ -159,7 +159,8 @@ void addExperimentFields(ConfigFields<C>& t) {
            "pelvis origin below this height = fall")
       .add("seed", &C::seed, "",
            "seed of every random draw of the run (replaces reach.seed in the walk)")
-      .add("max_sim_time", &C::max_sim_time, "s", Range::positive(), "hard stop");
+      .add("max_sim_time", &C::max_sim_time, "s", Range::between(1e-3, 3600.0),
+           "hard stop (at most an hour of simulated time)");
 }
 
 }  // namespace

@@ -24,6 +24,8 @@ TEST(SimConfig, RejectsBadValues) {
   SimConfig c;
   c.time_step = -1e-3;
   EXPECT_THROW(c.validate(), ReachError);
+  c.time_step = 1e-9;  // 6e10 steps for a minute of walking
+  EXPECT_THROW(c.validate(), ReachError);
   c = SimConfig{};
   c.mu = 0.0;
   EXPECT_THROW(c.validate(), ReachError);

@@ -193,6 +193,9 @@ TEST(WalkingExperiment, ConfigErrors) {
   walk = WalkConfig{};
   walk.check_horizon = walk.single_support_duration;  // the check must start within the swing
   EXPECT_THROW(walk.validate(), ReachError);
+  walk = WalkConfig{};
+  walk.max_sim_time = 1e12;  // its ticks would not fit the loop's counter
+  EXPECT_THROW(walk.validate(), ReachError);
   EXPECT_THROW(WalkingExperiment(bipedAt("/nonexistent.urdf"), WalkConfig{}, TvrConfig{},
                                  ContactConfig{}, WbcConfig{}, SimConfig{}),
                ReachError);

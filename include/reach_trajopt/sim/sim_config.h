@@ -16,7 +16,7 @@ class ConfigFields;
 /// Simulation parameters. Speed versus accuracy: `solver_iterations` (contact and joint-limit
 /// impulses: more iterations, stiffer and more accurate contacts, slower steps).
 struct SimConfig {
-  double time_step = 1e-3;  ///< fixed step [s] (1 kHz)
+  double time_step = 1e-3;  ///< fixed step [s] (1 kHz; 0.1 to 10 ms)
   double mu = 0.7;          ///< Coulomb friction sole/link-ground (same default as ContactConfig)
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);  ///< world frame [m/s^2]
   bool contacts = true;       ///< false: no ground (free fall, for checks against the model)

@@ -152,7 +152,7 @@ struct WalkConfig {
   /// Seed of every random draw of the run: the reachability check's sampler (replaces
   /// reach.seed; the simulation, the controller and the other policies draw nothing).
   unsigned seed = 1;
-  double max_sim_time = 60.0;  ///< hard stop [s]
+  double max_sim_time = 60.0;  ///< hard stop [s] (at most 3600)
 
   /// \throws ConfigError naming the first bad field.
   void validate() const;
