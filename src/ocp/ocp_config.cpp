@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
+#include "reach_trajopt/common/cli_args.h"
 #include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/error.h"
 
@@ -13,6 +15,11 @@ void TransitionOcpConfig::validate() const {
   if (!std::isfinite(terminal_pelvis_height)) {
     throw ConfigError("TransitionOcpConfig: terminal_pelvis_height must be finite");
   }
+  // Each thread owns a worker; more threads than the machine has cannot run faster.
+  if (threads > hardwareThreads())
+    throw ConfigError(
+        "TransitionOcpConfig: threads must be <= the " + std::to_string(hardwareThreads()) +
+        " hardware threads of this machine (0: OpenMP's default), got " + std::to_string(threads));
 }
 
 const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {

@@ -39,9 +39,9 @@ const ConfigFields<SimConfig>& SimConfig::fields() {
           .add("leg_self_collision", &C::leg_self_collision, "",
                "the two legs' collision shapes collide with each other (a walk ends as a fall "
                "when they touch)")
-          .add("solver_iterations", &C::solver_iterations, "", Range::atLeast(1),
+          .add("solver_iterations", &C::solver_iterations, "", Range::between(1, 1000),
                "Bullet constraint-solver iterations per step: more, stiffer and more "
-               "accurate contacts; slower steps")
+               "accurate contacts; slower steps (at most 1000)")
           .add("collision_margin", &C::collision_margin, "m", Range::nonNegative(),
                "Bullet convex margin (rounds box corners)")
           .add("max_coordinate_velocity", &C::max_coordinate_velocity, "m/s, rad/s",

@@ -48,6 +48,7 @@ TEST(TransitionOcpConfig, RejectsBadValues) {
   refusedNaming("segments", [](TransitionOcpConfig& b) { b.segments = 201; });
   refusedNaming("check_interval", [](TransitionOcpConfig& b) { b.check_interval = 1e-6; });
   refusedNaming("output_dt", [](TransitionOcpConfig& b) { b.output_dt = 1e-9; });
+  refusedNaming("threads", [](TransitionOcpConfig& b) { b.threads = 1000000000; });
   try {
     TransitionOcpConfig::fromYaml(YamlSection::loadString("segmentz: 3\n", "test.yaml"));
     ADD_FAILURE() << "unknown key accepted";

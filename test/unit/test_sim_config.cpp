@@ -35,6 +35,8 @@ TEST(SimConfig, RejectsBadValues) {
   c = SimConfig{};
   c.solver_iterations = 0;
   EXPECT_THROW(c.validate(), ReachError);
+  c.solver_iterations = 1000000000;  // a step would take minutes
+  EXPECT_THROW(c.validate(), ReachError);
   c = SimConfig{};
   c.right_sole_frame = c.left_sole_frame;
   EXPECT_THROW(c.validate(), ReachError);

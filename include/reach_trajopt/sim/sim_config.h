@@ -33,7 +33,7 @@ struct SimConfig {
   /// sole); zero: none, the URDF's collision shapes only. Not a YAML key: robot.sim_sole_boxes
   /// and the contact rectangle, which WalkingExperiment copies here.
   Eigen::Vector3d sole_box_size = Eigen::Vector3d::Zero();
-  int solver_iterations = 20;      ///< Bullet constraint-solver iterations per step
+  int solver_iterations = 20;      ///< Bullet constraint-solver iterations per step (<= 1000)
   double collision_margin = 1e-3;  ///< Bullet convex margin [m] (rounds box corners)
   /// Bullet clamps every velocity coordinate to this [m/s, rad/s]; kept out of reach.
   double max_coordinate_velocity = 1e3;
