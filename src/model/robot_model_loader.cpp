@@ -4,13 +4,11 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
-#include <fstream>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
 #include <limits>
 #include <map>
 #include <optional>
-#include <sstream>
 
 #include "reach_trajopt/common/text_file.h"
 #include "reach_trajopt/model/collision_shape.h"

@@ -4,8 +4,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/common/text_file.h"
