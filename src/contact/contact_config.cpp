@@ -6,6 +6,7 @@
 
 #include "reach_trajopt/common/config_fields.h"
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/contact/contact_wrench_cone.h"
 
 namespace reach_trajopt {
 
@@ -26,10 +27,13 @@ const ConfigFields<ContactConfig>& ContactConfig::fields() {
       ConfigFields<C>("ContactConfig", "contact", "include/reach_trajopt/contact/contact_config.h",
                       "Contact wrench cone (eq. 7-8) and the sole frames of the contact "
                       "constraints (eq. 5); the only place the sole frames are named.")
-          .add("mu", &C::mu, "", Range::positive(), "friction coefficient")
-          .add("half_length", &C::half_length, "m", Range::positive(),
+          .add("mu", &C::mu, "", Range::positiveAtMost(ContactWrenchCone::kMaxFriction),
+               "friction coefficient")
+          .add("half_length", &C::half_length, "m",
+               Range::positiveAtMost(ContactWrenchCone::kMaxSoleHalfSize),
                "X: sole half-length along its x axis")
-          .add("half_width", &C::half_width, "m", Range::positive(),
+          .add("half_width", &C::half_width, "m",
+               Range::positiveAtMost(ContactWrenchCone::kMaxSoleHalfSize),
                "Y: sole half-width along its y axis")
           .add("left_sole_frame", &C::left_sole_frame, "",
                "frame at the left sole centre, z out of the sole")

@@ -22,6 +22,17 @@ ContactWrenchCone::ContactWrenchCone(double mu, double half_length, double half_
   check("mu", mu);
   check("half_length X", half_length);
   check("half_width Y", half_width);
+  // Beyond these the cone's entries (mu (X + Y)) and its rotated rows overflow to inf and NaN.
+  const auto atMost = [](const char* name, double v, double max, const char* unit) {
+    if (v > max) {
+      std::ostringstream os;
+      os << "ContactWrenchCone: " << name << " must be <= " << max << unit << ", got " << v;
+      throw ConfigError(os.str());
+    }
+  };
+  atMost("mu", mu, kMaxFriction, "");
+  atMost("half_length X", half_length, kMaxSoleHalfSize, " m");
+  atMost("half_width Y", half_width, kMaxSoleHalfSize, " m");
   const double X = half_length, Y = half_width;
   C_.setZero();
   // Rows 1-4: friction pyramid of the net force.

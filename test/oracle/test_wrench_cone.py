@@ -184,3 +184,12 @@ def test_tool_rejects_bad_parameters(args):
     out = subprocess.run([TOOL, *args], capture_output=True, text=True)
     assert out.returncode == 2
     assert "must be positive" in out.stderr
+
+
+@pytest.mark.parametrize("args", [["--mu", "1e308", "--half-length", "1e308"],
+                                  ["--half-width", "1e200"], ["--mu", "1e5"]])
+def test_tool_rejects_parameters_that_overflow_the_cone(args):
+    # Before: exit 0 with null (NaN) entries in the printed cone.
+    out = subprocess.run([TOOL, *args], capture_output=True, text=True)
+    assert out.returncode == 2, out.stdout[-300:]
+    assert "must be <=" in out.stderr

@@ -88,6 +88,10 @@ TEST(ContactWrenchCone, RejectsBadParameters) {
   EXPECT_THROW(ContactWrenchCone(0.7, 0.0, 0.08), ReachError);
   EXPECT_THROW(ContactWrenchCone(0.7, 0.135, 0.0), ReachError);
   EXPECT_THROW(ContactWrenchCone(kNaN, 0.135, 0.08), ReachError);
+  // Finite but so large that the cone's entries would overflow to inf and NaN.
+  EXPECT_THROW(ContactWrenchCone(1e308, 0.135, 0.08), ReachError);
+  EXPECT_THROW(ContactWrenchCone(0.7, 1e308, 0.08), ReachError);
+  EXPECT_THROW(ContactWrenchCone(0.7, 0.135, 1e308), ReachError);
   ContactConfig c;
   c.mu = 0.0;
   EXPECT_THROW(c.validate(), ReachError);
@@ -200,9 +204,10 @@ TEST(ContactConfig, YamlReadAndErrors) {
       EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
     }
   };
-  expectError("contact: {mu: 0}", "mu must be positive");
-  expectError("contact: {mu: -1}", "mu must be positive");
-  expectError("contact: {half_width: 0.0}", "half_width must be positive");
+  expectError("contact: {mu: 0}", "mu must be in (0, 1000]");
+  expectError("contact: {mu: -1}", "mu must be in (0, 1000]");
+  expectError("contact: {mu: 1.0e300}", "mu must be in (0, 1000]");
+  expectError("contact: {half_width: 0.0}", "half_width must be in (0, 10]");
   expectError("contact: {mu: abc}", "t.yaml: contact.mu: expected a number");
   expectError("contact: {muu: 0.5}", "contact.muu: unknown key");
   expectError("other: {}", "contact: missing section");

@@ -79,6 +79,7 @@ struct Range {
   static Range atLeast(double lo) { return {lo, std::numeric_limits<double>::infinity()}; }
   static Range between(double lo, double hi) { return {lo, hi}; }             ///< [lo, hi]
   static Range below(double lo, double hi) { return {lo, hi, false, true}; }  ///< [lo, hi)
+  static Range positiveAtMost(double hi) { return {0.0, hi, true, false}; }   ///< (0, hi]
   /// Finite and within the range.
   bool contains(double v) const;
   /// For the table: "> 0", ">= 0", ">= 2", "in [0, 1]", "in [0, 1)".

@@ -27,10 +27,15 @@ class ContactWrenchCone {
   using Matrix = Eigen::Matrix<double, kRows, 6>;
   using Wrench = Eigen::Matrix<double, 6, 1>;
 
-  /// \param mu           friction coefficient (> 0)
-  /// \param half_length  X [m] (> 0), along the sole's x axis
-  /// \param half_width   Y [m] (> 0), along the sole's y axis
-  /// Throws ReachError when a parameter is not positive and finite.
+  /// The largest friction coefficient and sole half-size [m] accepted (far beyond any sole:
+  /// larger ones only overflow the cone's entries).
+  static constexpr double kMaxFriction = 1e3;
+  static constexpr double kMaxSoleHalfSize = 10.0;
+
+  /// \param mu           friction coefficient, in (0, kMaxFriction]
+  /// \param half_length  X [m], in (0, kMaxSoleHalfSize], along the sole's x axis
+  /// \param half_width   Y [m], in (0, kMaxSoleHalfSize], along the sole's y axis
+  /// Throws ConfigError naming a parameter outside its range.
   ContactWrenchCone(double mu, double half_length, double half_width);
   explicit ContactWrenchCone(const ContactConfig& config);
 
