@@ -26,15 +26,15 @@
 /// ~midswing_push_vy [m/s] (WalkConfig::midswing_push), ~publish_period [s of sim time, 0.01],
 /// ~clock_period [s, 0.001], ~marker_period [s, 0.1], ~wait_for_subscribers (N: wait until every
 /// topic has N subscribers, e.g. a recorder; 0), ~wait_for_com_subscribers (N: wait until com_state
-/// has N subscribers, e.g. + the planner), ~wait_timeout [s wall, 20], ~real_time_factor (0: as
-/// fast as possible), ~linger [s wall, 1], ~exit_when_done (true: exit ~linger seconds after the
-/// walk ends, so a launch with required="true" ends with it; false: stay up, walk_result stays
-/// available, until shutdown), ~reachability_samples (true: reachability_result carries the output
-/// samples of every slice, at most 500 per set and slice; false: boundaries only; true).
-/// ~in_process (true: the checked footsteps are planned in this process; false: through
-/// transition_ocp_node's plan_footstep service, which plans them as the in-process loop does and
-/// publishes the four check topics above itself; the simulation waits, in sim time, for each
-/// answer; true), ~plan_service (the service's name, relative: remappable; plan_footstep).
+/// has N subscribers, e.g. + the planner), ~wait_timeout [s wall, 20; <= 1e6], ~real_time_factor
+/// (0: as fast as possible), ~linger [s wall, 1; <= 3600], ~exit_when_done (true: exit ~linger
+/// seconds after the walk ends, so a launch with required="true" ends with it; false: stay up,
+/// walk_result stays available, until shutdown), ~reachability_samples (true: reachability_result
+/// carries the output samples of every slice, at most 500 per set and slice; false: boundaries
+/// only; true). ~in_process (true: the checked footsteps are planned in this process; false:
+/// through transition_ocp_node's plan_footstep service, which plans them as the in-process loop
+/// does and publishes the four check topics above itself; the simulation waits, in sim time, for
+/// each answer; true), ~plan_service (the service's name, relative: remappable; plan_footstep).
 /// ~plan_retries (calls of a step repeated after a failed one, 0.1 s apart; 2). A step whose
 /// calls all fail (the node died or went away) is planned in process instead, with a warning,
 /// and its messages published here: the walk and the bag lose nothing. ~plan_timeout (wall

@@ -6,6 +6,7 @@
 #include <std_msgs/String.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "reach_trajopt/common/config_yaml.h"
 #include "reach_trajopt/ros/footstep_plan_msgs.h"
@@ -55,8 +56,15 @@ void SimNodeParams::validate() const {
   if (plan_retries < 0) throw ConfigError("~plan_retries must be >= 0");
   if (!(plan_timeout > 0.0) || plan_timeout > 1e6)
     throw ConfigError("~plan_timeout must be in (0, 1e6] s");
-  if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0))
-    throw ConfigError("~publish_period, ~clock_period and ~marker_period must be > 0");
+  if (!(publish_period > 0.0) || !(clock_period > 0.0) || !(marker_period > 0.0) ||
+      !(publish_period <= 1e6) || !(clock_period <= 1e6) || !(marker_period <= 1e6))
+    throw ConfigError("~publish_period, ~clock_period and ~marker_period must be in (0, 1e6] s");
+  // ros::WallDuration holds 32-bit seconds: 1e12 s ended the node after its walk.
+  if (!(wait_timeout >= 0.0) || wait_timeout > 1e6)
+    throw ConfigError("~wait_timeout must be in [0, 1e6] s");
+  if (!(linger >= 0.0) || linger > 3600.0) throw ConfigError("~linger must be in [0, 3600] s");
+  if (!std::isfinite(real_time_factor))
+    throw ConfigError("~real_time_factor must be finite (<= 0: as fast as possible)");
 }
 
 WalkSetup readSimWalkSetup(const ros::NodeHandle& pnh) {

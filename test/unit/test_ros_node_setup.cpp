@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 
 #include "reach_trajopt/common/error.h"
 #include "reach_trajopt/ros/node_setup.h"
+#include "reach_trajopt/ros/sim_node.h"
 
 namespace rb = reach_trajopt::ros_bridge;
 
@@ -42,4 +44,24 @@ TEST(RosNodeSetup, AnswerOrRejectFillsTheResponseWithTheReason) {
       "svc", [] { throw std::runtime_error("other"); },
       [&](const std::string& r) { rejected = r; }));
   EXPECT_EQ(rejected, "other");
+}
+
+TEST(RosNodeSetup, SimNodeParamsRefuseDurationsRosCannotHold) {
+  EXPECT_NO_THROW(rb::SimNodeParams{}.validate());
+  // ros::WallDuration holds 32-bit seconds: a 1e12 s ~linger ended the node after its walk.
+  const auto refused = [](const std::string& key, auto set) {
+    rb::SimNodeParams p;
+    set(p);
+    try {
+      p.validate();
+      ADD_FAILURE() << key << " accepted";
+    } catch (const reach_trajopt::ReachError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  refused("~linger", [](rb::SimNodeParams& p) { p.linger = 1e12; });
+  refused("~linger", [](rb::SimNodeParams& p) { p.linger = -1.0; });
+  refused("~wait_timeout", [](rb::SimNodeParams& p) { p.wait_timeout = 1e12; });
+  refused("~clock_period", [](rb::SimNodeParams& p) { p.clock_period = 1e12; });
+  refused("~real_time_factor", [](rb::SimNodeParams& p) { p.real_time_factor = std::nan(""); });
 }

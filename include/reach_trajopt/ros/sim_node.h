@@ -33,9 +33,9 @@ struct SimNodeParams {
   double marker_period = 0.1;    ///< [s of sim time]
   int wait_for_subscribers = 0;
   int wait_for_com_subscribers = 0;
-  double wait_timeout = 20.0;     ///< [s wall]
-  double real_time_factor = 0.0;  ///< 0: as fast as possible
-  double linger = 1.0;            ///< [s wall]
+  double wait_timeout = 20.0;     ///< [s wall], in [0, 1e6]
+  double real_time_factor = 0.0;  ///< <= 0: as fast as possible (finite)
+  double linger = 1.0;            ///< [s wall], in [0, 3600]
   bool exit_when_done = true;
   bool reachability_samples = true;
   bool in_process = true;
