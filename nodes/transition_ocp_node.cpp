@@ -15,16 +15,17 @@
 /// Bad requests (NaN, wrong sizes, unknown frame, empty contact set, a foothold in the air) get
 /// success = false and the reason; the node keeps serving.
 /// Parameters (private): ~config (YAML with sections contact, kinematic_feasibility, reach,
-/// optionally walk and ocp; default config/biped.yaml of the package), ~default_horizon [s]
-/// (t_f - t_0 when the request gives 0; default: the reach horizon), ~ground_tolerance [m],
-/// ~reachability_samples (plan_footstep's reachability_result carries the output samples of
-/// every slice, at most 500 per set and slice; false: boundaries only; true).
+/// optionally walk and ocp; default config/biped.yaml of the package), ~default_horizon [s, at
+/// most 5] (t_f - t_0 when the request gives 0; default: the reach horizon), ~ground_tolerance
+/// [m, >= 0], ~reachability_samples (plan_footstep's reachability_result carries the output
+/// samples of every slice, at most 500 per set and slice; false: boundaries only; true).
 /// Reachability workers (walk.launch workers:=N): ~workers (N reachability_nodes whose
 /// check_footholds services, <~worker_prefix><i>/check_footholds for i < N, check the
-/// candidates of the nearest-feasible-foothold search in parallel; 0: in this process; 0),
-/// ~worker_prefix (relative, remappable; reachability_worker_), ~worker_timeout [s wall, the
-/// longest wait for a worker's answer and, at start, for its service; 10], ~worker_retry_period
-/// [s wall, how long a worker that failed or timed out is left out; 30]. A worker's failure
+/// candidates of the nearest-feasible-foothold search in parallel; 0: in this process; 0; at
+/// most 64), ~worker_prefix (relative, remappable; reachability_worker_), ~worker_timeout [s
+/// wall, in (0, 1e6]: the longest wait for a worker's answer and, at start, for its service;
+/// 10], ~worker_retry_period [s wall, in [0, 1e6]: how long a worker that failed or timed out
+/// is left out; 30]. A worker's failure
 /// sends its candidates to another worker or checks them here: the plans do not change.
 /// The footstep check of plan_footstep (walk.launch): ~check_service (reachability_node's
 /// check_footstep, relative, remappable; "": in this process; ""), ~check_timeout [s wall, the
@@ -44,6 +45,7 @@
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
 #include "reach_trajopt/PlanTransitionAction.h"
+#include "reach_trajopt/common/format_number.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ros/action_goals.h"
@@ -61,11 +63,17 @@ namespace rb = reach_trajopt::ros_bridge;
 
 namespace {
 
+/// Reachability workers of one node: far more than the cores of a few hosts.
+constexpr int kMaxWorkers = 64;
+
 class TransitionOcpNode {
  public:
   TransitionOcpNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
       : s_(rb::FootholdServiceSetup::load(nh, pnh)), default_horizon_(s_.reach.horizon) {
     pnh.getParam("default_horizon", default_horizon_);
+    if (!(default_horizon_ > 0.0) || default_horizon_ > kMaxTransitionHorizon)
+      throw ConfigError("~default_horizon must be in (0, " + formatNumber(kMaxTransitionHorizon) +
+                        "] s, got " + formatNumber(default_horizon_));
     pnh.getParam("reachability_samples", reachability_samples_);
     startFootstepCheck(nh, pnh);
     startWorkers(nh, pnh);
@@ -93,7 +101,15 @@ class TransitionOcpNode {
     pnh.getParam("worker_prefix", prefix);
     pnh.getParam("worker_timeout", timeout);
     pnh.getParam("worker_retry_period", retry_period);
-    if (workers < 0) throw ConfigError("~workers must be >= 0, got " + std::to_string(workers));
+    // Checked before waiting: a negative ros::Duration waits for ever, one past 32-bit seconds
+    // throws, and each absent worker costs a wait.
+    if (workers < 0 || workers > kMaxWorkers)
+      throw ConfigError("~workers must be in [0, " + std::to_string(kMaxWorkers) + "], got " +
+                        std::to_string(workers));
+    if (!(timeout > 0.0) || timeout > 1e6)
+      throw ConfigError("~worker_timeout must be in (0, 1e6] s");
+    if (!(retry_period >= 0.0) || retry_period > 1e6)
+      throw ConfigError("~worker_retry_period must be in [0, 1e6] s");
     if (workers == 0) return;
     std::vector<std::string> services;
     for (int i = 0; i < workers; ++i) {

@@ -3,6 +3,7 @@
 #include <ros/package.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -50,6 +51,9 @@ FootholdServiceSetup FootholdServiceSetup::load(const ros::NodeHandle& nh,
   const std::string config_path = configPath(pnh);
   FootholdRequestLimits limits;
   pnh.getParam("ground_tolerance", limits.ground_tolerance);
+  // A NaN tolerance would pass every foothold height (the comparison is false).
+  if (!(limits.ground_tolerance >= 0.0) || !std::isfinite(limits.ground_tolerance))
+    throw ConfigError("~ground_tolerance must be >= 0 m and finite");
   const YamlSection file = YamlSection::loadFile(config_path);
   // The services need these sections (throw naming the file when missing); the rest is the
   // planner setup every tool reads (contact: required).
