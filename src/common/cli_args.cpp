@@ -52,6 +52,12 @@ int hardwareThreads() {
   return n == 0 ? 1 : static_cast<int>(n);
 }
 
+std::string threadsBeyondHardware(int threads) {
+  if (threads <= hardwareThreads()) return {};
+  return "must be <= the " + std::to_string(hardwareThreads()) +
+         " hardware threads of this machine (0: OpenMP's default), got " + std::to_string(threads);
+}
+
 int parseThreadsOption(const std::string& option, const std::string& text) {
   return static_cast<int>(parseIntOption(option, text, 0, hardwareThreads()));
 }

@@ -15,11 +15,8 @@ void TransitionOcpConfig::validate() const {
   if (!std::isfinite(terminal_pelvis_height)) {
     throw ConfigError("TransitionOcpConfig: terminal_pelvis_height must be finite");
   }
-  // Each thread owns a worker; more threads than the machine has cannot run faster.
-  if (threads > hardwareThreads())
-    throw ConfigError(
-        "TransitionOcpConfig: threads must be <= the " + std::to_string(hardwareThreads()) +
-        " hardware threads of this machine (0: OpenMP's default), got " + std::to_string(threads));
+  if (const std::string why = threadsBeyondHardware(threads); !why.empty())
+    throw ConfigError("TransitionOcpConfig: threads " + why);
 }
 
 const ConfigFields<TransitionOcpConfig>& TransitionOcpConfig::fields() {

@@ -56,11 +56,7 @@ void ReachConfig::validate() const {
   requireAtMost("boundary_lookahead (entries)", static_cast<long long>(boundary_lookahead.size()),
                 L::kMaxLookahead);
   requireAtMost("redraw_rounds", redraw_rounds, L::kMaxRedrawRounds);
-  // Each thread owns a workspace; more threads than the machine has cannot run faster.
-  if (threads > hardwareThreads())
-    bad("threads", "must be <= the " + std::to_string(hardwareThreads()) +
-                       " hardware threads of this machine (0: OpenMP's default), got " +
-                       std::to_string(threads));
+  if (const std::string why = threadsBeyondHardware(threads); !why.empty()) bad("threads", why);
   if (forward_integrator != "semi_implicit" && forward_integrator != "explicit")
     bad("forward_integrator",
         "must be 'semi_implicit' or 'explicit', got '" + forward_integrator + "'");

@@ -167,6 +167,13 @@ TEST(CliArgs, WholeTextInRange) {
   EXPECT_DOUBLE_EQ(parseDoubleOption("--mu", "0.7"), 0.7);
   EXPECT_ERROR_NAMES(parseThreadsOption("--threads", "100000"), "--threads");
   EXPECT_EQ(parseThreadsOption("--threads", "1"), 1);
+  // The configs' `threads` keys share one rule and one message with the option.
+  EXPECT_EQ(threadsBeyondHardware(0), "");
+  EXPECT_EQ(threadsBeyondHardware(hardwareThreads()), "");
+  EXPECT_NE(threadsBeyondHardware(hardwareThreads() + 1)
+                .find("hardware threads of this machine (0: OpenMP's default), got " +
+                      std::to_string(hardwareThreads() + 1)),
+            std::string::npos);
 }
 
 TEST(YamlConfig, DuplicateKeysAndUnknownSections) {

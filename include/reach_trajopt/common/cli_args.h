@@ -20,5 +20,9 @@ long long parseIntOption(const std::string& option, const std::string& text, lon
 int parseThreadsOption(const std::string& option, const std::string& text);
 /// Hardware threads of this machine (>= 1).
 int hardwareThreads();
+/// Empty when a config's `threads` (0: OpenMP's default) is at most hardwareThreads(), else
+/// why not ("must be <= the 2 hardware threads of this machine (0: OpenMP's default), got 8"):
+/// each thread owns a workspace, and more threads than the machine has cannot run faster.
+std::string threadsBeyondHardware(int threads);
 
 }  // namespace reach_trajopt
