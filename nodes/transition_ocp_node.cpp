@@ -45,7 +45,6 @@
 #include "reach_trajopt/PlanFootstep.h"
 #include "reach_trajopt/PlanTransition.h"
 #include "reach_trajopt/PlanTransitionAction.h"
-#include "reach_trajopt/common/format_number.h"
 #include "reach_trajopt/ocp/ocp_config.h"
 #include "reach_trajopt/ocp/transition_ocp.h"
 #include "reach_trajopt/ros/action_goals.h"
@@ -57,26 +56,20 @@
 #include "reach_trajopt/ros/reachability_workers.h"
 #include "reach_trajopt/ros/remote_footstep_check.h"
 #include "reach_trajopt/ros/service_requests.h"
+#include "reach_trajopt/ros/transition_ocp_node_params.h"
 
 using namespace reach_trajopt;
 namespace rb = reach_trajopt::ros_bridge;
 
 namespace {
 
-/// Reachability workers of one node: far more than the cores of a few hosts.
-constexpr int kMaxWorkers = 64;
-
 class TransitionOcpNode {
  public:
   TransitionOcpNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
-      : s_(rb::FootholdServiceSetup::load(nh, pnh)), default_horizon_(s_.reach.horizon) {
-    pnh.getParam("default_horizon", default_horizon_);
-    if (!(default_horizon_ > 0.0) || default_horizon_ > kMaxTransitionHorizon)
-      throw ConfigError("~default_horizon must be in (0, " + formatNumber(kMaxTransitionHorizon) +
-                        "] s, got " + formatNumber(default_horizon_));
-    pnh.getParam("reachability_samples", reachability_samples_);
-    startFootstepCheck(nh, pnh);
-    startWorkers(nh, pnh);
+      : s_(rb::FootholdServiceSetup::load(nh, pnh)),
+        params_(rb::TransitionOcpNodeParams::read(pnh, s_.reach)) {
+    startFootstepCheck(nh);
+    startWorkers(nh);
     // Queues for a recorder of a walk (one message of each per step).
     traj_pub_ = nh.advertise<reach_trajopt::TransitionTrajectory>("transition_trajectory", 100);
     reach_pub_ = nh.advertise<reach_trajopt::ReachabilityResult>("reachability_result", 100);
@@ -93,23 +86,10 @@ class TransitionOcpNode {
 
  private:
   // The reachability workers of the nearest-feasible search (~workers), before serving.
-  void startWorkers(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
-    int workers = 0;
-    std::string prefix = "reachability_worker_";
-    double timeout = 10.0, retry_period = 30.0;
-    pnh.getParam("workers", workers);
-    pnh.getParam("worker_prefix", prefix);
-    pnh.getParam("worker_timeout", timeout);
-    pnh.getParam("worker_retry_period", retry_period);
-    // Checked before waiting: a negative ros::Duration waits for ever, one past 32-bit seconds
-    // throws, and each absent worker costs a wait.
-    if (workers < 0 || workers > kMaxWorkers)
-      throw ConfigError("~workers must be in [0, " + std::to_string(kMaxWorkers) + "], got " +
-                        std::to_string(workers));
-    if (!(timeout > 0.0) || timeout > 1e6)
-      throw ConfigError("~worker_timeout must be in (0, 1e6] s");
-    if (!(retry_period >= 0.0) || retry_period > 1e6)
-      throw ConfigError("~worker_retry_period must be in [0, 1e6] s");
+  void startWorkers(const ros::NodeHandle& nh) {
+    const int workers = params_.workers;
+    const std::string& prefix = params_.worker_prefix;
+    const double timeout = params_.worker_timeout;
     if (workers == 0) return;
     std::vector<std::string> services;
     for (int i = 0; i < workers; ++i) {
@@ -122,7 +102,7 @@ class TransitionOcpNode {
     }
     const KinematicFeasibility& kinematics = s_.planner->kinematics();
     workers_ = std::make_unique<rb::ReachabilityWorkerPool>(
-        nh, services, timeout, retry_period, s_.model->nq(),
+        nh, services, timeout, params_.worker_retry_period, s_.model->nq(),
         [&kinematics](const FootholdCandidates& b) {
           return checkFootholdCandidates(kinematics, b, false);
         });
@@ -137,14 +117,10 @@ class TransitionOcpNode {
 
   // plan_footstep's own planner, whose footstep check is reachability_node's (~check_service),
   // before serving.
-  void startFootstepCheck(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
-    std::string service;
-    double timeout = 60.0;
-    pnh.getParam("check_service", service);
-    pnh.getParam("check_timeout", timeout);
+  void startFootstepCheck(const ros::NodeHandle& nh) {
+    const std::string& service = params_.check_service;
+    const double timeout = params_.check_timeout;
     if (service.empty()) return;
-    if (!(timeout > 0.0) || timeout > 1e6)
-      throw ConfigError("~check_timeout must be in (0, 1e6] s");
     if (!ros::service::waitForService(nh.resolveName(service), ros::Duration(timeout)))
       ROS_WARN(
           "transition_ocp_node: '%s' (~check_service) not up within ~check_timeout; the "
@@ -152,8 +128,8 @@ class TransitionOcpNode {
           nh.resolveName(service).c_str());
     footstep_planner_ =
         std::make_shared<FootstepTransitionPlanner>(s_.model, s_.contact, s_.planner->config());
-    remote_check_ = std::make_unique<rb::RemoteFootstepCheck>(nh, service, timeout, s_.planner,
-                                                              s_.contact, reachability_samples_);
+    remote_check_ = std::make_unique<rb::RemoteFootstepCheck>(
+        nh, service, timeout, s_.planner, s_.contact, params_.reachability_samples);
     footstep_planner_->setFootstepCheck(
         [check = remote_check_.get()](const ContactTransition& r, const ReachConfig& c,
                                       const CheckPass& pass,
@@ -217,7 +193,7 @@ class TransitionOcpNode {
         [&] {
           const ContactTransition r = rb::parseFootholdRequest(
               *s_.model, s_.contact, req.header.frame_id, req.contact_mode, req.q, req.qd,
-              req.foothold, req.swing_duration, default_horizon_, s_.standing_q, s_.limits);
+              req.foothold, req.swing_duration, params_.default_horizon, s_.standing_q, s_.limits);
           FootstepPlanRequest step_request(r);
           step_request.make_contact_consistent = false;  // x_0 as requested
           step_request.check_reachability = req.check_reachability;
@@ -274,7 +250,7 @@ class TransitionOcpNode {
                                                      remote_check_->checkedMessage(), t0)
                             : rb::toProposedStepMsgs(*s_.model, s_.contact, record, step,
                                                      request.target.position, request.reach->delta,
-                                                     t0, reachability_samples_);
+                                                     t0, params_.reachability_samples);
           reach_pub_.publish(msgs.reachability);
           reach_marker_pub_.publish(msgs.markers);
           traj_pub_.publish(msgs.trajectory);
@@ -291,9 +267,8 @@ class TransitionOcpNode {
 
   using TransitionAction = actionlib::SimpleActionServer<reach_trajopt::PlanTransitionAction>;
   const rb::FootholdServiceSetup s_;
+  const rb::TransitionOcpNodeParams params_;             ///< checked before any wait for a service
   std::unique_ptr<TransitionAction> transition_action_;  ///< goals run on its own thread
-  double default_horizon_;
-  bool reachability_samples_ = true;
   std::unique_ptr<rb::ReachabilityWorkerPool> workers_;  ///< none: ~workers 0
   /// plan_footstep's planner and its footstep check on reachability_node; none: ~check_service
   /// empty (s_.planner plans).

@@ -282,6 +282,8 @@ def member_default(var, text):
                 dm = re.search(r"\b" + re.escape(parts[1]) + r"\s*=\s*([^;]+);", code[sm.end():])
                 if dm:
                     return literal(dm.group(1))
+                if re.search(r"\bstd::string\s+" + re.escape(parts[1]) + r"\s*;", code[sm.end():]):
+                    return '""'
     return None
 
 
@@ -303,6 +305,12 @@ def get_param_default(text, m):
         if am:
             return "`%s`" % am.group(1)
     if "." in var:
+        # `root.member = expr;` before the call (a default computed at run time)
+        assigned = None
+        for am in re.finditer(r"\b" + re.escape(var) + r"\s*=\s*([^;=]+?)\s*;", before):
+            assigned = am
+        if assigned:
+            return "`%s`" % " ".join(assigned.group(1).split())
         d = member_default(var, text)
         return d if d is not None else "`%s`" % var
     d = var_default(text, var, len(text) if var.endswith("_") else m.start())
@@ -364,6 +372,11 @@ def scan_node(name, node_code, lib):
             return m.group(1), None
         for m in re.finditer(re.escape(var) + r"\s*\.\s*push_back\s*\(\s*(\w+)", head):
             return param_of(m.group(1), m.start())
+        # `var = params_.member;`: the parameter read into some struct's `member`
+        for m in re.finditer(r"\b" + re.escape(var) + r"\s*=\s*\w+\s*\.\s*(\w+)\s*;", head):
+            for g in re.finditer(r"getParam\s*\(\s*\"(\w+)\"\s*,\s*\w+\s*\.\s*" +
+                                 re.escape(m.group(1)) + r"\s*\)", code):
+                return g.group(1), None
         return None
 
     # service clients: a client template with a service type, the name from a variable

@@ -10,8 +10,10 @@
 #include <string>
 
 #include "reach_trajopt/common/error.h"
+#include "reach_trajopt/ocp/transition_request.h"
 #include "reach_trajopt/ros/node_setup.h"
 #include "reach_trajopt/ros/sim_node.h"
+#include "reach_trajopt/ros/transition_ocp_node_params.h"
 
 namespace rb = reach_trajopt::ros_bridge;
 
@@ -64,4 +66,40 @@ TEST(RosNodeSetup, SimNodeParamsRefuseDurationsRosCannotHold) {
   refused("~wait_timeout", [](rb::SimNodeParams& p) { p.wait_timeout = 1e12; });
   refused("~clock_period", [](rb::SimNodeParams& p) { p.clock_period = 1e12; });
   refused("~real_time_factor", [](rb::SimNodeParams& p) { p.real_time_factor = std::nan(""); });
+}
+
+TEST(RosNodeSetup, TransitionOcpNodeParamsRefuseWaitsAndCountsOutOfRange) {
+  rb::TransitionOcpNodeParams fine;
+  fine.default_horizon = 0.2;
+  EXPECT_NO_THROW(fine.validate());
+  // Checked before the node waits for its services: a negative ros::Duration waits for ever,
+  // one past 32-bit seconds throws, and each absent worker costs ~worker_timeout at start.
+  const auto refused = [&fine](const std::string& key, auto set) {
+    rb::TransitionOcpNodeParams p = fine;
+    set(p);
+    try {
+      p.validate();
+      ADD_FAILURE() << key << " accepted";
+    } catch (const reach_trajopt::ReachError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  using P = rb::TransitionOcpNodeParams;
+  refused("~default_horizon", [](P& p) { p.default_horizon = 0.0; });
+  refused("~default_horizon", [](P& p) { p.default_horizon = 100.0; });
+  refused("~default_horizon", [](P& p) { p.default_horizon = std::nan(""); });
+  refused("~check_timeout", [](P& p) { p.check_timeout = -1.0; });
+  refused("~check_timeout", [](P& p) { p.check_timeout = 1e12; });
+  refused("~workers", [](P& p) { p.workers = -1; });
+  refused("~workers", [](P& p) { p.workers = 100000; });
+  refused("~worker_timeout", [](P& p) { p.worker_timeout = 0.0; });
+  refused("~worker_timeout", [](P& p) { p.worker_timeout = std::nan(""); });
+  refused("~worker_retry_period", [](P& p) { p.worker_retry_period = -1.0; });
+  refused("~worker_retry_period", [](P& p) { p.worker_retry_period = 1e12; });
+  // The bounds themselves are accepted.
+  P edge = fine;
+  edge.default_horizon = reach_trajopt::kMaxTransitionHorizon;
+  edge.workers = P::kMaxWorkers;
+  edge.worker_timeout = edge.worker_retry_period = edge.check_timeout = P::kMaxWait;
+  EXPECT_NO_THROW(edge.validate());
 }
