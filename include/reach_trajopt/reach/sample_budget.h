@@ -68,7 +68,7 @@ struct ReachBudgets {
   SamplingBudget full;
   /// The quick budget, drawn first (ReachConfig::quick_pass): about a tenth of the full one's
   /// QPs; its hulls keep 32 samples per slice against 128, so they grow more.
-  SamplingBudget quick{1000, 4, 12, 24, 8, 4, 0.02};
+  SamplingBudget quick{1000, 4, 8, 24, 8, 4, 0.02};
   /// The hull pass's forward set (ReachConfig::hull_pass): the full budget with fewer first
   /// draws (its first step keeps only max_boundary + interior_samples of them as parents) and
   /// half the children per parent. Unset keys take the full budget's.
