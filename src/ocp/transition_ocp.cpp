@@ -188,11 +188,14 @@ struct NloptBridge {
 
 /// Runs SLSQP from x (updated in place) until `deadline` less `reserve_s`. Returns NLopt's
 /// code name (MAXTIME_REACHED when the deadline stopped it); `error` gets callback failures.
+/// `longest_step_s`: the longest SLSQP iteration of the solve so far [s], in and out: a new run
+/// starts knowing it (its first iteration is as long as the earlier runs' were; each run
+/// starting from zero let the pushed demo walk's plans end up to 13 ms past their deadline).
 /// \throws ReachCancelled when `progress` returns false.
 std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
                          SteadyClock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
-                         int& evaluations, std::string& error, const OcpProgressCallback& progress,
-                         const std::vector<int>* rows) {
+                         int& evaluations, double& longest_step_s, std::string& error,
+                         const OcpProgressCallback& progress, const std::vector<int>* rows) {
   const unsigned n = static_cast<unsigned>(nlp.variableCount());
   nlopt::opt opt(nlopt::LD_SLSQP, n);
   NloptBridge bridge;
@@ -203,6 +206,7 @@ std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
   bridge.evaluations_before = evaluations;
   bridge.deadline = deadline;
   bridge.reserve_s = reserve_s;
+  bridge.longest_step_s = longest_step_s;
   bridge.feasible_tolerance = 0.5 * config.tolerance;
   const double max_time = secondsUntil(deadline);
   auto toStd = [](const Eigen::VectorXd& v) {
@@ -245,6 +249,7 @@ std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
   const Eigen::VectorXd xn = Eigen::Map<const Eigen::VectorXd>(xv.data(), n);
   if (xn.allFinite()) x = xn;
   evaluations += bridge.gradient_evaluations;
+  longest_step_s = bridge.longest_step_s;
   std::string name = bridge.timed_out ? "MAXTIME_REACHED" : nloptResultName(code);
   // Anytime: a run cut short (deadline or evaluation budget) ends where it was, which need not
   // be feasible; the best feasible iterate it passed is the better answer. The 1 ms re-check
@@ -270,10 +275,12 @@ std::string runSlsqpOnce(TransitionNlp& nlp, const TransitionOcpConfig& config,
 /// every row (TransitionOcpConfig::row_screening). screen <= 0: all rows at once.
 std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
                      SteadyClock::time_point deadline, double reserve_s, Eigen::VectorXd& x,
-                     int& evaluations, std::string& error, const OcpProgressCallback& progress) {
+                     int& evaluations, double& longest_step_s, std::string& error,
+                     const OcpProgressCallback& progress) {
   const double screen = config.row_screening;
   if (screen <= 0.0)
-    return runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, error, progress, nullptr);
+    return runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, longest_step_s, error,
+                        progress, nullptr);
   const int m = nlp.inequalityCount();
   std::vector<char> kept(m, 0);
   NlpValues v;
@@ -285,8 +292,8 @@ std::string runSlsqp(TransitionNlp& nlp, const TransitionOcpConfig& config,
     for (int r = 0; r < m; ++r)
       if (kept[r]) rows.push_back(r);
     const bool all = static_cast<int>(rows.size()) == m;
-    code = runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, error, progress,
-                        all ? nullptr : &rows);
+    code = runSlsqpOnce(nlp, config, deadline, reserve_s, x, evaluations, longest_step_s, error,
+                        progress, all ? nullptr : &rows);
     if (!error.empty() || timedOut(code) || all) break;
     nlp.evaluate(x, false, v);
     bool violated = false;
@@ -481,17 +488,18 @@ TransitionResult TransitionOcp::solveMode(const TransitionRequest& request, bool
     nlp.evaluate(x, false, probe);
     reserve_s = 2.0 * secondsSince(t0);
   }
+  double longest_step_s = 0.0;  // SLSQP's longest iteration in this solve (runSlsqpOnce)
   for (int round = 0;; ++round) {
     const double remaining = secondsUntil(deadline);
-    if (remaining <= reserve_s) {
+    if (remaining <= reserve_s + longest_step_s) {
       res.status = OcpStatus::kFailed;
       res.reason = "time limit reached (the earlier of the caller's deadline and time_limit, " +
                    std::to_string(config_.time_limit) + " s)";
       if (res.time.size() == 0) nlp.sampleSolution(x, config_.output_dt, res);
       break;
     }
-    res.nlopt_status =
-        runSlsqp(nlp, config_, deadline, reserve_s, x, res.iterations, error, progress);
+    res.nlopt_status = runSlsqp(nlp, config_, deadline, reserve_s, x, res.iterations,
+                                longest_step_s, error, progress);
     ++res.solves;
     res.variables = nlp.variableCount();
     res.constraints = nlp.equalityCount() + nlp.inequalityCount();

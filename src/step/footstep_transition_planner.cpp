@@ -17,6 +17,12 @@
 namespace reach_trajopt {
 namespace {
 
+/// The mean wall time of one of `step`'s check passes [s]: what a candidate's first pass needs
+/// before the deadline (FootstepPlanRequest::hasTimeFor).
+double meanPassSeconds(const FootstepTransition& step) {
+  return step.check_time_s / std::max(1, step.check_passes);
+}
+
 /// The retreat's kinematic scan: points per candidate batch (a message to the workers carries
 /// at most 360; retreat_kinematic_points may be up to 1000).
 constexpr int kRetreatPointsPerBatch = 64;
@@ -140,12 +146,13 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   }
   const NearestFootholdConfig& rings = nearest_.config();
   int ring_checked = 0;
-  for (int ring = 1; ring <= rings.rings && ring_checked < rings.max_checked && !at.pastDeadline();
-       ++ring) {
+  const double pass_s = meanPassSeconds(target);
+  for (int ring = 1;
+       ring <= rings.rings && ring_checked < rings.max_checked && at.hasTimeFor(pass_s); ++ring) {
     batch.candidates = nearest_.ringCandidates(r.target, ring);
     const std::vector<CandidateOutcome> outcomes = checkCandidates(batch, false);
     for (std::size_t i = 0;
-         i < outcomes.size() && ring_checked < rings.max_checked && !at.pastDeadline(); ++i) {
+         i < outcomes.size() && ring_checked < rings.max_checked && at.hasTimeFor(pass_s); ++i) {
       if (!outcomes[i].feasible()) continue;
       FootstepPlanRequest candidate = at;
       candidate.target = batch.candidates[i];
@@ -192,7 +199,7 @@ FootstepTransition FootstepTransitionPlanner::planNearestReachable(
   }
   kept.reason = "no reachable foothold among the " + std::to_string(checked) +
                 " nearest feasible candidates checked" +
-                (at.pastDeadline() ? " (deadline reached)" : "") + ": " + kept.reason;
+                (at.hasTimeFor(pass_s) ? "" : " (deadline reached)") + ": " + kept.reason;
   return kept;
 }
 
@@ -215,7 +222,8 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
     const FootstepPlanRequest& r, const FootstepPlanRequest& at, const FootstepTransition& target,
     const FootstepPlanProgress& progress, PassTotals& totals, int& checked) const {
   const int checks = config_.nearest_foothold.retreat_checks;
-  if (checks <= 0 || at.pastDeadline()) return std::nullopt;
+  const double pass_s = meanPassSeconds(target);
+  if (checks <= 0 || !at.hasTimeFor(pass_s)) return std::nullopt;
   // The swing sole's position at x_0, at the target's height: the foot was standing there.
   const RobotModel& m = *model_;
   const ContactTransition& t = target.transition;
@@ -262,7 +270,7 @@ std::optional<FootstepTransition> FootstepTransitionPlanner::planRetreat(
     if (!first_s) return std::nullopt;  // no point of the segment passes the kinematic check
   }
   std::optional<FootstepTransition> best;
-  for (int k = 0; k < checks && !at.pastDeadline(); ++k) {
+  for (int k = 0; k < checks && at.hasTimeFor(pass_s); ++k) {
     const double s = k == 0 && first_s ? *first_s : 0.5 * (lo + hi);
     FootstepPlanRequest candidate = at;
     candidate.target = pointAt(s);
@@ -323,7 +331,9 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
                                       keep_slices ? &quick_slices : nullptr);
   if (!quick.kinematically_feasible || (quick.reachable && hasStrictTrajectory(r, quick)))
     return quick;
-  if (r.pastDeadline()) {
+  // A later pass starts only with at least the quick pass's time left (hasTimeFor).
+  const double pass_s = quick.check_time_s;
+  if (!r.hasTimeFor(pass_s)) {
     quick.reason = "deadline reached after the quick pass: " + quick.reason;
     return quick;
   }
@@ -332,7 +342,7 @@ FootstepTransition FootstepTransitionPlanner::planTarget(
     std::optional<FootstepTransition> retried = retryQuickOcp(
         r, reach, schedule.passes[i], first.check, quick, quick_slices, progress, totals);
     if (retried) return std::move(*retried);
-    if (r.pastDeadline()) {
+    if (!r.hasTimeFor(pass_s)) {
       totals.stampOn(quick);
       quick.reason = "deadline reached before the full pass: " + quick.reason;
       return quick;

@@ -368,3 +368,18 @@ TEST(NearestReachable, APastDeadlineEndsThePlanAfterItsFirstPass) {
   if (s5.certificate == Certificate::kLocalSolve)
     ADD_FAILURE() << "a local solve past its deadline";
 }
+
+TEST(NearestReachable, APassStartsOnlyWithAsLongLeftAsAPassTook) {
+  // FootstepPlanRequest::hasTimeFor, the test before each pass after the first and each
+  // candidate: without a deadline always; with one, only while more than the pass's time is
+  // left (margins of seconds: no timing in this test).
+  FootstepPlanRequest r;
+  EXPECT_TRUE(r.hasTimeFor(1e6));
+  r.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  EXPECT_TRUE(r.hasTimeFor(1.0));
+  EXPECT_FALSE(r.hasTimeFor(60.0));
+  EXPECT_FALSE(r.pastDeadline());
+  r.deadline = std::chrono::steady_clock::now() - std::chrono::milliseconds(1);
+  EXPECT_FALSE(r.hasTimeFor(0.0));
+  EXPECT_TRUE(r.pastDeadline());
+}
