@@ -48,18 +48,24 @@ TEST(RosNodeSetup, AnswerOrRejectFillsTheResponseWithTheReason) {
   EXPECT_EQ(rejected, "other");
 }
 
+// `base` with `set` applied is refused by its validate(), the error naming `key`.
+template <class Params, class Set>
+void expectRefusedNaming(const Params& base, const std::string& key, Set set) {
+  Params p = base;
+  set(p);
+  try {
+    p.validate();
+    ADD_FAILURE() << key << " accepted";
+  } catch (const reach_trajopt::ReachError& e) {
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
+}
+
 TEST(RosNodeSetup, SimNodeParamsRefuseDurationsRosCannotHold) {
   EXPECT_NO_THROW(rb::SimNodeParams{}.validate());
   // ros::WallDuration holds 32-bit seconds: a 1e12 s ~linger ended the node after its walk.
   const auto refused = [](const std::string& key, auto set) {
-    rb::SimNodeParams p;
-    set(p);
-    try {
-      p.validate();
-      ADD_FAILURE() << key << " accepted";
-    } catch (const reach_trajopt::ReachError& e) {
-      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-    }
+    expectRefusedNaming(rb::SimNodeParams{}, key, set);
   };
   refused("~linger", [](rb::SimNodeParams& p) { p.linger = 1e12; });
   refused("~linger", [](rb::SimNodeParams& p) { p.linger = -1.0; });
@@ -75,14 +81,7 @@ TEST(RosNodeSetup, TransitionOcpNodeParamsRefuseWaitsAndCountsOutOfRange) {
   // Checked before the node waits for its services: a negative ros::Duration waits for ever,
   // one past 32-bit seconds throws, and each absent worker costs ~worker_timeout at start.
   const auto refused = [&fine](const std::string& key, auto set) {
-    rb::TransitionOcpNodeParams p = fine;
-    set(p);
-    try {
-      p.validate();
-      ADD_FAILURE() << key << " accepted";
-    } catch (const reach_trajopt::ReachError& e) {
-      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-    }
+    expectRefusedNaming(fine, key, set);
   };
   using P = rb::TransitionOcpNodeParams;
   refused("~default_horizon", [](P& p) { p.default_horizon = 0.0; });
